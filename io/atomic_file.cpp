@@ -1,0 +1,72 @@
+#include "io/atomic_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace rockmass::io {
+namespace {
+
+/// The temporary name used while `path` is written: ".<filename>.tmp.<pid>" beside it.
+std::filesystem::path temporaryPathFor(const std::filesystem::path& path) {
+  return path.parent_path() /
+         ("." + path.filename().string() + ".tmp." + std::to_string(::getpid()));
+}
+
+/// `what` followed by strerror(errno) when the failed operation set errno.
+std::string withErrno(std::string what) {
+  const int error = errno;
+  if (error != 0) what += std::string(": ") + std::strerror(error);
+  return what;
+}
+
+/// Writes `content` to `temporary` and closes it; returns an empty string on success,
+/// otherwise why it failed.
+std::string writeAndClose(const std::filesystem::path& temporary, std::string_view content) {
+  errno = 0;
+  std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
+  if (!stream.is_open()) return withErrno("cannot create " + temporary.string());
+  errno = 0;
+  stream.write(content.data(), static_cast<std::streamsize>(content.size()));
+  stream.flush();
+  if (!stream) return withErrno("writing " + temporary.string() + " failed");
+  errno = 0;
+  stream.close();
+  if (!stream) return withErrno("closing " + temporary.string() + " failed");
+  return {};
+}
+
+}  // namespace
+
+/// Writes to a temporary file beside `path`, checks the stream, then renames it onto `path`.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temporary = temporaryPathFor(path);
+  std::string reason = writeAndClose(temporary, content);
+  if (reason.empty()) {
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) reason = "renaming " + temporary.string() + " failed: " + error.message();
+  }
+  if (reason.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove(temporary, ignored);
+  throw std::runtime_error("cannot write " + path.string() + ": " + reason);
+}
+
+/// Shortest round-trip text of `value` (std::to_chars); "nan", "inf" or "-inf" otherwise.
+std::string formatDouble(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace rockmass::io

@@ -1,0 +1,17 @@
+#pragma once
+/// Atomic output: write to a temporary name in the same folder, then rename, so a failed
+/// or interrupted run never leaves a half-written file that looks whole.
+#include <filesystem>
+#include <string_view>
+
+namespace rockmass::io {
+
+/// Writes `content` to `path` atomically (temporary file, flush, rename). Creates no
+/// folders. Throws std::runtime_error naming the path when anything fails; the temporary
+/// file is removed then.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
+
+/// Shortest text that reads back to the same double (std::to_chars).
+std::string formatDouble(double value);
+
+}  // namespace rockmass::io

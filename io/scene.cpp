@@ -1,0 +1,1062 @@
+/// Scene file reader (format version 1): YAML -> validated Scene. Every check throws an
+/// InputError "file:line:column: key.path: expected ..., got ..." located with yaml-cpp's marks.
+#include "io/scene.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+
+#include "geometry/distribution.h"
+#include "io/fab.h"
+#include "io/input_error.h"
+
+namespace rockmass::io {
+namespace {
+
+namespace fs = std::filesystem;
+using geometry::DistributionKind;
+using geometry::DistributionSpec;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Standard gravity (m/s2) that turns a unit weight (N/m3) into a density (kg/m3).
+constexpr double kStandardGravity = 9.81;
+
+// ---------------------------------------------------------------------------------------------
+// Text helpers
+// ---------------------------------------------------------------------------------------------
+
+/// The shortest text that reads back as `x` ("0.5", "1e+06").
+std::string formatNumber(double x) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
+  return std::string(buffer.data(), result.ptr);
+}
+
+/// Items joined by ", ".
+std::string joined(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+/// Levenshtein distance: insertions, deletions and substitutions that turn a into b.
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// " (did you mean 'x'?)" for the closest candidate within 2 edits of `word` (and closer than
+/// its own length, so one-letter names suggest nothing), else "".
+std::string suggestion(std::string_view word, const std::vector<std::string>& candidates) {
+  const std::string* best = nullptr;
+  std::size_t best_distance = 3;
+  for (const std::string& candidate : candidates) {
+    const std::size_t distance = editDistance(word, candidate);
+    if (distance < best_distance && distance < candidate.size()) {
+      best = &candidate;
+      best_distance = distance;
+    }
+  }
+  return best ? " (did you mean '" + *best + "'?)" : "";
+}
+
+/// The number a plain YAML scalar spells ("-0.5", "+3", "2.6e4"), if it is a finite one.
+std::optional<double> parseNumber(std::string_view text) {
+  if (text.starts_with('+') && !text.starts_with("+-")) text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+/// The integer a YAML scalar spells ("12", "-3", "+4"), if it is one that fits in T.
+template <class T>
+std::optional<T> parseInteger(std::string_view text) {
+  if (text.starts_with('+') && !text.starts_with("+-")) text.remove_prefix(1);
+  T value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+/// The set of values a number may take, e.g. "> 0" or "in [0, 90)".
+struct Range {
+  double low = -kInf;     ///< lower bound
+  double high = kInf;     ///< upper bound
+  bool low_open = false;  ///< true: the lower bound itself is excluded
+  bool high_open = false; ///< true: the upper bound itself is excluded
+
+  /// True when x is in the range.
+  bool contains(double x) const {
+    return (low_open ? x > low : x >= low) && (high_open ? x < high : x <= high);
+  }
+  /// " > 0", " in [0, 90)", or "" for all numbers: appended to "expected a number".
+  std::string text() const {
+    const bool bounded_low = low > -kInf, bounded_high = high < kInf;
+    if (bounded_low && bounded_high) {
+      return std::string(" in ") + (low_open ? "(" : "[") + formatNumber(low) + ", " +
+             formatNumber(high) + (high_open ? ")" : "]");
+    }
+    if (bounded_low) return (low_open ? " > " : " >= ") + formatNumber(low);
+    if (bounded_high) return (high_open ? " < " : " <= ") + formatNumber(high);
+    return "";
+  }
+};
+
+constexpr Range kAnyNumber{};
+constexpr Range kPositive{.low = 0.0, .low_open = true};
+constexpr Range kNonNegative{.low = 0.0};
+
+/// Numbers x with x > low.
+constexpr Range above(double low) { return {.low = low, .low_open = true}; }
+/// Numbers x with x >= low.
+constexpr Range atLeast(double low) { return {.low = low}; }
+/// Numbers in [low, high].
+constexpr Range closed(double low, double high) { return {.low = low, .high = high}; }
+
+// ---------------------------------------------------------------------------------------------
+// Cursor: a node, its key path and typed getters
+// ---------------------------------------------------------------------------------------------
+
+/// The file a scene comes from: named in messages, and the base of relative paths.
+struct Source {
+  fs::path file;    ///< as given by the caller (used in messages)
+  fs::path folder;  ///< absolute folder of the file
+};
+
+/// One node of the scene with its key path ("joint_sets[0].spacing"). Typed getters validate
+/// and throw an InputError located at the node ("file:line:column: path: ...").
+class Cursor {
+ public:
+  /// A cursor on `node`; `fallback` locates it when yaml-cpp has no mark for it (empty values).
+  Cursor(const Source& source, YAML::Node node, std::string path, const YAML::Mark& fallback)
+      : source_(&source),
+        node_(std::move(node)),
+        path_(std::move(path)),
+        mark_(node_.Mark().is_null() ? fallback : node_.Mark()) {}
+
+  /// The key path, e.g. "materials.concrete.young" ("" at the root).
+  const std::string& path() const { return path_; }
+
+  /// Throws "file:line:column: path: what" located at this node.
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(locate(source_->file, mark_.line + 1, mark_.column + 1,
+                            path_.empty() ? what : path_ + ": " + what));
+  }
+
+  // ----- maps -----
+
+  /// Checks that this is a map (an empty value counts as an empty map) whose keys are all in
+  /// `allowed` and appear once; returns the cursor for chaining.
+  const Cursor& map(const std::vector<std::string>& allowed) const {
+    if (!node_.IsMap() && !node_.IsNull()) failType("a map");
+    std::vector<std::string> seen;
+    for (const auto& entry : node_) {
+      const Cursor key = keyCursor(entry.first);
+      const std::string& name = entry.first.Scalar();
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+        key.fail("unknown key '" + name + "'; expected one of: " + joined(allowed) +
+                 suggestion(name, allowed));
+      }
+      if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+        key.fail("duplicate key '" + name + "'");
+      }
+      seen.push_back(name);
+    }
+    return *this;
+  }
+
+  /// The entries of a map whose keys are user names (materials, joints), in file order.
+  std::vector<std::pair<std::string, Cursor>> entries() const {
+    map(keyNames());
+    std::vector<std::pair<std::string, Cursor>> result;
+    for (const auto& entry : node_) {
+      const Cursor key = keyCursor(entry.first);
+      if (entry.first.Scalar().empty()) key.failType("a name");
+      result.emplace_back(entry.first.Scalar(), child(entry.first.Scalar(), entry.second));
+    }
+    return result;
+  }
+
+  /// True when the map has `key`.
+  bool has(std::string_view key) const { return find(key).has_value(); }
+
+  /// The value of `key`, if present.
+  std::optional<Cursor> get(std::string_view key) const {
+    const std::optional<YAML::Node> value = find(key);
+    if (!value) return std::nullopt;
+    return child(std::string(key), *value);
+  }
+
+  /// The value of a required `key` (error located at this map when it is missing).
+  Cursor at(std::string_view key) const {
+    if (std::optional<Cursor> value = get(key)) return *value;
+    Cursor(*source_, node_, childPath(std::string(key)), mark_).fail("required key is missing");
+  }
+
+  /// Which of two exclusive keys the map has: 0 for `first`, 1 for `second`.
+  int oneOf(std::string_view first, std::string_view second) const {
+    const bool has_first = has(first), has_second = has(second);
+    if (has_first && has_second) {
+      fail("give either '" + std::string(first) + "' or '" + std::string(second) + "', not both");
+    }
+    if (!has_first && !has_second) {
+      fail("expected '" + std::string(first) + "' or '" + std::string(second) + "'");
+    }
+    return has_first ? 0 : 1;
+  }
+
+  /// The value read from `key` by `read`, or `fallback` when the key is absent.
+  template <class T, class Read>
+  T valueOr(std::string_view key, T fallback, Read&& read) const {
+    const std::optional<Cursor> value = get(key);
+    return value ? T(std::invoke(read, *value)) : fallback;
+  }
+
+  /// number(range) of `key`, or `fallback` when the key is absent.
+  double numberOr(std::string_view key, double fallback, const Range& range) const {
+    return valueOr(key, fallback, [&](const Cursor& c) { return c.number(range); });
+  }
+
+  /// integer(range) of `key`, or `fallback` when the key is absent.
+  int integerOr(std::string_view key, int fallback, const Range& range) const {
+    return valueOr(key, fallback, [&](const Cursor& c) { return c.integer(range); });
+  }
+
+  // ----- lists -----
+
+  /// The items of a list (an empty value counts as an empty list).
+  std::vector<Cursor> items() const {
+    if (!node_.IsSequence() && !node_.IsNull()) failType("a list");
+    std::vector<Cursor> result;
+    for (std::size_t i = 0; i < node_.size(); ++i) {
+      result.emplace_back(*source_, node_[i], path_ + "[" + std::to_string(i) + "]", mark_);
+    }
+    return result;
+  }
+
+  /// A list of exactly n numbers.
+  std::vector<double> numbers(std::size_t n) const {
+    if (!node_.IsSequence() || node_.size() != n) {
+      failType("a list of " + std::to_string(n) + " numbers");
+    }
+    std::vector<double> values;
+    for (const Cursor& item : items()) values.push_back(item.number());
+    return values;
+  }
+
+  /// [x, y, z]
+  Vec3 vec3() const {
+    const std::vector<double> v = numbers(3);
+    return {v[0], v[1], v[2]};
+  }
+
+  /// [a, b]
+  Vec2 vec2() const {
+    const std::vector<double> v = numbers(2);
+    return {v[0], v[1]};
+  }
+
+  /// A non-empty list of numbers in `range`, each greater than the one before.
+  std::vector<double> increasingNumbers(const Range& range) const {
+    const std::vector<Cursor> list = items();
+    if (list.empty()) failType("a non-empty list of numbers");
+    std::vector<double> values;
+    for (const Cursor& item : list) {
+      values.push_back(values.empty() ? item.number(range)
+                                      : item.number(above(values.back()), "(increasing)"));
+      if (!range.contains(values.back())) item.number(range);
+    }
+    return values;
+  }
+
+  /// A non-empty list of distinct words, each one of `options` (e.g. supports.fixed).
+  std::vector<std::string> distinctChoices(std::string_view noun,
+                                           const std::vector<std::string>& options) const {
+    const std::vector<Cursor> list = items();
+    if (list.empty()) failType("a non-empty list");
+    std::vector<std::string> chosen;
+    for (const Cursor& item : list) {
+      const std::string& word = options[item.choice(noun, options)];
+      if (std::find(chosen.begin(), chosen.end(), word) != chosen.end()) {
+        item.fail("duplicate " + std::string(noun) + " '" + word + "'");
+      }
+      chosen.push_back(word);
+    }
+    return chosen;
+  }
+
+  // ----- scalars -----
+
+  /// True when this is a scalar that spells a number.
+  bool isNumber() const { return node_.IsScalar() && parseNumber(node_.Scalar()).has_value(); }
+
+  /// True when this is the scalar `word`.
+  bool is(std::string_view word) const { return node_.IsScalar() && node_.Scalar() == word; }
+
+  /// A number in `range`; `context` ("for a lognormal distribution") explains the range.
+  double number(const Range& range = kAnyNumber, std::string_view context = {}) const {
+    const std::optional<double> value = node_.IsScalar() ? parseNumber(node_.Scalar()) : std::nullopt;
+    if (!value) failType("a number");
+    if (!range.contains(*value)) {
+      fail("expected a number" + range.text() + (context.empty() ? "" : " ") +
+           std::string(context) + ", got " + node_.Scalar());
+    }
+    return *value;
+  }
+
+  /// An integer in `range` that fits in an int.
+  int integer(const Range& range = kAnyNumber) const {
+    const std::optional<long long> value =
+        node_.IsScalar() ? parseInteger<long long>(node_.Scalar()) : std::nullopt;
+    if (!value) failType("an integer");
+    const bool fits = *value >= std::numeric_limits<int>::min() &&
+                      *value <= std::numeric_limits<int>::max();
+    if (!fits || !range.contains(static_cast<double>(*value))) {
+      fail("expected an integer" + range.text() + ", got " + node_.Scalar());
+    }
+    return static_cast<int>(*value);
+  }
+
+  /// An integer >= 0 up to 2^64 - 1.
+  std::uint64_t unsignedInteger() const {
+    if (!node_.IsScalar() || !parseInteger<long long>(node_.Scalar())) {
+      if (!node_.IsScalar() || !parseInteger<std::uint64_t>(node_.Scalar())) failType("an integer");
+    }
+    const std::optional<std::uint64_t> value = parseInteger<std::uint64_t>(node_.Scalar());
+    if (!value) fail("expected an integer >= 0, got " + node_.Scalar());
+    return *value;
+  }
+
+  /// true or false (YAML 1.2 spellings; "yes"/"on" are not booleans here).
+  bool boolean() const {
+    static const std::vector<std::string> kTrue{"true", "True", "TRUE"};
+    static const std::vector<std::string> kFalse{"false", "False", "FALSE"};
+    const std::string text = node_.IsScalar() ? node_.Scalar() : "";
+    if (std::find(kTrue.begin(), kTrue.end(), text) != kTrue.end()) return true;
+    if (std::find(kFalse.begin(), kFalse.end(), text) != kFalse.end()) return false;
+    failType("true or false");
+  }
+
+  /// A non-empty string (a name).
+  std::string string() const {
+    if (!node_.IsScalar() || node_.Scalar().empty()) failType("a string");
+    return node_.Scalar();
+  }
+
+  /// Index in `options` of this word; `noun` names it in messages ("unknown sweep axis 'z'").
+  std::size_t choice(std::string_view noun, const std::vector<std::string>& options) const {
+    if (!node_.IsScalar()) failType("one of: " + joined(options));
+    const std::string& word = node_.Scalar();
+    const auto found = std::find(options.begin(), options.end(), word);
+    if (found == options.end()) {
+      fail("unknown " + std::string(noun) + " '" + word + "'; expected one of: " + joined(options) +
+           suggestion(word, options));
+    }
+    return static_cast<std::size_t>(found - options.begin());
+  }
+
+  /// A path to an existing file, relative to the scene's folder; returned absolute.
+  fs::path existingFile() const {
+    const std::string given = string();
+    const fs::path path = fs::weakly_canonical(source_->folder / given);
+    if (!fs::is_regular_file(path)) {
+      fail("expected an existing file, got '" + given + "' (looked for " + path.string() + ")");
+    }
+    return path;
+  }
+
+ private:
+  /// Throws "expected <what>[, got <found>]", quoting a scalar or saying "nothing" when empty.
+  [[noreturn]] void failType(const std::string& what) const {
+    std::string found;
+    if (node_.IsScalar()) found = ", got '" + node_.Scalar() + "'";
+    if (node_.IsNull()) found = ", got nothing";
+    fail("expected " + what + found);
+  }
+
+  /// The path of a child `key`.
+  std::string childPath(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+
+  /// A cursor on the child `key` with value `value`.
+  Cursor child(const std::string& key, const YAML::Node& value) const {
+    return Cursor(*source_, value, childPath(key), mark_);
+  }
+
+  /// A cursor on a key node itself: errors about the key are located at it, path is this map's.
+  Cursor keyCursor(const YAML::Node& key) const { return Cursor(*source_, key, path_, mark_); }
+
+  /// Every key of this map (for maps whose keys are user names).
+  std::vector<std::string> keyNames() const {
+    std::vector<std::string> names;
+    for (const auto& entry : node_) names.push_back(entry.first.Scalar());
+    return names;
+  }
+
+  /// The value of `key` without creating it (const lookup, no yaml-cpp zombie nodes).
+  std::optional<YAML::Node> find(std::string_view key) const {
+    if (!node_.IsMap()) return std::nullopt;
+    for (const auto& entry : node_) {
+      if (entry.first.IsScalar() && entry.first.Scalar() == key) return entry.second;
+    }
+    return std::nullopt;
+  }
+
+  const Source* source_;
+  YAML::Node node_;
+  std::string path_;
+  YAML::Mark mark_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Names
+// ---------------------------------------------------------------------------------------------
+
+/// Index of the name at `c` among `names`; `noun` ("joint") words the error.
+int lookupName(const Cursor& c, const std::vector<std::string>& names, const std::string& noun) {
+  const std::string name = c.string();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) {
+    c.fail("unknown " + noun + " '" + name + "'; " +
+           (names.empty() ? "no " + noun + "s are defined" : "defined " + noun + "s: " + joined(names)) +
+           suggestion(name, names));
+  }
+  return static_cast<int>(found - names.begin());
+}
+
+/// Names that must not repeat, each remembered with the entry that took it.
+class UniqueNames {
+ public:
+  /// Takes `name` for the entry at path `owner`; fails at `at` if an earlier entry has it.
+  void claim(const Cursor& at, const std::string& name, const std::string& owner) {
+    const auto [it, inserted] = owners_.emplace(name, owner);
+    if (!inserted) at.fail("name '" + name + "' is already used by " + it->second);
+  }
+
+  /// Claims and returns the required `name` key of `entry`.
+  std::string claimName(const Cursor& entry) {
+    const Cursor name = entry.at("name");
+    std::string text = name.string();
+    claim(name, text, entry.path());
+    return text;
+  }
+
+ private:
+  std::map<std::string, std::string> owners_;  ///< name -> path of the entry that took it
+};
+
+// ---------------------------------------------------------------------------------------------
+// Readers that need nothing but their node
+// ---------------------------------------------------------------------------------------------
+
+constexpr std::array kDistributionKinds{DistributionKind::Normal, DistributionKind::Lognormal,
+                                        DistributionKind::Uniform, DistributionKind::Exponential,
+                                        DistributionKind::Constant};
+
+/// The names of kDistributionKinds as written in scenes.
+std::vector<std::string> distributionNames() {
+  std::vector<std::string> names;
+  for (DistributionKind kind : kDistributionKinds) names.emplace_back(geometry::distributionName(kind));
+  return names;
+}
+
+/// Mean and std of a uniform distribution: from {mean, std}, or from {min, max}.
+void readUniformMoments(const Cursor& m, DistributionSpec& spec) {
+  if (m.has("mean") || m.has("std")) {
+    spec.mean = m.at("mean").number();
+    spec.std = m.at("std").number(kPositive, "for a uniform distribution");
+    return;
+  }
+  if (!m.has("min") || !m.has("max")) m.fail("a uniform distribution needs min and max, or mean and std");
+  const double min = m.at("min").number();
+  const double max = m.at("max").number(above(min), "(min)");
+  spec.mean = 0.5 * (min + max);
+  spec.std = (max - min) / std::sqrt(12.0);
+}
+
+/// A distribution map {distribution, mean, std, min, max}, validated by geometry::Distribution.
+geometry::Distribution readDistribution(const Cursor& c) {
+  const Cursor& m = c.map({"distribution", "mean", "std", "min", "max"});
+  DistributionSpec spec;
+  spec.kind = kDistributionKinds[m.at("distribution").choice("distribution", distributionNames())];
+  const std::string context = std::string("for a ") + geometry::distributionName(spec.kind) +
+                              " distribution";
+  switch (spec.kind) {
+    case DistributionKind::Normal:
+      spec.mean = m.at("mean").number();
+      spec.std = m.at("std").number(kPositive, context);
+      break;
+    case DistributionKind::Lognormal:
+      spec.mean = m.at("mean").number(kPositive, context);
+      spec.std = m.at("std").number(kPositive, context);
+      break;
+    case DistributionKind::Uniform:
+      readUniformMoments(m, spec);
+      break;
+    case DistributionKind::Exponential:
+      if (m.has("std")) m.at("std").fail("exponential takes only mean (its std equals its mean)");
+      spec.mean = m.at("mean").number(kPositive, context);
+      spec.std = spec.mean;
+      break;
+    case DistributionKind::Constant:
+      for (const char* key : {"std", "min", "max"}) {
+        if (m.has(key)) m.at(key).fail("a constant takes only mean");
+      }
+      spec.mean = m.at("mean").number();
+      break;
+  }
+  spec.min = m.valueOr("min", std::optional<double>{}, [](const Cursor& v) { return v.number(); });
+  if (spec.min) {
+    spec.max = m.valueOr("max", std::optional<double>{},
+                         [&](const Cursor& v) { return v.number(above(*spec.min), "(min)"); });
+  } else {
+    spec.max = m.valueOr("max", std::optional<double>{}, [](const Cursor& v) { return v.number(); });
+  }
+  try {
+    return geometry::Distribution(spec);
+  } catch (const std::invalid_argument& error) {
+    m.fail(error.what());
+  }
+}
+
+/// Fails unless a trace length distribution gives only values > 0.
+void checkTraceLength(const Cursor& c, const geometry::Distribution& distribution) {
+  const DistributionSpec& spec = distribution.spec();
+  if (spec.kind == DistributionKind::Normal && !(spec.min && *spec.min > 0)) {
+    c.fail("a normal trace length can be negative; give min > 0");
+  }
+  const bool positive = spec.kind == DistributionKind::Constant ? spec.mean > 0
+                                                                 : distribution.lower() >= 0;
+  if (!positive) {
+    c.fail("expected only values > 0 for a trace length, but the distribution reaches " +
+           formatNumber(distribution.lower()));
+  }
+}
+
+/// A spacing distribution: its mean (which sets P10) must be > 0.
+DistributionSpec readSpacing(const Cursor& c) {
+  const DistributionSpec spec = readDistribution(c).spec();
+  if (spec.mean <= 0) {
+    c.valueOr("mean", c, [](const Cursor& mean) { return mean; })
+        .fail("expected a mean > 0 for a spacing, got " + formatNumber(spec.mean));
+  }
+  return spec;
+}
+
+/// Orientation of a joint set: dip_direction and dip distributions, or a Fisher `orientation`.
+geometry::OrientationSpec readOrientation(const Cursor& set) {
+  const bool independent = set.has("dip_direction") || set.has("dip");
+  geometry::OrientationSpec orientation;
+  if (independent && set.has("orientation")) {
+    set.fail("give either 'orientation' or 'dip_direction' and 'dip', not both");
+  }
+  if (independent) {
+    orientation.dip_direction = readDistribution(set.at("dip_direction")).spec();
+    orientation.dip = readDistribution(set.at("dip")).spec();
+    return orientation;
+  }
+  if (!set.has("orientation")) {
+    set.fail("expected an orientation: 'dip_direction' and 'dip' distributions, or 'orientation'");
+  }
+  const Cursor& m = set.at("orientation").map({"distribution", "dip_direction", "dip", "kappa"});
+  m.at("distribution").choice("orientation distribution", {"fisher"});
+  orientation.fisher = true;
+  orientation.fisher_dip_direction = m.at("dip_direction").number(closed(0, 360));
+  orientation.fisher_dip = m.at("dip").number(closed(0, 90));
+  orientation.kappa = m.at("kappa").number(kPositive);
+  return orientation;
+}
+
+/// shape: {aspect_ratio, major_axis: strike | dip | {rake}}.
+geometry::ShapeSpec readShape(const Cursor& c) {
+  const Cursor& m = c.map({"aspect_ratio", "major_axis"});
+  geometry::ShapeSpec shape;
+  shape.aspect_ratio = m.numberOr("aspect_ratio", 1.0, {.low = 0, .high = 1, .low_open = true});
+  if (const std::optional<Cursor> axis = m.get("major_axis")) {
+    if (axis->has("rake")) {
+      shape.major_axis = geometry::MajorAxis::Rake;
+      shape.rake = axis->map({"rake"}).at("rake").number(closed(-90, 90));
+    } else {
+      constexpr std::array kAxes{geometry::MajorAxis::Strike, geometry::MajorAxis::Dip};
+      shape.major_axis = kAxes[axis->choice("major axis", {"strike", "dip"})];
+    }
+  }
+  return shape;
+}
+
+/// The strength of a joint: `joints` entries and inline structure joints.
+Joint readJoint(const Cursor& c, std::string name) {
+  const Cursor& m = c.map({"friction", "friction_angle", "cohesion", "tensile_strength"});
+  Joint joint;
+  joint.name = std::move(name);
+  if (m.oneOf("friction", "friction_angle") == 0) {
+    joint.friction = m.at("friction").number(kNonNegative);
+  } else {
+    const double angle = m.at("friction_angle").number({.low = 0, .high = 90, .high_open = true});
+    joint.friction = std::tan(angle * std::numbers::pi / 180.0);
+  }
+  joint.cohesion = m.numberOr("cohesion", 0.0, kNonNegative);
+  joint.tensile_strength = m.numberOr("tensile_strength", 0.0, kNonNegative);
+  return joint;
+}
+
+/// A polyline of at least `min_points` [a, b] points with no zero-length segment.
+std::vector<Vec2> readProfile(const Cursor& c, std::size_t min_points) {
+  const std::vector<Cursor> items = c.items();
+  if (items.size() < min_points) {
+    c.fail("expected a list of at least " + std::to_string(min_points) + " points [a, b], got " +
+           std::to_string(items.size()));
+  }
+  std::vector<Vec2> profile;
+  for (const Cursor& item : items) {
+    profile.push_back(item.vec2());
+    if (profile.size() > 1 && profile.back() == profile[profile.size() - 2]) {
+      item.fail("zero-length segment: this point repeats the previous one");
+    }
+  }
+  return profile;
+}
+
+/// A sweep axis: 'x' or 'y'.
+char readSweep(const Cursor& c) { return c.choice("sweep axis", {"x", "y"}) == 0 ? 'x' : 'y'; }
+
+/// A direction vector that is not zero.
+Vec3 readDirection(const Cursor& c) {
+  const Vec3 direction = c.vec3();
+  if (direction.isZero(0.0)) c.fail("expected a nonzero vector");
+  return direction;
+}
+
+/// region: {x_min, x_max, y_min, y_max}, each optional; a max must exceed its min.
+Region readRegion(const Cursor& c) {
+  const Cursor& m = c.map({"x_min", "x_max", "y_min", "y_max"});
+  const auto bound = [&](std::string_view key, const std::optional<double>& min) {
+    return m.valueOr(key, std::optional<double>{}, [&](const Cursor& v) {
+      return min ? v.number(above(*min), "(min)") : v.number();
+    });
+  };
+  Region region;
+  region.x_min = bound("x_min", std::nullopt);
+  region.x_max = bound("x_max", region.x_min);
+  region.y_min = bound("y_min", std::nullopt);
+  region.y_max = bound("y_max", region.y_min);
+  return region;
+}
+
+/// A point load {point, force}.
+PointLoad readPointLoad(const Cursor& c) {
+  const Cursor& m = c.map({"point", "force"});
+  return {m.at("point").vec3(), m.at("force").vec3()};
+}
+
+/// analysis.blocks
+BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
+  const Cursor& m = c.map({"cutter", "disc_segments"});
+  BlocksAnalysis blocks;
+  constexpr std::array kCutters{BlocksAnalysis::Cutter::Exact, BlocksAnalysis::Cutter::Fast};
+  blocks.cutter = m.valueOr("cutter", blocks.cutter, [&](const Cursor& v) {
+    return kCutters[v.choice("cutter", {"exact", "fast"})];
+  });
+  blocks.disc_segments = m.integerOr("disc_segments", blocks.disc_segments, atLeast(3));
+  return blocks;
+}
+
+/// analysis.rqd
+RqdAnalysis readRqdAnalysis(const Cursor& c) {
+  const Cursor& m = c.map({"thresholds", "balls", "boreholes", "grid"});
+  RqdAnalysis rqd;
+  if (const auto thresholds = m.get("thresholds")) rqd.thresholds = thresholds->increasingNumbers(kPositive);
+  UniqueNames ball_names;
+  for (const Cursor& item : m.valueOr("balls", std::vector<Cursor>{}, &Cursor::items)) {
+    const Cursor& ball = item.map({"name", "center", "length", "directions"});
+    rqd.balls.push_back({.name = ball_names.claimName(ball),
+                         .center = ball.at("center").vec3(),
+                         .length = ball.at("length").number(kPositive),
+                         .directions = ball.integerOr("directions", 2000, atLeast(1))});
+  }
+  if (const auto holes = m.get("boreholes")) {
+    holes->map({"file", "run_length", "measured"});
+    rqd.boreholes_file = holes->at("file").existingFile();
+    rqd.run_length = holes->numberOr("run_length", rqd.run_length, kPositive);
+    rqd.measured_file = holes->valueOr("measured", fs::path{}, &Cursor::existingFile);
+  }
+  if (const auto grid = m.get("grid")) {
+    grid->map({"spacing", "direction_count"});
+    rqd.grid_spacing = grid->at("spacing").number(kPositive);
+    rqd.grid_direction_count = grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
+  }
+  return rqd;
+}
+
+/// analysis.dda
+DdaAnalysis readDdaAnalysis(const Cursor& c) {
+  const Cursor& m = c.map(
+      {"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty"});
+  DdaAnalysis dda;
+  dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
+    return v.choice("mode", {"dynamic", "static"}) == 0;
+  });
+  dda.deformable = m.valueOr("kinematics", dda.deformable, [](const Cursor& v) {
+    return v.choice("kinematics", {"deformable", "rigid"}) == 0;
+  });
+  dda.steps = m.integerOr("steps", dda.steps, above(0));
+  dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
+  dda.max_displacement_ratio = m.numberOr("max_displacement_ratio", dda.max_displacement_ratio,
+                                          {.low = 0, .high = 1, .low_open = true, .high_open = true});
+  if (const auto penalty = m.get("penalty"); penalty && !penalty->is("auto")) {
+    if (!penalty->isNumber()) penalty->fail("expected 'auto' or a number > 0, got '" + penalty->string() + "'");
+    dda.penalty = penalty->number(kPositive);
+  }
+  return dda;
+}
+
+/// analysis.overload
+OverloadAnalysis readOverloadAnalysis(const Cursor& c) {
+  const Cursor& m = c.map({"factors", "scales"});
+  return {.factors = m.at("factors").increasingNumbers(kPositive),
+          .scales = m.at("scales").distinctChoices("load", {"water", "gravity", "point_loads"})};
+}
+
+/// analysis.strength_reduction
+StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
+  return {.factors = c.map({"factors"}).at("factors").increasingNumbers(kPositive)};
+}
+
+/// The `analysis` section: each stage present only when its key is.
+Analysis readAnalysis(const Cursor& c) {
+  const Cursor& m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction"});
+  Analysis analysis;
+  if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
+  if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v);
+  if (const auto v = m.get("dda")) analysis.dda = readDdaAnalysis(*v);
+  if (const auto v = m.get("overload")) analysis.overload = readOverloadAnalysis(*v);
+  if (const auto v = m.get("strength_reduction")) {
+    analysis.strength_reduction = readStrengthReductionAnalysis(*v);
+  }
+  return analysis;
+}
+
+// ---------------------------------------------------------------------------------------------
+// SceneReader: sections that refer to named materials, joints and structures
+// ---------------------------------------------------------------------------------------------
+
+/// Reads the sections in dependency order (materials and joints before what names them).
+class SceneReader {
+ public:
+  /// Reads the whole scene from its root node.
+  Scene read(const Cursor& root, const fs::path& file) {
+    const Cursor& m =
+        root.map({"version", "name", "seed", "domain", "materials", "rock_material", "joints",
+                  "default_joint", "joint_sets", "fractures", "faults", "interlayers", "structures",
+                  "loads", "supports", "monitors", "analysis"});
+    scene_.file = file;
+    const Cursor version = m.at("version");
+    if (version.integer() != 1) {
+      version.fail("expected format version 1, got " + std::to_string(version.integer()));
+    }
+    scene_.name = m.valueOr("name", std::string{}, &Cursor::string);
+    scene_.seed = m.valueOr("seed", std::uint64_t{0}, &Cursor::unsignedInteger);
+    readDomain(m.at("domain"));
+    for (const auto& [name, material] : m.valueOr("materials", Entries{}, &Cursor::entries)) {
+      scene_.materials.push_back(readMaterial(material, name));
+    }
+    scene_.rock_material = m.valueOr("rock_material", -1, [&](const Cursor& v) { return material(v); });
+    for (const auto& [name, joint] : m.valueOr("joints", Entries{}, &Cursor::entries)) {
+      scene_.joints.push_back(readJoint(joint, name));
+    }
+    named_joints_ = jointNames();
+    scene_.default_joint = m.valueOr("default_joint", -1, [&](const Cursor& v) { return joint(v); });
+    forEachItem(m, "joint_sets", [&](const Cursor& c) { scene_.dfn.joint_sets.push_back(readJointSet(c)); });
+    forEachItem(m, "fractures", [&](const Cursor& c) { scene_.dfn.polygon_sets.push_back(readFractures(c)); });
+    forEachItem(m, "faults", [&](const Cursor& c) { scene_.dfn.faults.push_back(readFault(c)); });
+    forEachItem(m, "interlayers", [&](const Cursor& c) { scene_.dfn.interlayers.push_back(readInterlayer(c)); });
+    forEachItem(m, "structures", [&](const Cursor& c) { scene_.structures.push_back(readStructure(c)); });
+    if (const auto loads = m.get("loads")) scene_.loads = readLoads(*loads);
+    if (const auto supports = m.get("supports")) {
+      scene_.fixed_faces = supports->map({"fixed"}).at("fixed").distinctChoices(
+          "face", {"bottom", "top", "west", "east", "south", "north"});
+    }
+    UniqueNames monitor_names;
+    forEachItem(m, "monitors", [&](const Cursor& c) {
+      const Cursor& monitor = c.map({"name", "point"});
+      scene_.monitors.push_back({monitor_names.claimName(monitor), monitor.at("point").vec3()});
+    });
+    if (const auto analysis = m.get("analysis")) scene_.analysis = readAnalysis(*analysis);
+    return std::move(scene_);
+  }
+
+ private:
+  using Entries = std::vector<std::pair<std::string, Cursor>>;
+
+  /// Calls `read` for every item of the list under `key` of `m`, if present.
+  template <class Read>
+  static void forEachItem(const Cursor& m, std::string_view key, Read&& read) {
+    if (const auto list = m.get(key)) {
+      for (const Cursor& item : list->items()) read(item);
+    }
+  }
+
+  /// domain: exactly one of box {min, max} or mesh (a file).
+  void readDomain(const Cursor& c) {
+    const Cursor& m = c.map({"box", "mesh"});
+    if (m.oneOf("box", "mesh") == 1) {
+      scene_.domain_mesh = m.at("mesh").existingFile();
+      return;
+    }
+    const Cursor& box = m.at("box").map({"min", "max"});
+    scene_.dfn.domain.min = box.at("min").vec3();
+    scene_.dfn.domain.max = box.at("max").vec3();
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(scene_.dfn.domain.min[axis] < scene_.dfn.domain.max[axis])) {
+        box.at("max").fail("expected min < max in every component, got min " +
+                           formatNumber(scene_.dfn.domain.min[axis]) + " >= max " +
+                           formatNumber(scene_.dfn.domain.max[axis]) + " in " + "xyz"[axis]);
+      }
+    }
+  }
+
+  /// A `materials` entry: unit_weight or density, young, poisson.
+  static Material readMaterial(const Cursor& c, const std::string& name) {
+    const Cursor& m = c.map({"unit_weight", "density", "young", "poisson"});
+    Material material{.name = name};
+    material.density = m.oneOf("unit_weight", "density") == 0
+                           ? m.at("unit_weight").number(kPositive) / kStandardGravity
+                           : m.at("density").number(kPositive);
+    material.young = m.at("young").number(kPositive);
+    material.poisson = m.at("poisson").number({.low = -1, .high = 0.5, .low_open = true, .high_open = true});
+    return material;
+  }
+
+  /// Names of the joints read so far.
+  std::vector<std::string> jointNames() const {
+    std::vector<std::string> names;
+    for (const Joint& joint : scene_.joints) names.push_back(joint.name);
+    return names;
+  }
+
+  /// Index of the material named at `c`.
+  int material(const Cursor& c) const {
+    std::vector<std::string> names;
+    for (const Material& material : scene_.materials) names.push_back(material.name);
+    return lookupName(c, names, "material");
+  }
+
+  /// Index of the joint named at `c` (among the `joints` section).
+  int joint(const Cursor& c) const { return lookupName(c, named_joints_, "joint"); }
+
+  /// The entry's `joint`, or the default joint when it has none.
+  int jointOf(const Cursor& entry) const {
+    return entry.valueOr("joint", scene_.default_joint, [&](const Cursor& v) { return joint(v); });
+  }
+
+  /// thickness (default 0) and material of a fault or interlayer; `what` is "a fault".
+  std::pair<double, int> readSlab(const Cursor& entry, const std::string& what) const {
+    const double thickness = entry.numberOr("thickness", 0.0, kNonNegative);
+    const int slab_material = entry.valueOr("material", -1, [&](const Cursor& v) { return material(v); });
+    if (thickness > 0 && slab_material < 0) entry.fail(what + " with thickness > 0 needs a material");
+    return {thickness, slab_material};
+  }
+
+  /// A `joint_sets` entry.
+  geometry::JointSetSpec readJointSet(const Cursor& c) {
+    const Cursor& m = c.map({"name", "dip_direction", "dip", "orientation", "spacing", "intensity",
+                             "trace_length", "shape", "joint", "min_cut_size"});
+    geometry::JointSetSpec set;
+    set.name = dfn_names_.claimName(m);
+    set.orientation = readOrientation(m);
+    if (m.oneOf("spacing", "intensity") == 0) {
+      set.spacing = readSpacing(m.at("spacing"));
+    } else {
+      set.p32 = m.at("intensity").map({"p32"}).at("p32").number(kPositive);
+    }
+    const Cursor trace_length = m.at("trace_length");
+    const geometry::Distribution trace_distribution = readDistribution(trace_length);
+    checkTraceLength(trace_length, trace_distribution);
+    set.trace_length = trace_distribution.spec();
+    set.shape = m.valueOr("shape", set.shape, &readShape);
+    set.joint = jointOf(m);
+    set.min_cut_size = m.numberOr("min_cut_size", 0.0, kNonNegative);
+    return set;
+  }
+
+  /// A `fractures` entry: the polygons of a FAB file, named after the file's stem.
+  geometry::PolygonSetSpec readFractures(const Cursor& c) {
+    const Cursor& m = c.map({"file", "joint"});
+    const Cursor file = m.at("file");
+    const fs::path path = file.existingFile();
+    geometry::PolygonSetSpec set;
+    set.name = path.stem().string();
+    dfn_names_.claim(file, set.name, m.path());
+    for (FabFracture& fracture : readFab(path).fractures) {
+      set.polygons.push_back(std::move(fracture.vertices));
+      set.file_sets.push_back(fracture.set);
+    }
+    set.joint = jointOf(m);
+    return set;
+  }
+
+  /// A `faults` entry.
+  geometry::FaultSpec readFault(const Cursor& c) {
+    const Cursor& m = c.map({"name", "center", "dip_direction", "dip", "size", "thickness",
+                             "material", "joint"});
+    geometry::FaultSpec fault;
+    fault.name = dfn_names_.claimName(m);
+    fault.center = m.at("center").vec3();
+    fault.dip_direction = m.at("dip_direction").number(closed(0, 360));
+    fault.dip = m.at("dip").number(closed(0, 90));
+    if (const auto size = m.get("size")) {
+      const std::vector<Cursor> axes = size->items();
+      if (axes.size() != 2) size->fail("expected a list of 2 numbers [major, minor]");
+      const double major = axes[0].number(kPositive);
+      fault.size = {major, axes[1].number({.low = 0, .high = major, .low_open = true}, "(<= major)")};
+    }
+    std::tie(fault.thickness, fault.material) = readSlab(m, "a fault");
+    fault.joint = jointOf(m);
+    return fault;
+  }
+
+  /// An `interlayers` entry.
+  geometry::InterlayerSpec readInterlayer(const Cursor& c) {
+    const Cursor& m =
+        c.map({"name", "profile", "sweep", "thickness", "material", "joint"});
+    geometry::InterlayerSpec layer;
+    layer.name = dfn_names_.claimName(m);
+    layer.profile = readProfile(m.at("profile"), 2);
+    layer.sweep = readSweep(m.at("sweep"));
+    std::tie(layer.thickness, layer.material) = readSlab(m, "an interlayer");
+    layer.joint = jointOf(m);
+    return layer;
+  }
+
+  /// A `structures` entry; an inline joint map is appended to the scene's joints.
+  StructureSpec readStructure(const Cursor& c) {
+    const Cursor& m = c.map({"name", "prism", "mesh", "material", "joint"});
+    StructureSpec structure;
+    structure.name = structure_names_.claimName(m);
+    if (m.oneOf("prism", "mesh") == 0) {
+      const Cursor& prism = m.at("prism").map({"profile", "sweep", "from", "to"});
+      structure.prism_profile = readProfile(prism.at("profile"), 3);
+      structure.prism_sweep = readSweep(prism.at("sweep"));
+      structure.prism_from = prism.at("from").number();
+      structure.prism_to = prism.at("to").number(above(structure.prism_from), "(from)");
+    } else {
+      structure.mesh = m.at("mesh").existingFile();
+    }
+    structure.material = material(m.at("material"));
+    const std::optional<Cursor> contact = m.get("joint");
+    if (contact && contact->isMap()) {
+      structure.joint = static_cast<int>(scene_.joints.size());
+      scene_.joints.push_back(readJoint(*contact, structure.name + ".joint"));
+    } else {
+      structure.joint = jointOf(m);
+    }
+    return structure;
+  }
+
+  /// A `loads.water` entry.
+  WaterLoad readWater(const Cursor& c) const {
+    const Cursor& m = c.map({"level", "unit_weight", "uplift", "on"});
+    WaterLoad water;
+    water.level = m.at("level").number();
+    water.unit_weight = m.numberOr("unit_weight", water.unit_weight, kPositive);
+    water.uplift = m.valueOr("uplift", false, &Cursor::boolean);
+    const Cursor& on = m.at("on").map({"structure", "facing", "domain_top", "region"});
+    if (on.oneOf("structure", "domain_top") == 0) {
+      const Cursor structure = on.at("structure");
+      lookupName(structure, structureNames(), "structure");
+      water.structure = structure.string();
+      water.facing = readDirection(on.at("facing"));
+    } else {
+      const Cursor top = on.at("domain_top");
+      if (!top.boolean()) top.fail("expected true (or an 'on: {structure: ...}' entry), got false");
+      if (on.has("facing")) on.at("facing").fail("'facing' selects structure faces; remove it for domain_top");
+      water.domain_top = true;
+    }
+    water.region = on.valueOr("region", water.region, &readRegion);
+    return water;
+  }
+
+  /// The `loads` section.
+  Loads readLoads(const Cursor& c) const {
+    const Cursor& m = c.map({"gravity", "water", "point_loads"});
+    Loads loads;
+    if (const auto gravity = m.get("gravity")) {
+      loads.gravity = gravity->isNumber() ? Vec3(0, 0, -gravity->number(kPositive)) : gravity->vec3();
+    }
+    forEachItem(m, "water", [&](const Cursor& v) { loads.water.push_back(readWater(v)); });
+    forEachItem(m, "point_loads", [&](const Cursor& v) { loads.point_loads.push_back(readPointLoad(v)); });
+    return loads;
+  }
+
+  /// Names of the structures read so far.
+  std::vector<std::string> structureNames() const {
+    std::vector<std::string> names;
+    for (const StructureSpec& structure : scene_.structures) names.push_back(structure.name);
+    return names;
+  }
+
+  Scene scene_;                             ///< what is being read
+  std::vector<std::string> named_joints_;   ///< joints of the `joints` section (referable by name)
+  UniqueNames dfn_names_;                   ///< joint sets, fractures files, faults, interlayers
+  UniqueNames structure_names_;             ///< structures
+};
+
+/// The single YAML document of `text`, or an InputError for invalid YAML.
+YAML::Node loadDocument(const std::string& text, const fs::path& file) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& error) {
+    throw InputError(locate(file, std::max(error.mark.line, 0) + 1, std::max(error.mark.column, 0) + 1,
+                            "invalid YAML: " + error.msg));
+  }
+  if (documents.size() > 1) {
+    const YAML::Mark mark = documents[1].Mark();
+    throw InputError(locate(file, std::max(mark.line, 0) + 1, std::max(mark.column, 0) + 1,
+                            "expected one YAML document, got " + std::to_string(documents.size())));
+  }
+  return documents.empty() ? YAML::Node() : documents.front();
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (!(in && text << in.rdbuf())) throw InputError(file.string() + ": cannot read the scene file");
+  return parseScene(text.str(), file);
+}
+
+Scene parseScene(const std::string& text, const std::filesystem::path& file) {
+  const Source source{file, fs::absolute(file).parent_path()};
+  const Cursor root(source, loadDocument(text, file), "", YAML::Mark{0, 0, 0});
+  return SceneReader().read(root, file);
+}
+
+}  // namespace rockmass::io

@@ -1,0 +1,165 @@
+#pragma once
+/// The scene file (format version 1, YAML): see shared docs/scene-format.md. Reading
+/// validates everything; any problem is an InputError located at file:line:column.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/dfn_spec.h"
+#include "geometry/vec.h"
+
+namespace rockmass::io {
+
+using geometry::Vec2;
+using geometry::Vec3;
+
+/// An intact material (Table 2).
+struct Material {
+  std::string name;      ///< name used by the scene
+  double density = 0.0;  ///< kg/m3 (from `density`, or `unit_weight` / 9.81)
+  double young = 0.0;    ///< Young's modulus (Pa)
+  double poisson = 0.0;  ///< Poisson's ratio, in (-1, 0.5)
+};
+
+/// Mohr-Coulomb strength of a discontinuity.
+struct Joint {
+  std::string name;               ///< name used by the scene ("" for an inline joint)
+  double friction = 0.0;          ///< f = tan(phi) (from `friction` or `friction_angle`)
+  double cohesion = 0.0;          ///< Pa
+  double tensile_strength = 0.0;  ///< Pa
+};
+
+/// A structure standing on or in the rock (the dam).
+struct StructureSpec {
+  std::string name;                  ///< e.g. "dam"
+  std::vector<Vec2> prism_profile;   ///< prism outline, (x, z) for sweep y, (y, z) for sweep x
+  char prism_sweep = 'y';            ///< axis the outline is swept along
+  double prism_from = 0.0;           ///< sweep start (m)
+  double prism_to = 0.0;             ///< sweep end (m)
+  std::filesystem::path mesh;        ///< closed mesh instead of a prism (absolute path)
+  int material = 0;                  ///< material index
+  int joint = 0;                     ///< joint index of the structure-rock contact
+};
+
+/// Plan-view region (m); missing bounds are open.
+struct Region {
+  std::optional<double> x_min, x_max, y_min, y_max;
+};
+
+/// Hydrostatic water pressure p = unit_weight * max(0, level - z) on selected faces.
+struct WaterLoad {
+  double level = 0.0;           ///< z of the water surface (m)
+  double unit_weight = 9810.0;  ///< N/m3
+  std::string structure;        ///< faces of this structure ("" when on the domain top)
+  std::optional<Vec3> facing;   ///< wet faces have outward normal n with n . facing > 0
+  bool domain_top = false;      ///< the top face of the domain
+  Region region;                ///< restricts the wet faces in plan
+  bool uplift = false;          ///< also the structure-rock interface
+};
+
+/// A concentrated force.
+struct PointLoad {
+  Vec3 point = Vec3::Zero();  ///< m
+  Vec3 force = Vec3::Zero();  ///< N
+};
+
+/// Loads of the scene.
+struct Loads {
+  std::optional<Vec3> gravity;          ///< m/s2 vector (a number g means (0, 0, -g))
+  std::vector<WaterLoad> water;         ///< water pressure entries
+  std::vector<PointLoad> point_loads;   ///< point loads
+};
+
+/// A measure point attached to the block that contains it.
+struct Monitor {
+  std::string name;           ///< e.g. "P4"
+  Vec3 point = Vec3::Zero();  ///< m
+};
+
+/// analysis.blocks
+struct BlocksAnalysis {
+  enum class Cutter { Exact, Fast };
+  Cutter cutter = Cutter::Exact;  ///< exact (CGAL Nef) or fast (convex splitting)
+  int disc_segments = 24;         ///< polygon points per ellipse (>= 3)
+};
+
+/// One RQD ball.
+struct RqdBall {
+  std::string name;             ///< ball name
+  Vec3 center = Vec3::Zero();   ///< m
+  double length = 0.0;          ///< scanline length (m), centred on the ball centre
+  int directions = 2000;        ///< Fibonacci-sphere directions
+};
+
+/// analysis.rqd
+struct RqdAnalysis {
+  std::vector<double> thresholds{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};  ///< m
+  std::vector<RqdBall> balls;                ///< RQD balls
+  std::filesystem::path boreholes_file;      ///< collars (absolute path), empty if none
+  double run_length = 3.0;                   ///< core run length (m)
+  std::filesystem::path measured_file;       ///< measured log (absolute path), empty if none
+  std::optional<double> grid_spacing;        ///< RQD/P32 grid cell size (m)
+  int grid_direction_count = 200;            ///< directions per grid cell
+};
+
+/// analysis.dda
+struct DdaAnalysis {
+  bool dynamic = true;                  ///< dynamic | static
+  bool deformable = true;               ///< deformable (12 DOF) | rigid (6 DOF)
+  int steps = 1000;                     ///< number of steps of size time_step
+  double time_step = 0.002;             ///< s, the largest allowed
+  double max_displacement_ratio = 0.001;  ///< of the domain size, per step
+  std::optional<double> penalty;        ///< N/m; none means auto
+};
+
+/// analysis.overload
+struct OverloadAnalysis {
+  std::vector<double> factors;     ///< load factors K, increasing
+  std::vector<std::string> scales; ///< loads multiplied: "water", "gravity", "point_loads"
+};
+
+/// analysis.strength_reduction
+struct StrengthReductionAnalysis {
+  std::vector<double> factors;     ///< strength reduction factors, increasing
+};
+
+/// The `analysis` section: a stage runs only when its entry is present.
+struct Analysis {
+  std::optional<BlocksAnalysis> blocks;
+  std::optional<RqdAnalysis> rqd;
+  std::optional<DdaAnalysis> dda;
+  std::optional<OverloadAnalysis> overload;
+  std::optional<StrengthReductionAnalysis> strength_reduction;
+};
+
+/// A whole scene, validated, with names resolved to indices.
+struct Scene {
+  std::filesystem::path file;            ///< the scene file as given
+  int version = 1;                       ///< format version
+  std::string name;                      ///< site name
+  std::uint64_t seed = 0;                ///< seed of every random draw
+  std::filesystem::path domain_mesh;     ///< closed mesh domain (absolute), empty for a box
+  geometry::DfnSpec dfn;                 ///< domain box and everything the DFN is made of
+  std::vector<Material> materials;       ///< in scene order
+  int rock_material = -1;                ///< material of the rock (-1: not given)
+  std::vector<Joint> joints;             ///< named joints, then inline ones (structures)
+  int default_joint = -1;                ///< joint used where none is named (-1: not given)
+  std::vector<StructureSpec> structures; ///< structures
+  Loads loads;                           ///< loads
+  std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
+  std::vector<Monitor> monitors;         ///< measure points
+  Analysis analysis;                     ///< what to compute
+};
+
+/// Reads and validates a scene. Relative paths inside it are resolved against its folder;
+/// FAB files named under `fractures` are read into dfn.polygon_sets.
+/// Throws InputError ("file:line:column: key: what was expected") for any problem.
+Scene loadScene(const std::filesystem::path& file);
+
+/// The same, from text; `file` is used in messages and to resolve relative paths.
+Scene parseScene(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace rockmass::io

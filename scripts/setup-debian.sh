@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package rockmass needs to build, test and run.
+# Idempotent: packages already installed are skipped, and apt-get is not
+# called at all when nothing is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev          # geometry, dda3d: dense linear algebra
+  libyaml-cpp-dev        # io: scene files
+  libcli11-dev           # app: command line
+  nlohmann-json3-dev     # io: summary.json
+  libtbb-dev             # parallel loops
+  libgtest-dev libgmock-dev   # tests
+  libbenchmark-dev       # bench
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

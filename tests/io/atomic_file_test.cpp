@@ -1,0 +1,128 @@
+#include "io/atomic_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace rockmass::io {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::string_literals;
+
+/// A fresh, empty folder per test, removed afterwards.
+class AtomicFileTest : public ::testing::Test {
+ protected:
+  /// Creates the folder, named after the test and the process so parallel runs do not meet.
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = fs::temp_directory_path() /
+              ("rockmass_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  /// Removes the folder and everything in it.
+  void TearDown() override { fs::remove_all(folder_); }
+
+  /// Names of the entries of the folder (temporaries included: they start with '.').
+  std::set<std::string> entries() const {
+    std::set<std::string> names;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder_)) {
+      names.insert(entry.path().filename().string());
+    }
+    return names;
+  }
+
+  fs::path folder_;
+};
+
+/// The bytes of a file.
+std::string readBytes(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(AtomicFileTest, WritesContentExactly) {
+  // NUL, CR LF and a byte above 127 would be altered by a text-mode or C-string writer.
+  const std::string content = "id,x\r\n1,0.1\n\0\xff end"s;
+  writeFileAtomically(folder_ / "out.csv", content);
+  EXPECT_EQ(readBytes(folder_ / "out.csv"), content);
+  EXPECT_EQ(entries(), std::set<std::string>{"out.csv"});
+}
+
+TEST_F(AtomicFileTest, ReplacesAnExistingFile) {
+  writeFileAtomically(folder_ / "out.txt", "a longer first version\n");
+  writeFileAtomically(folder_ / "out.txt", "short\n");
+  EXPECT_EQ(readBytes(folder_ / "out.txt"), "short\n");
+  EXPECT_EQ(entries(), std::set<std::string>{"out.txt"});
+}
+
+TEST_F(AtomicFileTest, MissingFolderThrowsAndLeavesNothing) {
+  const fs::path target = folder_ / "missing" / "out.txt";
+  try {
+    writeFileAtomically(target, "content");
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(target.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("No such file or directory"), std::string::npos) << message;
+  }
+  EXPECT_TRUE(entries().empty());  // no "missing" folder, no file, no temporary
+}
+
+TEST_F(AtomicFileTest, FailedRenameRemovesTheTemporary) {
+  // The temporary is written, but a non-empty folder cannot be replaced by a file.
+  fs::create_directories(folder_ / "out.txt" / "inside");
+  EXPECT_THROW(writeFileAtomically(folder_ / "out.txt", "content"), std::runtime_error);
+  EXPECT_EQ(entries(), std::set<std::string>{"out.txt"});
+  EXPECT_TRUE(fs::is_directory(folder_ / "out.txt"));
+}
+
+TEST(FormatDouble, GivesTheShortestForms) {
+  EXPECT_EQ(formatDouble(0.1), "0.1");
+  EXPECT_EQ(formatDouble(1e21), "1e+21");
+  EXPECT_EQ(formatDouble(3.0), "3");
+  EXPECT_EQ(formatDouble(-2.5), "-2.5");
+  EXPECT_EQ(formatDouble(0.0), "0");
+  EXPECT_EQ(formatDouble(-0.0), "-0");
+  EXPECT_EQ(formatDouble(1.0 / 3.0), "0.3333333333333333");
+  EXPECT_EQ(formatDouble(5e-324), "5e-324");
+  EXPECT_EQ(formatDouble(std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(formatDouble(-std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(formatDouble(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(formatDouble(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+TEST(FormatDouble, RoundTripsRandomDoubles) {
+  // Random bit patterns cover every exponent, subnormals and both zeros; plain uniform
+  // values cover the ordinary numbers of coordinates. Comparing bits also tells -0 from 0.
+  std::mt19937_64 random(20131001);
+  std::uniform_real_distribution<double> uniform(-1e4, 1e4);
+  int checked = 0;
+  while (checked < 10000) {
+    const double value = checked % 2 == 0 ? std::bit_cast<double>(random()) : uniform(random);
+    if (!std::isfinite(value)) continue;  // about 1 in 2048 random bit patterns
+    const std::string text = formatDouble(value);
+    double parsed = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), parsed);
+    ASSERT_EQ(error, std::errc()) << text;
+    ASSERT_EQ(end, text.data() + text.size()) << text;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(parsed), std::bit_cast<std::uint64_t>(value)) << text;
+    ++checked;
+  }
+}
+
+}  // namespace
+}  // namespace rockmass::io
