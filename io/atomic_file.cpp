@@ -16,8 +16,10 @@ namespace {
 
 /// The temporary name used while `path` is written: ".<filename>.tmp.<pid>" beside it.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& path) {
-  return path.parent_path() /
-         ("." + path.filename().string() + ".tmp." + std::to_string(::getpid()));
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp." + std::to_string(::getpid());
+  return path.parent_path() / name;
 }
 
 /// `what` followed by strerror(errno) when the failed operation set errno.

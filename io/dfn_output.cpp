@@ -1,11 +1,14 @@
 #include "io/dfn_output.h"
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
 #include "geometry/orientation.h"
 #include "io/atomic_file.h"
+#include "io/vtu.h"
 
 namespace rockmass::io {
 namespace {
@@ -30,31 +33,17 @@ void appendCsvVector(std::string& out, const Vec3& v) {
   for (int axis = 0; axis < 3; ++axis) out += ',' + formatDouble(v[axis]);
 }
 
-/// Appends one ASCII VTK <DataArray> whose values are `body` (already formatted lines).
-void appendDataArray(std::string& out, std::string_view type, std::string_view name, int components,
-                     const std::string& body) {
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\" Name=\"";
-  out += name;
-  out += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"ascii\">\n";
-  out += body;
-  out += "        </DataArray>\n";
-}
-
-/// One line of values for a DataArray body, indented to sit under its tag.
-std::string dataLine(const std::string& values) {
-  return "          " + values + '\n';
-}
-
 }  // namespace
 
-/// Outline of every disc as a FAB polygon, id = disc id, set = set index + 1.
+std::vector<Vec3> outputOutline(const Disc& disc, int segments) {
+  return disc.outline(disc.cuts ? segments : std::min(segments, kRqdOnlySegments));
+}
+
 FabFile toFab(const FractureNetwork& network, int segments) {
   FabFile fab;
   fab.fractures.reserve(network.discs.size());
   for (const Disc& disc : network.discs) {
-    fab.fractures.push_back({disc.id, disc.set + 1, disc.outline(segments)});
+    fab.fractures.push_back({disc.id, disc.set + 1, outputOutline(disc, segments)});
   }
   return fab;
 }
@@ -74,52 +63,26 @@ std::string formatFracturesCsv(const FractureNetwork& network) {
   return out;
 }
 
-/// VTK XML UnstructuredGrid (ASCII): one VTK_POLYGON cell per disc outline, with cell data
-/// id (disc id), set (set index) and cuts (0/1).
 std::string formatFracturesVtu(const FractureNetwork& network, int segments) {
-  constexpr int kVtkPolygon = 7;
-  std::string points, connectivity, offsets, types, ids, sets, cuts;
-  std::size_t point_count = 0;
+  constexpr std::uint8_t kVtkPolygon = 7;
+  VtuPiece piece;
+  std::vector<std::int64_t> ids;
+  std::vector<std::int32_t> sets;
+  std::vector<std::uint8_t> cuts;
   for (const Disc& disc : network.discs) {
-    const std::vector<Vec3> outline = disc.outline(segments);
-    std::string cell;
-    for (const Vec3& p : outline) {
-      points +=
-          dataLine(formatDouble(p.x()) + ' ' + formatDouble(p.y()) + ' ' + formatDouble(p.z()));
-      if (!cell.empty()) cell += ' ';
-      cell += std::to_string(point_count++);
+    for (const Vec3& p : outputOutline(disc, segments)) {
+      piece.connectivity.push_back(static_cast<std::int64_t>(piece.points.size() / 3));
+      piece.points.insert(piece.points.end(), {p.x(), p.y(), p.z()});
     }
-    connectivity += dataLine(cell);
-    offsets += dataLine(std::to_string(point_count));
-    types += dataLine(std::to_string(kVtkPolygon));
-    ids += dataLine(std::to_string(disc.id));
-    sets += dataLine(std::to_string(disc.set));
-    cuts += dataLine(disc.cuts ? "1" : "0");
+    piece.offsets.push_back(static_cast<std::int64_t>(piece.connectivity.size()));
+    piece.types.push_back(kVtkPolygon);
+    ids.push_back(disc.id);
+    sets.push_back(disc.set);
+    cuts.push_back(disc.cuts ? 1 : 0);
   }
-  std::string out =
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n"
-      "  <UnstructuredGrid>\n"
-      "    <Piece NumberOfPoints=\"" +
-      std::to_string(point_count) + "\" NumberOfCells=\"" + std::to_string(network.discs.size()) +
-      "\">\n"
-      "      <CellData Scalars=\"id\">\n";
-  appendDataArray(out, "Int64", "id", 1, ids);
-  appendDataArray(out, "Int32", "set", 1, sets);
-  appendDataArray(out, "UInt8", "cuts", 1, cuts);
-  out += "      </CellData>\n      <Points>\n";
-  appendDataArray(out, "Float64", "Points", 3, points);
-  out += "      </Points>\n      <Cells>\n";
-  appendDataArray(out, "Int64", "connectivity", 1, connectivity);
-  appendDataArray(out, "Int64", "offsets", 1, offsets);
-  appendDataArray(out, "UInt8", "types", 1, types);
-  out +=
-      "      </Cells>\n"
-      "    </Piece>\n"
-      "  </UnstructuredGrid>\n"
-      "</VTKFile>\n";
-  return out;
+  piece.cell_data = {makeVtuArray("id", ids), makeVtuArray("set", sets),
+                     makeVtuArray("cuts", cuts)};
+  return formatVtu(piece);
 }
 
 }  // namespace rockmass::io

@@ -66,14 +66,16 @@ bool equalsIgnoringCase(std::string_view a, std::string_view b) {
 /// `text` in single quotes for an error message, shortened when it is long (binary garbage).
 std::string quoted(std::string_view text) {
   constexpr std::size_t kMaxShown = 60;
-  if (text.size() <= kMaxShown) return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, kMaxShown)) + "...'";
+  std::string result = "'";
+  result += text.substr(0, kMaxShown);
+  result += text.size() > kMaxShown ? "...'" : "'";
+  return result;
 }
 
-/// `word` as a number of type Number when the whole word is one (a leading '+' is allowed).
+/// `word` as a Number when the whole word is one (a leading '+' is allowed).
 template <typename Number>
 std::optional<Number> tryNumber(std::string_view word) {
-  if (word.size() > 1 && word.front() == '+') word.remove_prefix(1);
+  if (word.size() > 1 && word[0] == '+' && word[1] != '-') word.remove_prefix(1);
   Number value{};
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
   if (error != std::errc() || end != word.data() + word.size()) return std::nullopt;

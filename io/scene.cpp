@@ -10,12 +10,13 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 #include "geometry/distribution.h"
@@ -105,10 +106,10 @@ std::optional<T> parseInteger(std::string_view text) {
 
 /// The set of values a number may take, e.g. "> 0" or "in [0, 90)".
 struct Range {
-  double low = -kInf;     ///< lower bound
-  double high = kInf;     ///< upper bound
-  bool low_open = false;  ///< true: the lower bound itself is excluded
-  bool high_open = false; ///< true: the upper bound itself is excluded
+  double low = -kInf;      ///< lower bound
+  double high = kInf;      ///< upper bound
+  bool low_open = false;   ///< true: the lower bound itself is excluded
+  bool high_open = false;  ///< true: the upper bound itself is excluded
 
   /// True when x is in the range.
   bool contains(double x) const {
@@ -132,11 +133,17 @@ constexpr Range kPositive{.low = 0.0, .low_open = true};
 constexpr Range kNonNegative{.low = 0.0};
 
 /// Numbers x with x > low.
-constexpr Range above(double low) { return {.low = low, .low_open = true}; }
+constexpr Range above(double low) {
+  return {.low = low, .low_open = true};
+}
 /// Numbers x with x >= low.
-constexpr Range atLeast(double low) { return {.low = low}; }
+constexpr Range atLeast(double low) {
+  return {.low = low};
+}
 /// Numbers in [low, high].
-constexpr Range closed(double low, double high) { return {.low = low, .high = high}; }
+constexpr Range closed(double low, double high) {
+  return {.low = low, .high = high};
+}
 
 // ---------------------------------------------------------------------------------------------
 // Cursor: a node, its key path and typed getters
@@ -152,12 +159,13 @@ struct Source {
 /// and throw an InputError located at the node ("file:line:column: path: ...").
 class Cursor {
  public:
-  /// A cursor on `node`; `fallback` locates it when yaml-cpp has no mark for it (empty values).
+  /// A cursor on `node`. An empty value is located at `fallback` (its key, or its list): yaml-cpp
+  /// marks it at the token after it, often on the next line.
   Cursor(const Source& source, YAML::Node node, std::string path, const YAML::Mark& fallback)
       : source_(&source),
         node_(std::move(node)),
         path_(std::move(path)),
-        mark_(node_.Mark().is_null() ? fallback : node_.Mark()) {}
+        mark_(node_.IsNull() || node_.Mark().is_null() ? fallback : node_.Mark()) {}
 
   /// The key path, e.g. "materials.concrete.young" ("" at the root).
   const std::string& path() const { return path_; }
@@ -172,8 +180,8 @@ class Cursor {
 
   /// Checks that this is a map (an empty value counts as an empty map) whose keys are all in
   /// `allowed` and appear once; returns the cursor for chaining.
-  const Cursor& map(const std::vector<std::string>& allowed) const {
-    if (!node_.IsMap() && !node_.IsNull()) failType("a map");
+  Cursor map(const std::vector<std::string>& allowed) const {
+    requireMap();
     std::vector<std::string> seen;
     for (const auto& entry : node_) {
       const Cursor key = keyCursor(entry.first);
@@ -190,26 +198,34 @@ class Cursor {
     return *this;
   }
 
+  /// True when this is a map (not an empty value).
+  bool isMap() const { return node_.IsMap(); }
+
   /// The entries of a map whose keys are user names (materials, joints), in file order.
   std::vector<std::pair<std::string, Cursor>> entries() const {
+    requireMap();
     map(keyNames());
     std::vector<std::pair<std::string, Cursor>> result;
     for (const auto& entry : node_) {
-      const Cursor key = keyCursor(entry.first);
-      if (entry.first.Scalar().empty()) key.failType("a name");
-      result.emplace_back(entry.first.Scalar(), child(entry.first.Scalar(), entry.second));
+      if (entry.first.Scalar().empty()) keyCursor(entry.first).failExpected("a name");
+      result.emplace_back(entry.first.Scalar(), child(entry.first, entry.second));
     }
     return result;
   }
 
   /// True when the map has `key`.
-  bool has(std::string_view key) const { return find(key).has_value(); }
+  bool has(std::string_view key) const { return get(key).has_value(); }
 
-  /// The value of `key`, if present.
+  /// The value of `key`, if present (a const walk: yaml-cpp's operator[] may add the key).
   std::optional<Cursor> get(std::string_view key) const {
-    const std::optional<YAML::Node> value = find(key);
-    if (!value) return std::nullopt;
-    return child(std::string(key), *value);
+    if (node_.IsMap()) {
+      for (const auto& entry : node_) {
+        if (entry.first.IsScalar() && entry.first.Scalar() == key) {
+          return child(entry.first, entry.second);
+        }
+      }
+    }
+    return std::nullopt;
   }
 
   /// The value of a required `key` (error located at this map when it is missing).
@@ -251,7 +267,7 @@ class Cursor {
 
   /// The items of a list (an empty value counts as an empty list).
   std::vector<Cursor> items() const {
-    if (!node_.IsSequence() && !node_.IsNull()) failType("a list");
+    if (!node_.IsSequence() && !node_.IsNull()) failExpected("a list");
     std::vector<Cursor> result;
     for (std::size_t i = 0; i < node_.size(); ++i) {
       result.emplace_back(*source_, node_[i], path_ + "[" + std::to_string(i) + "]", mark_);
@@ -262,7 +278,7 @@ class Cursor {
   /// A list of exactly n numbers.
   std::vector<double> numbers(std::size_t n) const {
     if (!node_.IsSequence() || node_.size() != n) {
-      failType("a list of " + std::to_string(n) + " numbers");
+      failExpected("a list of " + std::to_string(n) + " numbers");
     }
     std::vector<double> values;
     for (const Cursor& item : items()) values.push_back(item.number());
@@ -284,12 +300,12 @@ class Cursor {
   /// A non-empty list of numbers in `range`, each greater than the one before.
   std::vector<double> increasingNumbers(const Range& range) const {
     const std::vector<Cursor> list = items();
-    if (list.empty()) failType("a non-empty list of numbers");
+    if (list.empty()) failExpected("a non-empty list of numbers");
     std::vector<double> values;
     for (const Cursor& item : list) {
-      values.push_back(values.empty() ? item.number(range)
-                                      : item.number(above(values.back()), "(increasing)"));
-      if (!range.contains(values.back())) item.number(range);
+      values.push_back(values.empty()
+                           ? item.number(range)
+                           : item.number(above(values.back()), "(the list must increase)"));
     }
     return values;
   }
@@ -298,7 +314,7 @@ class Cursor {
   std::vector<std::string> distinctChoices(std::string_view noun,
                                            const std::vector<std::string>& options) const {
     const std::vector<Cursor> list = items();
-    if (list.empty()) failType("a non-empty list");
+    if (list.empty()) failExpected("a non-empty list");
     std::vector<std::string> chosen;
     for (const Cursor& item : list) {
       const std::string& word = options[item.choice(noun, options)];
@@ -320,8 +336,9 @@ class Cursor {
 
   /// A number in `range`; `context` ("for a lognormal distribution") explains the range.
   double number(const Range& range = kAnyNumber, std::string_view context = {}) const {
-    const std::optional<double> value = node_.IsScalar() ? parseNumber(node_.Scalar()) : std::nullopt;
-    if (!value) failType("a number");
+    const std::optional<double> value =
+        node_.IsScalar() ? parseNumber(node_.Scalar()) : std::nullopt;
+    if (!value) failExpected("a number");
     if (!range.contains(*value)) {
       fail("expected a number" + range.text() + (context.empty() ? "" : " ") +
            std::string(context) + ", got " + node_.Scalar());
@@ -333,9 +350,9 @@ class Cursor {
   int integer(const Range& range = kAnyNumber) const {
     const std::optional<long long> value =
         node_.IsScalar() ? parseInteger<long long>(node_.Scalar()) : std::nullopt;
-    if (!value) failType("an integer");
-    const bool fits = *value >= std::numeric_limits<int>::min() &&
-                      *value <= std::numeric_limits<int>::max();
+    if (!value) failExpected("an integer");
+    const bool fits =
+        *value >= std::numeric_limits<int>::min() && *value <= std::numeric_limits<int>::max();
     if (!fits || !range.contains(static_cast<double>(*value))) {
       fail("expected an integer" + range.text() + ", got " + node_.Scalar());
     }
@@ -344,33 +361,31 @@ class Cursor {
 
   /// An integer >= 0 up to 2^64 - 1.
   std::uint64_t unsignedInteger() const {
-    if (!node_.IsScalar() || !parseInteger<long long>(node_.Scalar())) {
-      if (!node_.IsScalar() || !parseInteger<std::uint64_t>(node_.Scalar())) failType("an integer");
-    }
-    const std::optional<std::uint64_t> value = parseInteger<std::uint64_t>(node_.Scalar());
-    if (!value) fail("expected an integer >= 0, got " + node_.Scalar());
-    return *value;
+    const std::string text = node_.IsScalar() ? node_.Scalar() : "";
+    if (const std::optional<std::uint64_t> value = parseInteger<std::uint64_t>(text)) return *value;
+    if (parseInteger<long long>(text)) fail("expected an integer >= 0, got " + text);
+    failExpected("an integer");
   }
 
   /// true or false (YAML 1.2 spellings; "yes"/"on" are not booleans here).
   bool boolean() const {
-    static const std::vector<std::string> kTrue{"true", "True", "TRUE"};
-    static const std::vector<std::string> kFalse{"false", "False", "FALSE"};
+    constexpr std::array<std::string_view, 3> kTrue{"true", "True", "TRUE"};
+    constexpr std::array<std::string_view, 3> kFalse{"false", "False", "FALSE"};
     const std::string text = node_.IsScalar() ? node_.Scalar() : "";
     if (std::find(kTrue.begin(), kTrue.end(), text) != kTrue.end()) return true;
     if (std::find(kFalse.begin(), kFalse.end(), text) != kFalse.end()) return false;
-    failType("true or false");
+    failExpected("true or false");
   }
 
   /// A non-empty string (a name).
   std::string string() const {
-    if (!node_.IsScalar() || node_.Scalar().empty()) failType("a string");
+    if (!node_.IsScalar() || node_.Scalar().empty()) failExpected("a string");
     return node_.Scalar();
   }
 
   /// Index in `options` of this word; `noun` names it in messages ("unknown sweep axis 'z'").
   std::size_t choice(std::string_view noun, const std::vector<std::string>& options) const {
-    if (!node_.IsScalar()) failType("one of: " + joined(options));
+    if (!node_.IsScalar()) failExpected("one of: " + joined(options));
     const std::string& word = node_.Scalar();
     const auto found = std::find(options.begin(), options.end(), word);
     if (found == options.end()) {
@@ -378,6 +393,14 @@ class Cursor {
            suggestion(word, options));
     }
     return static_cast<std::size_t>(found - options.begin());
+  }
+
+  /// Throws "expected <what>[, got <found>]", quoting a scalar or saying "nothing" when empty.
+  [[noreturn]] void failExpected(const std::string& what) const {
+    std::string found;
+    if (node_.IsScalar()) found = ", got '" + node_.Scalar() + "'";
+    if (node_.IsNull()) found = ", got nothing";
+    fail("expected " + what + found);
   }
 
   /// A path to an existing file, relative to the scene's folder; returned absolute.
@@ -391,12 +414,9 @@ class Cursor {
   }
 
  private:
-  /// Throws "expected <what>[, got <found>]", quoting a scalar or saying "nothing" when empty.
-  [[noreturn]] void failType(const std::string& what) const {
-    std::string found;
-    if (node_.IsScalar()) found = ", got '" + node_.Scalar() + "'";
-    if (node_.IsNull()) found = ", got nothing";
-    fail("expected " + what + found);
+  /// Fails unless this is a map or an empty value (which counts as an empty map).
+  void requireMap() const {
+    if (!node_.IsMap() && !node_.IsNull()) failExpected("a map");
   }
 
   /// The path of a child `key`.
@@ -404,9 +424,9 @@ class Cursor {
     return path_.empty() ? key : path_ + "." + key;
   }
 
-  /// A cursor on the child `key` with value `value`.
-  Cursor child(const std::string& key, const YAML::Node& value) const {
-    return Cursor(*source_, value, childPath(key), mark_);
+  /// A cursor on the value of the map entry (key, value); an empty value is located at the key.
+  Cursor child(const YAML::Node& key, const YAML::Node& value) const {
+    return Cursor(*source_, value, childPath(key.Scalar()), key.Mark());
   }
 
   /// A cursor on a key node itself: errors about the key are located at it, path is this map's.
@@ -419,24 +439,31 @@ class Cursor {
     return names;
   }
 
-  /// The value of `key` without creating it (const lookup, no yaml-cpp zombie nodes).
-  std::optional<YAML::Node> find(std::string_view key) const {
-    if (!node_.IsMap()) return std::nullopt;
-    for (const auto& entry : node_) {
-      if (entry.first.IsScalar() && entry.first.Scalar() == key) return entry.second;
-    }
-    return std::nullopt;
-  }
-
-  const Source* source_;
-  YAML::Node node_;
-  std::string path_;
-  YAML::Mark mark_;
+  const Source* source_;  ///< file of the scene (outlives every cursor)
+  YAML::Node node_;       ///< the node itself
+  std::string path_;      ///< key path for messages
+  YAML::Mark mark_;       ///< where messages about this node point
 };
 
 // ---------------------------------------------------------------------------------------------
 // Names
 // ---------------------------------------------------------------------------------------------
+
+/// Calls `read` for every item of the list under `key` of the map m, if present.
+template <class Read>
+void forEachItem(const Cursor& m, std::string_view key, Read&& read) {
+  if (const auto list = m.get(key)) {
+    for (const Cursor& item : list->items()) read(item);
+  }
+}
+
+/// The `name` of every item (materials, joints, structures), in order.
+template <class T>
+std::vector<std::string> namesOf(const std::vector<T>& items) {
+  std::vector<std::string> names;
+  for (const T& item : items) names.push_back(item.name);
+  return names;
+}
 
 /// Index of the name at `c` among `names`; `noun` ("joint") words the error.
 int lookupName(const Cursor& c, const std::vector<std::string>& names, const std::string& noun) {
@@ -444,7 +471,8 @@ int lookupName(const Cursor& c, const std::vector<std::string>& names, const std
   const auto found = std::find(names.begin(), names.end(), name);
   if (found == names.end()) {
     c.fail("unknown " + noun + " '" + name + "'; " +
-           (names.empty() ? "no " + noun + "s are defined" : "defined " + noun + "s: " + joined(names)) +
+           (names.empty() ? "no " + noun + "s are defined"
+                          : "defined " + noun + "s: " + joined(names)) +
            suggestion(name, names));
   }
   return static_cast<int>(found - names.begin());
@@ -475,6 +503,7 @@ class UniqueNames {
 // Readers that need nothing but their node
 // ---------------------------------------------------------------------------------------------
 
+/// The families a distribution map can name, in the order error messages list them.
 constexpr std::array kDistributionKinds{DistributionKind::Normal, DistributionKind::Lognormal,
                                         DistributionKind::Uniform, DistributionKind::Exponential,
                                         DistributionKind::Constant};
@@ -482,8 +511,24 @@ constexpr std::array kDistributionKinds{DistributionKind::Normal, DistributionKi
 /// The names of kDistributionKinds as written in scenes.
 std::vector<std::string> distributionNames() {
   std::vector<std::string> names;
-  for (DistributionKind kind : kDistributionKinds) names.emplace_back(geometry::distributionName(kind));
+  for (DistributionKind kind : kDistributionKinds) {
+    names.emplace_back(geometry::distributionName(kind));
+  }
   return names;
+}
+
+/// The optional bounds `min_key` and `max_key` of the map m; max must exceed min when both are
+/// given (distribution truncation, plan regions).
+std::pair<std::optional<double>, std::optional<double>> readBounds(const Cursor& m,
+                                                                   const std::string& min_key,
+                                                                   const std::string& max_key) {
+  const std::optional<double> min =
+      m.valueOr(min_key, std::optional<double>{}, [](const Cursor& v) { return v.number(); });
+  const std::string context = "(" + max_key + " must exceed " + min_key + ")";
+  const std::optional<double> max =
+      m.valueOr(max_key, std::optional<double>{},
+                [&](const Cursor& v) { return min ? v.number(above(*min), context) : v.number(); });
+  return {min, max};
 }
 
 /// Mean and std of a uniform distribution: from {mean, std}, or from {min, max}.
@@ -493,20 +538,19 @@ void readUniformMoments(const Cursor& m, DistributionSpec& spec) {
     spec.std = m.at("std").number(kPositive, "for a uniform distribution");
     return;
   }
-  if (!m.has("min") || !m.has("max")) m.fail("a uniform distribution needs min and max, or mean and std");
-  const double min = m.at("min").number();
-  const double max = m.at("max").number(above(min), "(min)");
-  spec.mean = 0.5 * (min + max);
-  spec.std = (max - min) / std::sqrt(12.0);
+  const auto [min, max] = readBounds(m, "min", "max");
+  if (!min || !max) m.fail("a uniform distribution needs min and max, or mean and std");
+  spec.mean = 0.5 * (*min + *max);
+  spec.std = (*max - *min) / std::sqrt(12.0);
 }
 
 /// A distribution map {distribution, mean, std, min, max}, validated by geometry::Distribution.
 geometry::Distribution readDistribution(const Cursor& c) {
-  const Cursor& m = c.map({"distribution", "mean", "std", "min", "max"});
+  const Cursor m = c.map({"distribution", "mean", "std", "min", "max"});
   DistributionSpec spec;
   spec.kind = kDistributionKinds[m.at("distribution").choice("distribution", distributionNames())];
-  const std::string context = std::string("for a ") + geometry::distributionName(spec.kind) +
-                              " distribution";
+  const std::string context =
+      std::string("for a ") + geometry::distributionName(spec.kind) + " distribution";
   switch (spec.kind) {
     case DistributionKind::Normal:
       spec.mean = m.at("mean").number();
@@ -531,13 +575,7 @@ geometry::Distribution readDistribution(const Cursor& c) {
       spec.mean = m.at("mean").number();
       break;
   }
-  spec.min = m.valueOr("min", std::optional<double>{}, [](const Cursor& v) { return v.number(); });
-  if (spec.min) {
-    spec.max = m.valueOr("max", std::optional<double>{},
-                         [&](const Cursor& v) { return v.number(above(*spec.min), "(min)"); });
-  } else {
-    spec.max = m.valueOr("max", std::optional<double>{}, [](const Cursor& v) { return v.number(); });
-  }
+  std::tie(spec.min, spec.max) = readBounds(m, "min", "max");
   try {
     return geometry::Distribution(spec);
   } catch (const std::invalid_argument& error) {
@@ -551,8 +589,8 @@ void checkTraceLength(const Cursor& c, const geometry::Distribution& distributio
   if (spec.kind == DistributionKind::Normal && !(spec.min && *spec.min > 0)) {
     c.fail("a normal trace length can be negative; give min > 0");
   }
-  const bool positive = spec.kind == DistributionKind::Constant ? spec.mean > 0
-                                                                 : distribution.lower() >= 0;
+  const bool positive =
+      spec.kind == DistributionKind::Constant ? spec.mean > 0 : distribution.lower() >= 0;
   if (!positive) {
     c.fail("expected only values > 0 for a trace length, but the distribution reaches " +
            formatNumber(distribution.lower()));
@@ -563,8 +601,8 @@ void checkTraceLength(const Cursor& c, const geometry::Distribution& distributio
 DistributionSpec readSpacing(const Cursor& c) {
   const DistributionSpec spec = readDistribution(c).spec();
   if (spec.mean <= 0) {
-    c.valueOr("mean", c, [](const Cursor& mean) { return mean; })
-        .fail("expected a mean > 0 for a spacing, got " + formatNumber(spec.mean));
+    c.get("mean").value_or(c).fail("expected a mean > 0 for a spacing, got " +
+                                   formatNumber(spec.mean));
   }
   return spec;
 }
@@ -584,7 +622,7 @@ geometry::OrientationSpec readOrientation(const Cursor& set) {
   if (!set.has("orientation")) {
     set.fail("expected an orientation: 'dip_direction' and 'dip' distributions, or 'orientation'");
   }
-  const Cursor& m = set.at("orientation").map({"distribution", "dip_direction", "dip", "kappa"});
+  const Cursor m = set.at("orientation").map({"distribution", "dip_direction", "dip", "kappa"});
   m.at("distribution").choice("orientation distribution", {"fisher"});
   orientation.fisher = true;
   orientation.fisher_dip_direction = m.at("dip_direction").number(closed(0, 360));
@@ -595,11 +633,11 @@ geometry::OrientationSpec readOrientation(const Cursor& set) {
 
 /// shape: {aspect_ratio, major_axis: strike | dip | {rake}}.
 geometry::ShapeSpec readShape(const Cursor& c) {
-  const Cursor& m = c.map({"aspect_ratio", "major_axis"});
+  const Cursor m = c.map({"aspect_ratio", "major_axis"});
   geometry::ShapeSpec shape;
   shape.aspect_ratio = m.numberOr("aspect_ratio", 1.0, {.low = 0, .high = 1, .low_open = true});
   if (const std::optional<Cursor> axis = m.get("major_axis")) {
-    if (axis->has("rake")) {
+    if (axis->isMap()) {
       shape.major_axis = geometry::MajorAxis::Rake;
       shape.rake = axis->map({"rake"}).at("rake").number(closed(-90, 90));
     } else {
@@ -612,7 +650,7 @@ geometry::ShapeSpec readShape(const Cursor& c) {
 
 /// The strength of a joint: `joints` entries and inline structure joints.
 Joint readJoint(const Cursor& c, std::string name) {
-  const Cursor& m = c.map({"friction", "friction_angle", "cohesion", "tensile_strength"});
+  const Cursor m = c.map({"friction", "friction_angle", "cohesion", "tensile_strength"});
   Joint joint;
   joint.name = std::move(name);
   if (m.oneOf("friction", "friction_angle") == 0) {
@@ -644,7 +682,9 @@ std::vector<Vec2> readProfile(const Cursor& c, std::size_t min_points) {
 }
 
 /// A sweep axis: 'x' or 'y'.
-char readSweep(const Cursor& c) { return c.choice("sweep axis", {"x", "y"}) == 0 ? 'x' : 'y'; }
+char readSweep(const Cursor& c) {
+  return c.choice("sweep axis", {"x", "y"}) == 0 ? 'x' : 'y';
+}
 
 /// A direction vector that is not zero.
 Vec3 readDirection(const Cursor& c) {
@@ -655,29 +695,22 @@ Vec3 readDirection(const Cursor& c) {
 
 /// region: {x_min, x_max, y_min, y_max}, each optional; a max must exceed its min.
 Region readRegion(const Cursor& c) {
-  const Cursor& m = c.map({"x_min", "x_max", "y_min", "y_max"});
-  const auto bound = [&](std::string_view key, const std::optional<double>& min) {
-    return m.valueOr(key, std::optional<double>{}, [&](const Cursor& v) {
-      return min ? v.number(above(*min), "(min)") : v.number();
-    });
-  };
+  const Cursor m = c.map({"x_min", "x_max", "y_min", "y_max"});
   Region region;
-  region.x_min = bound("x_min", std::nullopt);
-  region.x_max = bound("x_max", region.x_min);
-  region.y_min = bound("y_min", std::nullopt);
-  region.y_max = bound("y_max", region.y_min);
+  std::tie(region.x_min, region.x_max) = readBounds(m, "x_min", "x_max");
+  std::tie(region.y_min, region.y_max) = readBounds(m, "y_min", "y_max");
   return region;
 }
 
 /// A point load {point, force}.
 PointLoad readPointLoad(const Cursor& c) {
-  const Cursor& m = c.map({"point", "force"});
+  const Cursor m = c.map({"point", "force"});
   return {m.at("point").vec3(), m.at("force").vec3()};
 }
 
 /// analysis.blocks
 BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
-  const Cursor& m = c.map({"cutter", "disc_segments"});
+  const Cursor m = c.map({"cutter", "disc_segments"});
   BlocksAnalysis blocks;
   constexpr std::array kCutters{BlocksAnalysis::Cutter::Exact, BlocksAnalysis::Cutter::Fast};
   blocks.cutter = m.valueOr("cutter", blocks.cutter, [&](const Cursor& v) {
@@ -689,17 +722,19 @@ BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
 
 /// analysis.rqd
 RqdAnalysis readRqdAnalysis(const Cursor& c) {
-  const Cursor& m = c.map({"thresholds", "balls", "boreholes", "grid"});
+  const Cursor m = c.map({"thresholds", "balls", "boreholes", "grid"});
   RqdAnalysis rqd;
-  if (const auto thresholds = m.get("thresholds")) rqd.thresholds = thresholds->increasingNumbers(kPositive);
+  if (const auto thresholds = m.get("thresholds")) {
+    rqd.thresholds = thresholds->increasingNumbers(kPositive);
+  }
   UniqueNames ball_names;
-  for (const Cursor& item : m.valueOr("balls", std::vector<Cursor>{}, &Cursor::items)) {
-    const Cursor& ball = item.map({"name", "center", "length", "directions"});
+  forEachItem(m, "balls", [&](const Cursor& item) {
+    const Cursor ball = item.map({"name", "center", "length", "directions"});
     rqd.balls.push_back({.name = ball_names.claimName(ball),
                          .center = ball.at("center").vec3(),
                          .length = ball.at("length").number(kPositive),
                          .directions = ball.integerOr("directions", 2000, atLeast(1))});
-  }
+  });
   if (const auto holes = m.get("boreholes")) {
     holes->map({"file", "run_length", "measured"});
     rqd.boreholes_file = holes->at("file").existingFile();
@@ -709,15 +744,16 @@ RqdAnalysis readRqdAnalysis(const Cursor& c) {
   if (const auto grid = m.get("grid")) {
     grid->map({"spacing", "direction_count"});
     rqd.grid_spacing = grid->at("spacing").number(kPositive);
-    rqd.grid_direction_count = grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
+    rqd.grid_direction_count =
+        grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
   }
   return rqd;
 }
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c) {
-  const Cursor& m = c.map(
-      {"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty"});
+  const Cursor m =
+      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -727,10 +763,11 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
   });
   dda.steps = m.integerOr("steps", dda.steps, above(0));
   dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
-  dda.max_displacement_ratio = m.numberOr("max_displacement_ratio", dda.max_displacement_ratio,
-                                          {.low = 0, .high = 1, .low_open = true, .high_open = true});
+  dda.max_displacement_ratio =
+      m.numberOr("max_displacement_ratio", dda.max_displacement_ratio,
+                 {.low = 0, .high = 1, .low_open = true, .high_open = true});
   if (const auto penalty = m.get("penalty"); penalty && !penalty->is("auto")) {
-    if (!penalty->isNumber()) penalty->fail("expected 'auto' or a number > 0, got '" + penalty->string() + "'");
+    if (!penalty->isNumber()) penalty->failExpected("'auto' or a number > 0");
     dda.penalty = penalty->number(kPositive);
   }
   return dda;
@@ -738,7 +775,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
 
 /// analysis.overload
 OverloadAnalysis readOverloadAnalysis(const Cursor& c) {
-  const Cursor& m = c.map({"factors", "scales"});
+  const Cursor m = c.map({"factors", "scales"});
   return {.factors = m.at("factors").increasingNumbers(kPositive),
           .scales = m.at("scales").distinctChoices("load", {"water", "gravity", "point_loads"})};
 }
@@ -750,7 +787,7 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 
 /// The `analysis` section: each stage present only when its key is.
 Analysis readAnalysis(const Cursor& c) {
-  const Cursor& m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction"});
+  const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
   if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v);
@@ -771,32 +808,38 @@ class SceneReader {
  public:
   /// Reads the whole scene from its root node.
   Scene read(const Cursor& root, const fs::path& file) {
-    const Cursor& m =
+    const Cursor m =
         root.map({"version", "name", "seed", "domain", "materials", "rock_material", "joints",
                   "default_joint", "joint_sets", "fractures", "faults", "interlayers", "structures",
                   "loads", "supports", "monitors", "analysis"});
     scene_.file = file;
     const Cursor version = m.at("version");
-    if (version.integer() != 1) {
-      version.fail("expected format version 1, got " + std::to_string(version.integer()));
+    if (const int number = version.integer(); number != 1) {
+      version.fail("expected format version 1, got " + std::to_string(number));
     }
     scene_.name = m.valueOr("name", std::string{}, &Cursor::string);
     scene_.seed = m.valueOr("seed", std::uint64_t{0}, &Cursor::unsignedInteger);
     readDomain(m.at("domain"));
-    for (const auto& [name, material] : m.valueOr("materials", Entries{}, &Cursor::entries)) {
-      scene_.materials.push_back(readMaterial(material, name));
+    for (const auto& [name, entry] : m.valueOr("materials", Entries{}, &Cursor::entries)) {
+      scene_.materials.push_back(readMaterial(entry, name));
     }
-    scene_.rock_material = m.valueOr("rock_material", -1, [&](const Cursor& v) { return material(v); });
-    for (const auto& [name, joint] : m.valueOr("joints", Entries{}, &Cursor::entries)) {
-      scene_.joints.push_back(readJoint(joint, name));
+    scene_.rock_material =
+        m.valueOr("rock_material", -1, [&](const Cursor& v) { return material(v); });
+    for (const auto& [name, entry] : m.valueOr("joints", Entries{}, &Cursor::entries)) {
+      scene_.joints.push_back(readJoint(entry, name));
     }
-    named_joints_ = jointNames();
-    scene_.default_joint = m.valueOr("default_joint", -1, [&](const Cursor& v) { return joint(v); });
-    forEachItem(m, "joint_sets", [&](const Cursor& c) { scene_.dfn.joint_sets.push_back(readJointSet(c)); });
-    forEachItem(m, "fractures", [&](const Cursor& c) { scene_.dfn.polygon_sets.push_back(readFractures(c)); });
+    named_joints_ = namesOf(scene_.joints);
+    scene_.default_joint =
+        m.valueOr("default_joint", -1, [&](const Cursor& v) { return joint(v); });
+    forEachItem(m, "joint_sets",
+                [&](const Cursor& c) { scene_.dfn.joint_sets.push_back(readJointSet(c)); });
+    forEachItem(m, "fractures",
+                [&](const Cursor& c) { scene_.dfn.polygon_sets.push_back(readFractures(c)); });
     forEachItem(m, "faults", [&](const Cursor& c) { scene_.dfn.faults.push_back(readFault(c)); });
-    forEachItem(m, "interlayers", [&](const Cursor& c) { scene_.dfn.interlayers.push_back(readInterlayer(c)); });
-    forEachItem(m, "structures", [&](const Cursor& c) { scene_.structures.push_back(readStructure(c)); });
+    forEachItem(m, "interlayers",
+                [&](const Cursor& c) { scene_.dfn.interlayers.push_back(readInterlayer(c)); });
+    forEachItem(m, "structures",
+                [&](const Cursor& c) { scene_.structures.push_back(readStructure(c)); });
     if (const auto loads = m.get("loads")) scene_.loads = readLoads(*loads);
     if (const auto supports = m.get("supports")) {
       scene_.fixed_faces = supports->map({"fixed"}).at("fixed").distinctChoices(
@@ -804,7 +847,7 @@ class SceneReader {
     }
     UniqueNames monitor_names;
     forEachItem(m, "monitors", [&](const Cursor& c) {
-      const Cursor& monitor = c.map({"name", "point"});
+      const Cursor monitor = c.map({"name", "point"});
       scene_.monitors.push_back({monitor_names.claimName(monitor), monitor.at("point").vec3()});
     });
     if (const auto analysis = m.get("analysis")) scene_.analysis = readAnalysis(*analysis);
@@ -814,57 +857,41 @@ class SceneReader {
  private:
   using Entries = std::vector<std::pair<std::string, Cursor>>;
 
-  /// Calls `read` for every item of the list under `key` of `m`, if present.
-  template <class Read>
-  static void forEachItem(const Cursor& m, std::string_view key, Read&& read) {
-    if (const auto list = m.get(key)) {
-      for (const Cursor& item : list->items()) read(item);
-    }
-  }
-
   /// domain: exactly one of box {min, max} or mesh (a file).
   void readDomain(const Cursor& c) {
-    const Cursor& m = c.map({"box", "mesh"});
+    const Cursor m = c.map({"box", "mesh"});
     if (m.oneOf("box", "mesh") == 1) {
       scene_.domain_mesh = m.at("mesh").existingFile();
       return;
     }
-    const Cursor& box = m.at("box").map({"min", "max"});
+    const Cursor box = m.at("box").map({"min", "max"});
     scene_.dfn.domain.min = box.at("min").vec3();
     scene_.dfn.domain.max = box.at("max").vec3();
     for (int axis = 0; axis < 3; ++axis) {
-      if (!(scene_.dfn.domain.min[axis] < scene_.dfn.domain.max[axis])) {
-        box.at("max").fail("expected min < max in every component, got min " +
-                           formatNumber(scene_.dfn.domain.min[axis]) + " >= max " +
-                           formatNumber(scene_.dfn.domain.max[axis]) + " in " + "xyz"[axis]);
+      const double min = scene_.dfn.domain.min[axis], max = scene_.dfn.domain.max[axis];
+      if (!(min < max)) {
+        box.fail("expected min < max in every component, got " + formatNumber(min) +
+                 " >= " + formatNumber(max) + " in " + "xyz"[axis]);
       }
     }
   }
 
   /// A `materials` entry: unit_weight or density, young, poisson.
   static Material readMaterial(const Cursor& c, const std::string& name) {
-    const Cursor& m = c.map({"unit_weight", "density", "young", "poisson"});
+    const Cursor m = c.map({"unit_weight", "density", "young", "poisson"});
     Material material{.name = name};
     material.density = m.oneOf("unit_weight", "density") == 0
                            ? m.at("unit_weight").number(kPositive) / kStandardGravity
                            : m.at("density").number(kPositive);
     material.young = m.at("young").number(kPositive);
-    material.poisson = m.at("poisson").number({.low = -1, .high = 0.5, .low_open = true, .high_open = true});
+    material.poisson =
+        m.at("poisson").number({.low = -1, .high = 0.5, .low_open = true, .high_open = true});
     return material;
-  }
-
-  /// Names of the joints read so far.
-  std::vector<std::string> jointNames() const {
-    std::vector<std::string> names;
-    for (const Joint& joint : scene_.joints) names.push_back(joint.name);
-    return names;
   }
 
   /// Index of the material named at `c`.
   int material(const Cursor& c) const {
-    std::vector<std::string> names;
-    for (const Material& material : scene_.materials) names.push_back(material.name);
-    return lookupName(c, names, "material");
+    return lookupName(c, namesOf(scene_.materials), "material");
   }
 
   /// Index of the joint named at `c` (among the `joints` section).
@@ -878,15 +905,18 @@ class SceneReader {
   /// thickness (default 0) and material of a fault or interlayer; `what` is "a fault".
   std::pair<double, int> readSlab(const Cursor& entry, const std::string& what) const {
     const double thickness = entry.numberOr("thickness", 0.0, kNonNegative);
-    const int slab_material = entry.valueOr("material", -1, [&](const Cursor& v) { return material(v); });
-    if (thickness > 0 && slab_material < 0) entry.fail(what + " with thickness > 0 needs a material");
+    const int slab_material =
+        entry.valueOr("material", -1, [&](const Cursor& v) { return material(v); });
+    if (thickness > 0 && slab_material < 0) {
+      entry.fail(what + " with thickness > 0 needs a material");
+    }
     return {thickness, slab_material};
   }
 
   /// A `joint_sets` entry.
   geometry::JointSetSpec readJointSet(const Cursor& c) {
-    const Cursor& m = c.map({"name", "dip_direction", "dip", "orientation", "spacing", "intensity",
-                             "trace_length", "shape", "joint", "min_cut_size"});
+    const Cursor m = c.map({"name", "dip_direction", "dip", "orientation", "spacing", "intensity",
+                            "trace_length", "shape", "joint", "min_cut_size"});
     geometry::JointSetSpec set;
     set.name = dfn_names_.claimName(m);
     set.orientation = readOrientation(m);
@@ -907,7 +937,7 @@ class SceneReader {
 
   /// A `fractures` entry: the polygons of a FAB file, named after the file's stem.
   geometry::PolygonSetSpec readFractures(const Cursor& c) {
-    const Cursor& m = c.map({"file", "joint"});
+    const Cursor m = c.map({"file", "joint"});
     const Cursor file = m.at("file");
     const fs::path path = file.existingFile();
     geometry::PolygonSetSpec set;
@@ -923,8 +953,8 @@ class SceneReader {
 
   /// A `faults` entry.
   geometry::FaultSpec readFault(const Cursor& c) {
-    const Cursor& m = c.map({"name", "center", "dip_direction", "dip", "size", "thickness",
-                             "material", "joint"});
+    const Cursor m =
+        c.map({"name", "center", "dip_direction", "dip", "size", "thickness", "material", "joint"});
     geometry::FaultSpec fault;
     fault.name = dfn_names_.claimName(m);
     fault.center = m.at("center").vec3();
@@ -934,7 +964,8 @@ class SceneReader {
       const std::vector<Cursor> axes = size->items();
       if (axes.size() != 2) size->fail("expected a list of 2 numbers [major, minor]");
       const double major = axes[0].number(kPositive);
-      fault.size = {major, axes[1].number({.low = 0, .high = major, .low_open = true}, "(<= major)")};
+      fault.size = {major, axes[1].number({.low = 0, .high = major, .low_open = true},
+                                          "(minor must not exceed major)")};
     }
     std::tie(fault.thickness, fault.material) = readSlab(m, "a fault");
     fault.joint = jointOf(m);
@@ -943,8 +974,7 @@ class SceneReader {
 
   /// An `interlayers` entry.
   geometry::InterlayerSpec readInterlayer(const Cursor& c) {
-    const Cursor& m =
-        c.map({"name", "profile", "sweep", "thickness", "material", "joint"});
+    const Cursor m = c.map({"name", "profile", "sweep", "thickness", "material", "joint"});
     geometry::InterlayerSpec layer;
     layer.name = dfn_names_.claimName(m);
     layer.profile = readProfile(m.at("profile"), 2);
@@ -956,15 +986,16 @@ class SceneReader {
 
   /// A `structures` entry; an inline joint map is appended to the scene's joints.
   StructureSpec readStructure(const Cursor& c) {
-    const Cursor& m = c.map({"name", "prism", "mesh", "material", "joint"});
+    const Cursor m = c.map({"name", "prism", "mesh", "material", "joint"});
     StructureSpec structure;
     structure.name = structure_names_.claimName(m);
     if (m.oneOf("prism", "mesh") == 0) {
-      const Cursor& prism = m.at("prism").map({"profile", "sweep", "from", "to"});
+      const Cursor prism = m.at("prism").map({"profile", "sweep", "from", "to"});
       structure.prism_profile = readProfile(prism.at("profile"), 3);
       structure.prism_sweep = readSweep(prism.at("sweep"));
       structure.prism_from = prism.at("from").number();
-      structure.prism_to = prism.at("to").number(above(structure.prism_from), "(from)");
+      structure.prism_to =
+          prism.at("to").number(above(structure.prism_from), "(to must exceed from)");
     } else {
       structure.mesh = m.at("mesh").existingFile();
     }
@@ -981,21 +1012,23 @@ class SceneReader {
 
   /// A `loads.water` entry.
   WaterLoad readWater(const Cursor& c) const {
-    const Cursor& m = c.map({"level", "unit_weight", "uplift", "on"});
+    const Cursor m = c.map({"level", "unit_weight", "uplift", "on"});
     WaterLoad water;
     water.level = m.at("level").number();
     water.unit_weight = m.numberOr("unit_weight", water.unit_weight, kPositive);
     water.uplift = m.valueOr("uplift", false, &Cursor::boolean);
-    const Cursor& on = m.at("on").map({"structure", "facing", "domain_top", "region"});
+    const Cursor on = m.at("on").map({"structure", "facing", "domain_top", "region"});
     if (on.oneOf("structure", "domain_top") == 0) {
       const Cursor structure = on.at("structure");
-      lookupName(structure, structureNames(), "structure");
+      lookupName(structure, namesOf(scene_.structures), "structure");
       water.structure = structure.string();
       water.facing = readDirection(on.at("facing"));
     } else {
       const Cursor top = on.at("domain_top");
       if (!top.boolean()) top.fail("expected true (or an 'on: {structure: ...}' entry), got false");
-      if (on.has("facing")) on.at("facing").fail("'facing' selects structure faces; remove it for domain_top");
+      if (on.has("facing")) {
+        on.at("facing").fail("'facing' selects structure faces; remove it for domain_top");
+      }
       water.domain_top = true;
     }
     water.region = on.valueOr("region", water.region, &readRegion);
@@ -1004,27 +1037,22 @@ class SceneReader {
 
   /// The `loads` section.
   Loads readLoads(const Cursor& c) const {
-    const Cursor& m = c.map({"gravity", "water", "point_loads"});
+    const Cursor m = c.map({"gravity", "water", "point_loads"});
     Loads loads;
     if (const auto gravity = m.get("gravity")) {
-      loads.gravity = gravity->isNumber() ? Vec3(0, 0, -gravity->number(kPositive)) : gravity->vec3();
+      loads.gravity =
+          gravity->isNumber() ? Vec3(0, 0, -gravity->number(kPositive)) : gravity->vec3();
     }
     forEachItem(m, "water", [&](const Cursor& v) { loads.water.push_back(readWater(v)); });
-    forEachItem(m, "point_loads", [&](const Cursor& v) { loads.point_loads.push_back(readPointLoad(v)); });
+    forEachItem(m, "point_loads",
+                [&](const Cursor& v) { loads.point_loads.push_back(readPointLoad(v)); });
     return loads;
   }
 
-  /// Names of the structures read so far.
-  std::vector<std::string> structureNames() const {
-    std::vector<std::string> names;
-    for (const StructureSpec& structure : scene_.structures) names.push_back(structure.name);
-    return names;
-  }
-
-  Scene scene_;                             ///< what is being read
-  std::vector<std::string> named_joints_;   ///< joints of the `joints` section (referable by name)
-  UniqueNames dfn_names_;                   ///< joint sets, fractures files, faults, interlayers
-  UniqueNames structure_names_;             ///< structures
+  Scene scene_;                            ///< what is being read
+  std::vector<std::string> named_joints_;  ///< joints of the `joints` section (referable by name)
+  UniqueNames dfn_names_;                  ///< joint sets, fractures files, faults, interlayers
+  UniqueNames structure_names_;            ///< structures
 };
 
 /// The single YAML document of `text`, or an InputError for invalid YAML.
@@ -1033,8 +1061,8 @@ YAML::Node loadDocument(const std::string& text, const fs::path& file) {
   try {
     documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& error) {
-    throw InputError(locate(file, std::max(error.mark.line, 0) + 1, std::max(error.mark.column, 0) + 1,
-                            "invalid YAML: " + error.msg));
+    throw InputError(locate(file, std::max(error.mark.line, 0) + 1,
+                            std::max(error.mark.column, 0) + 1, "invalid YAML: " + error.msg));
   }
   if (documents.size() > 1) {
     const YAML::Mark mark = documents[1].Mark();
@@ -1047,15 +1075,19 @@ YAML::Node loadDocument(const std::string& text, const fs::path& file) {
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& file) {
+  std::error_code error;
   std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  if (!(in && text << in.rdbuf())) throw InputError(file.string() + ": cannot read the scene file");
-  return parseScene(text.str(), file);
+  if (!in || fs::is_directory(file, error)) {
+    throw InputError(file.string() + ": cannot read the scene file");
+  }
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(file.string() + ": cannot read the scene file");
+  return parseScene(text, file);
 }
 
 Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   const Source source{file, fs::absolute(file).parent_path()};
-  const Cursor root(source, loadDocument(text, file), "", YAML::Mark{0, 0, 0});
+  const Cursor root(source, loadDocument(text, file), "", YAML::Mark());
   return SceneReader().read(root, file);
 }
 

@@ -1,1 +1,93 @@
-// placeholder: being written
+#include "io/summary.h"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/orientation.h"
+
+namespace rockmass::io {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// A number, or null where JSON has none (infinite kappa of identical normals).
+Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+/// [x, y, z]
+Json vector3(const geometry::Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+/// Scene-facing name of a set's origin.
+const char* originName(geometry::DiscOrigin origin) {
+  switch (origin) {
+    case geometry::DiscOrigin::JointSet: return "joint_set";
+    case geometry::DiscOrigin::Fault: return "fault";
+    case geometry::DiscOrigin::Interlayer: return "interlayer";
+    case geometry::DiscOrigin::FabFile: return "fab_file";
+  }
+  return "unknown";
+}
+
+/// The fields every summary starts with.
+Json runHeader(const RunInfo& run) {
+  Json j;
+  j["rockmass_version"] = version();
+  j["command"] = run.command;
+  j["scene"] = run.scene;
+  j["name"] = run.name;
+  j["seed"] = run.seed;
+  j["stages"] = run.stages;
+  j["effects"] = run.effects;
+  return j;
+}
+
+/// Timings go last: the only part that differs between identical runs.
+void appendTimings(Json& j, const Timings& timings) {
+  Json t = Json::object();
+  for (const auto& [stage, seconds] : timings) t[stage] = seconds;
+  j["timings"] = t;
+}
+
+}  // namespace
+
+const char* version() { return ROCKMASS_VERSION; }
+
+std::string formatDfnSummary(const RunInfo& run, const geometry::FractureNetwork& network,
+                             const std::vector<geometry::SetStatistics>& stats) {
+  Json j = runHeader(run);
+  j["domain"] = {{"min", vector3(network.domain.min)},
+                 {"max", vector3(network.domain.max)},
+                 {"volume", network.domain.volume()}};
+  std::int64_t cutting = 0;
+  for (const geometry::Disc& d : network.discs) cutting += d.cuts;
+  j["discs"] = network.discs.size();
+  j["cutting_discs"] = cutting;
+  Json sets = Json::array();
+  for (std::size_t i = 0; i < network.sets.size(); ++i) {
+    const geometry::SetInfo& info = network.sets[i];
+    const geometry::SetStatistics& s = stats[i];
+    const geometry::PlaneOrientation mean = geometry::orientationFromNormal(s.mean_normal);
+    Json set;
+    set["name"] = info.name;
+    set["origin"] = originName(info.origin);
+    set["count"] = s.count;
+    set["p32"] = s.p32;
+    set["p10"] = s.p10;
+    set["mean_spacing"] = number(1.0 / s.p10);
+    if (info.origin == geometry::DiscOrigin::JointSet) {
+      set["p32_target"] = info.target_p32;
+      set["p10_target"] = info.target_p10;
+      set["size_scale"] = info.size_scale;
+      set["margin"] = info.margin;
+    }
+    set["generated"] = info.generated;
+    set["mean_orientation"] = {{"dip_direction", mean.dip_direction}, {"dip", mean.dip}};
+    set["fisher_kappa"] = s.count >= 2 ? number(s.kappa) : Json(nullptr);
+    sets.push_back(set);
+  }
+  j["sets"] = sets;
+  appendTimings(j, run.timings);
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rockmass::io

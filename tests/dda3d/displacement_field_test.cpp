@@ -21,8 +21,8 @@ using VoigtVector = Eigen::Matrix<double, kVoigtSize, 1>;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // A point away from the centroid in every axis, so that every entry of T is exercised.
-const Vec3 kCentroid(1.0, 2.0, -3.0);
-const Vec3 kPoint(3.5, -1.0, 0.25);
+const Vec3 block_centroid(1.0, 2.0, -3.0);
+const Vec3 test_point(3.5, -1.0, 0.25);
 
 TEST(DisplacementMatrix, HasTheFormulationLayout) {
   // X = 2.5, Y = -3, Z = 3.25: each entry is one coordinate or half of one, so exact.
@@ -33,27 +33,27 @@ TEST(DisplacementMatrix, HasTheFormulationLayout) {
               0, 1, 0, -z,  0,  x, 0, y, 0, z / 2, 0,     x / 2,
               0, 0, 1,  y, -x,  0, 0, 0, z, y / 2, x / 2, 0;
   // clang-format on
-  EXPECT_EQ(displacementMatrix(kPoint, kCentroid), expected);
+  EXPECT_EQ(displacementMatrix(test_point, block_centroid), expected);
   DisplacementMatrix at_centroid = DisplacementMatrix::Zero();
   at_centroid.leftCols<3>().setIdentity();
-  EXPECT_EQ(displacementMatrix(kCentroid, kCentroid), at_centroid);
+  EXPECT_EQ(displacementMatrix(block_centroid, block_centroid), at_centroid);
 }
 
 TEST(DisplacementMatrix, ReproducesRigidTranslation) {
   // Only the identity block multiplies non-zero unknowns: exact.
   BlockVector d = BlockVector::Zero();
   d.head<3>() << 0.1, -0.2, 0.3;
-  EXPECT_EQ(displacementMatrix(kPoint, kCentroid) * d, Vec3(0.1, -0.2, 0.3));
+  EXPECT_EQ(displacementMatrix(test_point, block_centroid) * d, Vec3(0.1, -0.2, 0.3));
 }
 
 TEST(DisplacementMatrix, ReproducesSmallRotation) {
   // u = r x X for a small rotation vector r. Each component is a sum of two products, so
   // rounding is below 2 ulps of |r| |X|.
-  const Vec3 arm = kPoint - kCentroid;
+  const Vec3 arm = test_point - block_centroid;
   const auto check = [&](const Vec3& r) {
     BlockVector d = BlockVector::Zero();
     d.segment<3>(3) = r;
-    const Vec3 u = displacementMatrix(kPoint, kCentroid) * d;
+    const Vec3 u = displacementMatrix(test_point, block_centroid) * d;
     const double tolerance = 4.0 * kEps * r.norm() * arm.norm();
     EXPECT_NEAR((u - r.cross(arm)).norm(), 0.0, tolerance) << "r = " << r.transpose();
     return u;
@@ -69,24 +69,24 @@ TEST(DisplacementMatrix, ReproducesSmallRotation) {
 TEST(DisplacementMatrix, ReproducesUniformStrain) {
   // u = ex X, v = ey Y, w = ez Z for normal strains; a shear g_ij moves i by g_ij x_j / 2 and
   // j by g_ij x_i / 2 (engineering shear strain). Single products: 1 ulp.
-  const Vec3 arm = kPoint - kCentroid;
-  const DisplacementMatrix t = displacementMatrix(kPoint, kCentroid);
+  const Vec3 arm = test_point - block_centroid;
+  const DisplacementMatrix t = displacementMatrix(test_point, block_centroid);
   const auto displacement = [&](int unknown, double value) {
     BlockVector d = BlockVector::Zero();
     d[unknown] = value;
     return Vec3(t * d);
   };
   const double tolerance = 2.0 * kEps * 1e-3 * arm.norm();
-  const auto expectNear = [&](const Vec3& actual, const Vec3& expected, const char* what) {
+  const auto expect_near = [&](const Vec3& actual, const Vec3& expected, const char* what) {
     EXPECT_NEAR((actual - expected).norm(), 0.0, tolerance) << what;
   };
   const double g = 1e-3;
-  expectNear(displacement(6, g), Vec3(g * arm.x(), 0, 0), "ex");
-  expectNear(displacement(7, g), Vec3(0, g * arm.y(), 0), "ey");
-  expectNear(displacement(8, g), Vec3(0, 0, g * arm.z()), "ez");
-  expectNear(displacement(9, g), Vec3(0, g * arm.z() / 2, g * arm.y() / 2), "gyz");
-  expectNear(displacement(10, g), Vec3(g * arm.z() / 2, 0, g * arm.x() / 2), "gzx");
-  expectNear(displacement(11, g), Vec3(g * arm.y() / 2, g * arm.x() / 2, 0), "gxy");
+  expect_near(displacement(6, g), Vec3(g * arm.x(), 0, 0), "ex");
+  expect_near(displacement(7, g), Vec3(0, g * arm.y(), 0), "ey");
+  expect_near(displacement(8, g), Vec3(0, 0, g * arm.z()), "ez");
+  expect_near(displacement(9, g), Vec3(0, g * arm.z() / 2, g * arm.y() / 2), "gyz");
+  expect_near(displacement(10, g), Vec3(g * arm.z() / 2, 0, g * arm.x() / 2), "gzx");
+  expect_near(displacement(11, g), Vec3(g * arm.y() / 2, g * arm.x() / 2, 0), "gxy");
 }
 
 TEST(DisplacementMatrix, StrainOfFieldEqualsStrainUnknowns) {
@@ -95,12 +95,12 @@ TEST(DisplacementMatrix, StrainOfFieldEqualsStrainUnknowns) {
   // eps |u| / h ~ 1e-16, and 1e-13 is a wide margin.
   BlockVector d;
   d << 0.3, -0.1, 0.2, 2e-3, -1e-3, 4e-3, 1e-3, -2e-3, 5e-4, 3e-3, -1.5e-3, 2.5e-3;
-  const auto u = [&](const Vec3& x) { return Vec3(displacementMatrix(x, kCentroid) * d); };
+  const auto u = [&](const Vec3& x) { return Vec3(displacementMatrix(x, block_centroid) * d); };
   constexpr double kStep = 0.25;
   Eigen::Matrix3d gradient;  // gradient(i, j) = du_i / dx_j
   for (int j = 0; j < 3; ++j) {
     const Vec3 h = kStep * Vec3::Unit(j);
-    gradient.col(j) = (u(kPoint + h) - u(kPoint - h)) / (2.0 * kStep);
+    gradient.col(j) = (u(test_point + h) - u(test_point - h)) / (2.0 * kStep);
   }
   VoigtVector strain;
   strain << gradient(0, 0), gradient(1, 1), gradient(2, 2), gradient(1, 2) + gradient(2, 1),

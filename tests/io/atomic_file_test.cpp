@@ -28,24 +28,24 @@ class AtomicFileTest : public ::testing::Test {
   /// Creates the folder, named after the test and the process so parallel runs do not meet.
   void SetUp() override {
     const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              ("rockmass_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
+    folder = fs::temp_directory_path() /
+             ("rockmass_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder);
+    fs::create_directories(folder);
   }
   /// Removes the folder and everything in it.
-  void TearDown() override { fs::remove_all(folder_); }
+  void TearDown() override { fs::remove_all(folder); }
 
   /// Names of the entries of the folder (temporaries included: they start with '.').
   std::set<std::string> entries() const {
     std::set<std::string> names;
-    for (const fs::directory_entry& entry : fs::directory_iterator(folder_)) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
       names.insert(entry.path().filename().string());
     }
     return names;
   }
 
-  fs::path folder_;
+  fs::path folder;
 };
 
 /// The bytes of a file.
@@ -57,20 +57,20 @@ std::string readBytes(const fs::path& path) {
 TEST_F(AtomicFileTest, WritesContentExactly) {
   // NUL, CR LF and a byte above 127 would be altered by a text-mode or C-string writer.
   const std::string content = "id,x\r\n1,0.1\n\0\xff end"s;
-  writeFileAtomically(folder_ / "out.csv", content);
-  EXPECT_EQ(readBytes(folder_ / "out.csv"), content);
+  writeFileAtomically(folder / "out.csv", content);
+  EXPECT_EQ(readBytes(folder / "out.csv"), content);
   EXPECT_EQ(entries(), std::set<std::string>{"out.csv"});
 }
 
 TEST_F(AtomicFileTest, ReplacesAnExistingFile) {
-  writeFileAtomically(folder_ / "out.txt", "a longer first version\n");
-  writeFileAtomically(folder_ / "out.txt", "short\n");
-  EXPECT_EQ(readBytes(folder_ / "out.txt"), "short\n");
+  writeFileAtomically(folder / "out.txt", "a longer first version\n");
+  writeFileAtomically(folder / "out.txt", "short\n");
+  EXPECT_EQ(readBytes(folder / "out.txt"), "short\n");
   EXPECT_EQ(entries(), std::set<std::string>{"out.txt"});
 }
 
 TEST_F(AtomicFileTest, MissingFolderThrowsAndLeavesNothing) {
-  const fs::path target = folder_ / "missing" / "out.txt";
+  const fs::path target = folder / "missing" / "out.txt";
   try {
     writeFileAtomically(target, "content");
     FAIL() << "expected std::runtime_error";
@@ -84,10 +84,10 @@ TEST_F(AtomicFileTest, MissingFolderThrowsAndLeavesNothing) {
 
 TEST_F(AtomicFileTest, FailedRenameRemovesTheTemporary) {
   // The temporary is written, but a non-empty folder cannot be replaced by a file.
-  fs::create_directories(folder_ / "out.txt" / "inside");
-  EXPECT_THROW(writeFileAtomically(folder_ / "out.txt", "content"), std::runtime_error);
+  fs::create_directories(folder / "out.txt" / "inside");
+  EXPECT_THROW(writeFileAtomically(folder / "out.txt", "content"), std::runtime_error);
   EXPECT_EQ(entries(), std::set<std::string>{"out.txt"});
-  EXPECT_TRUE(fs::is_directory(folder_ / "out.txt"));
+  EXPECT_TRUE(fs::is_directory(folder / "out.txt"));
 }
 
 TEST(FormatDouble, GivesTheShortestForms) {
