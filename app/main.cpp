@@ -24,9 +24,9 @@ using Clock = std::chrono::steady_clock;
 
 /// Options every sub-command takes.
 struct CommonOptions {
-  std::string scene;                 ///< scene file
-  std::string output;                ///< output folder
-  std::optional<std::uint64_t> seed; ///< overrides the scene's seed
+  std::string scene;                  ///< scene file
+  std::string output;                 ///< output folder
+  std::optional<std::uint64_t> seed;  ///< overrides the scene's seed
 };
 
 /// Seconds since `start`.
@@ -48,8 +48,9 @@ rockmass::io::Scene loadScene(const CommonOptions& options) {
   if (options.seed) scene.seed = *options.seed;
   if (!scene.domain_mesh.empty()) {
     throw rockmass::io::InputError(
-        options.scene + ": domain.mesh: mesh domains are not supported by this version yet; "
-                        "give domain.box");
+        options.scene +
+        ": domain.mesh: mesh domains are not supported by this version yet; "
+        "give domain.box");
   }
   return scene;
 }
@@ -85,8 +86,8 @@ int runDfn(const CommonOptions& options) {
 
   start = Clock::now();
   const int segments = scene.analysis.blocks ? scene.analysis.blocks->disc_segments : 24;
-  rockmass::io::writeFileAtomically(out / "fractures.fab",
-                                    rockmass::io::formatFab(rockmass::io::toFab(network, segments)));
+  rockmass::io::writeFileAtomically(
+      out / "fractures.fab", rockmass::io::formatFab(rockmass::io::toFab(network, segments)));
   rockmass::io::writeFileAtomically(out / "fractures.csv",
                                     rockmass::io::formatFracturesCsv(network));
   rockmass::io::writeFileAtomically(out / "fractures.vtu",

@@ -50,8 +50,12 @@ void generate(benchmark::State& state, bool fisher) {
   state.counters["discs_per_s"] =
       benchmark::Counter(static_cast<double>(discs), benchmark::Counter::kIsIterationInvariantRate);
 }
-void BM_GenerateIndependentAngles(benchmark::State& state) { generate(state, false); }
-void BM_GenerateFisher(benchmark::State& state) { generate(state, true); }
+void BM_GenerateIndependentAngles(benchmark::State& state) {
+  generate(state, false);
+}
+void BM_GenerateFisher(benchmark::State& state) {
+  generate(state, true);
+}
 BENCHMARK(BM_GenerateIndependentAngles)->Arg(116)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_GenerateFisher)->Arg(116)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
@@ -84,7 +88,8 @@ class RecordingReporter : public benchmark::ConsoleReporter {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {
       times[run.benchmark_name()] = run.GetAdjustedRealTime();
-      if (run.counters.count("discs_per_s")) rates[run.benchmark_name()] = run.counters.at("discs_per_s");
+      if (run.counters.count("discs_per_s"))
+        rates[run.benchmark_name()] = run.counters.at("discs_per_s");
     }
   }
   std::map<std::string, double> times;  ///< real time per iteration, in the benchmark's unit

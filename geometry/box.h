@@ -18,9 +18,7 @@ struct Box {
   /// Length of the space diagonal (m).
   double diagonal() const { return size().norm(); }
   /// The box grown by `margin` metres on every side.
-  Box enlarged(double margin) const {
-    return {min.array() - margin, max.array() + margin};
-  }
+  Box enlarged(double margin) const { return {min.array() - margin, max.array() + margin}; }
   /// True when p lies inside or on the boundary.
   bool contains(const Vec3& p) const {
     return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();

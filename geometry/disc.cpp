@@ -139,7 +139,9 @@ Disc discFromPolygon(std::vector<Vec3> polygon) {
   return disc;
 }
 
-double Disc::area() const { return polygon.empty() ? kPi * a * b : polygonArea(polygon); }
+double Disc::area() const {
+  return polygon.empty() ? kPi * a * b : polygonArea(polygon);
+}
 
 std::vector<Vec3> Disc::outline(int segments) const {
   if (!polygon.empty()) return polygon;
@@ -175,8 +177,8 @@ double Disc::areaInside(const Box& box) const {
     return area();
   }
   constexpr int kClipSegments = 128;
-  const std::vector<Vec3> shape = polygon.empty() ? areaPreservingOutline(*this, kClipSegments)
-                                                  : polygon;
+  const std::vector<Vec3> shape =
+      polygon.empty() ? areaPreservingOutline(*this, kClipSegments) : polygon;
   return polygonArea(clipPolygonToBox(shape, box));
 }
 

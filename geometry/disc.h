@@ -17,17 +17,17 @@ enum class DiscOrigin { JointSet, Fault, Interlayer, FabFile };
 /// ellipse fields then describe it approximately (centroid, Newell normal, a = largest
 /// centroid-to-vertex distance along `major`, b = area / (pi a)).
 struct Disc {
-  std::int64_t id = 0;       ///< stable id, born at generation (1-based), kept by every stage
-  int set = 0;               ///< index into FractureNetwork::sets
-  int joint = 0;             ///< index of the joint (strength) properties in the scene
+  std::int64_t id = 0;  ///< stable id, born at generation (1-based), kept by every stage
+  int set = 0;          ///< index into FractureNetwork::sets
+  int joint = 0;        ///< index of the joint (strength) properties in the scene
   DiscOrigin origin = DiscOrigin::JointSet;  ///< what made it
-  Vec3 center = Vec3::Zero();     ///< centre (m)
-  Vec3 normal = Vec3::UnitZ();    ///< unit normal (sign carries no meaning)
-  Vec3 major = Vec3::UnitX();     ///< unit vector along the major axis, in the plane
-  double a = 0.0;                 ///< semi-major axis (m)
-  double b = 0.0;                 ///< semi-minor axis (m), b <= a
-  bool cuts = true;               ///< false: counts for RQD but does not cut blocks
-  std::vector<Vec3> polygon;      ///< exact polygon (m) for polygon-form discs, else empty
+  Vec3 center = Vec3::Zero();                ///< centre (m)
+  Vec3 normal = Vec3::UnitZ();               ///< unit normal (sign carries no meaning)
+  Vec3 major = Vec3::UnitX();                ///< unit vector along the major axis, in the plane
+  double a = 0.0;                            ///< semi-major axis (m)
+  double b = 0.0;                            ///< semi-minor axis (m), b <= a
+  bool cuts = true;                          ///< false: counts for RQD but does not cut blocks
+  std::vector<Vec3> polygon;  ///< exact polygon (m) for polygon-form discs, else empty
 
   /// Unit vector along the minor axis: normal x major.
   Vec3 minor() const { return normal.cross(major); }

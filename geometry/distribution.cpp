@@ -15,10 +15,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Standard normal CDF, accurate in the lower tail (erfc, not 1 + erf).
-double standardNormalCdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+double standardNormalCdf(double z) {
+  return 0.5 * std::erfc(-z / std::sqrt(2.0));
+}
 
 /// Standard normal density.
-double standardNormalPdf(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * kPi); }
+double standardNormalPdf(double z) {
+  return std::exp(-0.5 * z * z) / std::sqrt(2.0 * kPi);
+}
 
 /// "2.5" for 2.5: numbers in messages, 6 significant digits.
 std::string str(double value) {
@@ -39,11 +43,16 @@ void requirePositive(double value, const char* what, DistributionKind kind) {
 
 const char* distributionName(DistributionKind kind) {
   switch (kind) {
-    case DistributionKind::Normal: return "normal";
-    case DistributionKind::Lognormal: return "lognormal";
-    case DistributionKind::Uniform: return "uniform";
-    case DistributionKind::Exponential: return "exponential";
-    case DistributionKind::Constant: return "constant";
+    case DistributionKind::Normal:
+      return "normal";
+    case DistributionKind::Lognormal:
+      return "lognormal";
+    case DistributionKind::Uniform:
+      return "uniform";
+    case DistributionKind::Exponential:
+      return "exponential";
+    case DistributionKind::Constant:
+      return "constant";
   }
   return "unknown";
 }
@@ -110,11 +119,16 @@ Distribution::Distribution(const DistributionSpec& spec) : spec_(spec) {
 
 double Distribution::sampleUntruncated(Rng& rng) const {
   switch (spec_.kind) {
-    case DistributionKind::Normal: return std::normal_distribution<double>(p1_, p2_)(rng);
-    case DistributionKind::Lognormal: return std::lognormal_distribution<double>(p1_, p2_)(rng);
-    case DistributionKind::Uniform: return p1_ + (p2_ - p1_) * uniformOpen01(rng);
-    case DistributionKind::Exponential: return -std::log(uniformOpen01(rng)) / p1_;
-    case DistributionKind::Constant: return spec_.mean;
+    case DistributionKind::Normal:
+      return std::normal_distribution<double>(p1_, p2_)(rng);
+    case DistributionKind::Lognormal:
+      return std::lognormal_distribution<double>(p1_, p2_)(rng);
+    case DistributionKind::Uniform:
+      return p1_ + (p2_ - p1_) * uniformOpen01(rng);
+    case DistributionKind::Exponential:
+      return -std::log(uniformOpen01(rng)) / p1_;
+    case DistributionKind::Constant:
+      return spec_.mean;
   }
   return spec_.mean;
 }
@@ -132,25 +146,32 @@ double Distribution::sample(Rng& rng) const {
 
 double Distribution::cdfUntruncated(double x) const {
   switch (spec_.kind) {
-    case DistributionKind::Normal: return standardNormalCdf((x - p1_) / p2_);
+    case DistributionKind::Normal:
+      return standardNormalCdf((x - p1_) / p2_);
     case DistributionKind::Lognormal:
       return x <= 0.0 ? 0.0 : standardNormalCdf((std::log(x) - p1_) / p2_);
     case DistributionKind::Uniform:
       return x <= p1_ ? 0.0 : (x >= p2_ ? 1.0 : (x - p1_) / (p2_ - p1_));
-    case DistributionKind::Exponential: return x <= 0.0 ? 0.0 : -std::expm1(-p1_ * x);
-    case DistributionKind::Constant: return x >= spec_.mean ? 1.0 : 0.0;
+    case DistributionKind::Exponential:
+      return x <= 0.0 ? 0.0 : -std::expm1(-p1_ * x);
+    case DistributionKind::Constant:
+      return x >= spec_.mean ? 1.0 : 0.0;
   }
   return 0.0;
 }
 
 double Distribution::pdfUntruncated(double x) const {
   switch (spec_.kind) {
-    case DistributionKind::Normal: return standardNormalPdf((x - p1_) / p2_) / p2_;
+    case DistributionKind::Normal:
+      return standardNormalPdf((x - p1_) / p2_) / p2_;
     case DistributionKind::Lognormal:
       return x <= 0.0 ? 0.0 : standardNormalPdf((std::log(x) - p1_) / p2_) / (p2_ * x);
-    case DistributionKind::Uniform: return (x < p1_ || x > p2_) ? 0.0 : 1.0 / (p2_ - p1_);
-    case DistributionKind::Exponential: return x < 0.0 ? 0.0 : p1_ * std::exp(-p1_ * x);
-    case DistributionKind::Constant: return 0.0;
+    case DistributionKind::Uniform:
+      return (x < p1_ || x > p2_) ? 0.0 : 1.0 / (p2_ - p1_);
+    case DistributionKind::Exponential:
+      return x < 0.0 ? 0.0 : p1_ * std::exp(-p1_ * x);
+    case DistributionKind::Constant:
+      return 0.0;
   }
   return 0.0;
 }

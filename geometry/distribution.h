@@ -19,10 +19,10 @@ const char* distributionName(DistributionKind kind);
 /// What a scene says about one variable.
 struct DistributionSpec {
   DistributionKind kind = DistributionKind::Constant;  ///< family
-  double mean = 0.0;            ///< mean of the variable (its unit)
-  double std = 0.0;             ///< standard deviation of the variable (its unit)
-  std::optional<double> min;    ///< lower truncation bound, if any
-  std::optional<double> max;    ///< upper truncation bound, if any
+  double mean = 0.0;                                   ///< mean of the variable (its unit)
+  double std = 0.0;           ///< standard deviation of the variable (its unit)
+  std::optional<double> min;  ///< lower truncation bound, if any
+  std::optional<double> max;  ///< upper truncation bound, if any
 };
 
 /// A sampler with its exact CDF and PDF (of the truncated variable).

@@ -68,7 +68,7 @@ FisherEstimate estimateFisher(std::span<const Vec3> axes) {
   estimate.resultant = length / count;
   // Fisher (1953): kappa ~ (N - 1) / (N - R), unbiased for large kappa.
   estimate.kappa = count - length > 0.0 ? (count - 1.0) / (count - length)
-                                         : std::numeric_limits<double>::infinity();
+                                        : std::numeric_limits<double>::infinity();
   return estimate;
 }
 

@@ -57,8 +57,12 @@ class JointSetSampler {
     const Vec3 strike = strikeVector(o);
     const Vec3 dip = dipVector(o);
     switch (spec_.shape.major_axis) {
-      case MajorAxis::Strike: disc.major = strike; break;
-      case MajorAxis::Dip: disc.major = dip; break;
+      case MajorAxis::Strike:
+        disc.major = strike;
+        break;
+      case MajorAxis::Dip:
+        disc.major = dip;
+        break;
       case MajorAxis::Rake: {
         const double rake = radians(spec_.shape.rake);
         disc.major = std::cos(rake) * strike + std::sin(rake) * dip;
@@ -235,7 +239,8 @@ void generateFault(const FaultSpec& spec, int set_index, const Box& domain,
       info.generated += 1;
       if (addIfInside(surface, domain, network)) {
         // Ids are assigned at the end; remember the position for now.
-        (side < 0 ? slab.lower : slab.upper).push_back(static_cast<std::int64_t>(network.discs.size()));
+        (side < 0 ? slab.lower : slab.upper)
+            .push_back(static_cast<std::int64_t>(network.discs.size()));
       }
     }
     network.slabs.push_back(std::move(slab));
@@ -312,7 +317,8 @@ void generateInterlayer(const InterlayerSpec& spec, int set_index, const Box& do
       disc.origin = DiscOrigin::Interlayer;
       info.generated += 1;
       if (addIfInside(std::move(disc), domain, network) && spec.thickness > 0.0) {
-        (side == 0 ? slab.lower : slab.upper).push_back(static_cast<std::int64_t>(network.discs.size()));
+        (side == 0 ? slab.lower : slab.upper)
+            .push_back(static_cast<std::int64_t>(network.discs.size()));
       }
     }
   }

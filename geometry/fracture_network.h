@@ -12,31 +12,31 @@ namespace rockmass::geometry {
 /// What the generator knows and measured about one set (joint set, fault, interlayer,
 /// or polygon file).
 struct SetInfo {
-  std::string name;                 ///< set name
+  std::string name;                          ///< set name
   DiscOrigin origin = DiscOrigin::JointSet;  ///< kind of set
-  Vec3 mean_normal = Vec3::UnitZ(); ///< mean normal of the sampled orientation model (unit)
-  double target_p10 = 0.0;          ///< 1/mean spacing along mean_normal (1/m); 0 if not set
-  double target_p32 = 0.0;          ///< target area per volume (m2/m3); 0 if not set
-  double size_scale = 0.0;          ///< equal-area diameter / sampled trace length
-  double margin = 0.0;              ///< enlargement of the domain for centres (m)
-  std::int64_t generated = 0;       ///< discs drawn in the enlarged domain
+  Vec3 mean_normal = Vec3::UnitZ();  ///< mean normal of the sampled orientation model (unit)
+  double target_p10 = 0.0;           ///< 1/mean spacing along mean_normal (1/m); 0 if not set
+  double target_p32 = 0.0;           ///< target area per volume (m2/m3); 0 if not set
+  double size_scale = 0.0;           ///< equal-area diameter / sampled trace length
+  double margin = 0.0;               ///< enlargement of the domain for centres (m)
+  std::int64_t generated = 0;        ///< discs drawn in the enlarged domain
 };
 
 /// A slab (fault or interlayer with thickness): the region between two surfaces.
 struct Slab {
-  int set = 0;                       ///< set index of the fault or interlayer
-  int material = -1;                 ///< material index
-  double thickness = 0.0;            ///< m
-  std::vector<std::int64_t> lower;   ///< ids of the discs bounding it on one side
-  std::vector<std::int64_t> upper;   ///< ids of the discs bounding it on the other side
+  int set = 0;                      ///< set index of the fault or interlayer
+  int material = -1;                ///< material index
+  double thickness = 0.0;           ///< m
+  std::vector<std::int64_t> lower;  ///< ids of the discs bounding it on one side
+  std::vector<std::int64_t> upper;  ///< ids of the discs bounding it on the other side
 };
 
 /// All fractures of a site: every disc that touches the domain, with provenance.
 struct FractureNetwork {
-  Box domain;                  ///< rock volume (m)
-  std::vector<SetInfo> sets;   ///< joint sets, then faults, interlayers, polygon files
-  std::vector<Disc> discs;     ///< ids are 1..N in this order
-  std::vector<Slab> slabs;     ///< slabs of thick faults and interlayers
+  Box domain;                 ///< rock volume (m)
+  std::vector<SetInfo> sets;  ///< joint sets, then faults, interlayers, polygon files
+  std::vector<Disc> discs;    ///< ids are 1..N in this order
+  std::vector<Slab> slabs;    ///< slabs of thick faults and interlayers
 };
 
 /// Generates the network. Deterministic: the same spec and seed give the same discs.
@@ -49,11 +49,11 @@ double traceToDiameterScale(const DistributionSpec& trace_length);
 
 /// Per-set measurements of a network inside its domain.
 struct SetStatistics {
-  std::int64_t count = 0;     ///< discs of the set that touch the domain
-  double p32 = 0.0;           ///< disc area inside the domain / domain volume (m2/m3)
-  double p10 = 0.0;           ///< mean crossings per metre along the set's mean normal (1/m)
+  std::int64_t count = 0;            ///< discs of the set that touch the domain
+  double p32 = 0.0;                  ///< disc area inside the domain / domain volume (m2/m3)
+  double p10 = 0.0;                  ///< mean crossings per metre along the set's mean normal (1/m)
   Vec3 mean_normal = Vec3::UnitZ();  ///< Fisher mean of the disc normals (unit)
-  double kappa = 0.0;         ///< Fisher concentration estimate (0 for fewer than 2 discs)
+  double kappa = 0.0;                ///< Fisher concentration estimate (0 for fewer than 2 discs)
 };
 /// Measures every set of `network` (in the order of network.sets).
 std::vector<SetStatistics> measureSets(const FractureNetwork& network);

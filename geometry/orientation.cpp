@@ -18,7 +18,9 @@ Vec3 normalFromOrientation(const PlaneOrientation& o) {
   return {std::sin(a) * std::sin(d), std::cos(a) * std::sin(d), std::cos(d)};
 }
 
-double azimuthDegrees(const Vec3& v) { return wrapDegrees(degrees(std::atan2(v.x(), v.y()))); }
+double azimuthDegrees(const Vec3& v) {
+  return wrapDegrees(degrees(std::atan2(v.x(), v.y())));
+}
 
 PlaneOrientation orientationFromNormal(const Vec3& n) {
   const double length = n.norm();

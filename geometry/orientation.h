@@ -36,7 +36,11 @@ double wrapDegrees(double angle);
 
 /// Degrees to radians and back.
 constexpr double kPi = 3.14159265358979323846;
-constexpr double radians(double deg) { return deg * kPi / 180.0; }
-constexpr double degrees(double rad) { return rad * 180.0 / kPi; }
+constexpr double radians(double deg) {
+  return deg * kPi / 180.0;
+}
+constexpr double degrees(double rad) {
+  return rad * 180.0 / kPi;
+}
 
 }  // namespace rockmass::geometry

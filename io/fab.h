@@ -10,9 +10,9 @@ namespace rockmass::io {
 
 /// One fracture of a FAB file.
 struct FabFracture {
-  long long id = 0;                        ///< fracture id in the file
-  int set = 0;                             ///< set id in the file
-  std::vector<geometry::Vec3> vertices;    ///< polygon, as given (m)
+  long long id = 0;                      ///< fracture id in the file
+  int set = 0;                           ///< set id in the file
+  std::vector<geometry::Vec3> vertices;  ///< polygon, as given (m)
 };
 
 /// The content of a FAB file that rockmass reads and writes.

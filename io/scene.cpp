@@ -185,6 +185,7 @@ class Cursor {
     std::vector<std::string> seen;
     for (const auto& entry : node_) {
       const Cursor key = keyCursor(entry.first);
+      if (!entry.first.IsScalar()) key.failExpected("a key name");
       const std::string& name = entry.first.Scalar();
       if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
         key.fail("unknown key '" + name + "'; expected one of: " + joined(allowed) +
@@ -200,6 +201,9 @@ class Cursor {
 
   /// True when this is a map (not an empty value).
   bool isMap() const { return node_.IsMap(); }
+
+  /// True when this is a list (not an empty value).
+  bool isList() const { return node_.IsSequence(); }
 
   /// The entries of a map whose keys are user names (materials, joints), in file order.
   std::vector<std::pair<std::string, Cursor>> entries() const {
@@ -1040,6 +1044,9 @@ class SceneReader {
     const Cursor m = c.map({"gravity", "water", "point_loads"});
     Loads loads;
     if (const auto gravity = m.get("gravity")) {
+      if (!gravity->isNumber() && !gravity->isList()) {
+        gravity->failExpected("a number > 0 or a list of 3 numbers");
+      }
       loads.gravity =
           gravity->isNumber() ? Vec3(0, 0, -gravity->number(kPositive)) : gravity->vec3();
     }

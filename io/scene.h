@@ -26,7 +26,7 @@ struct Material {
 
 /// Mohr-Coulomb strength of a discontinuity.
 struct Joint {
-  std::string name;               ///< name used by the scene ("" for an inline joint)
+  std::string name;               ///< name used by the scene ("<structure>.joint" if inline)
   double friction = 0.0;          ///< f = tan(phi) (from `friction` or `friction_angle`)
   double cohesion = 0.0;          ///< Pa
   double tensile_strength = 0.0;  ///< Pa
@@ -34,14 +34,14 @@ struct Joint {
 
 /// A structure standing on or in the rock (the dam).
 struct StructureSpec {
-  std::string name;                  ///< e.g. "dam"
-  std::vector<Vec2> prism_profile;   ///< prism outline, (x, z) for sweep y, (y, z) for sweep x
-  char prism_sweep = 'y';            ///< axis the outline is swept along
-  double prism_from = 0.0;           ///< sweep start (m)
-  double prism_to = 0.0;             ///< sweep end (m)
-  std::filesystem::path mesh;        ///< closed mesh instead of a prism (absolute path)
-  int material = 0;                  ///< material index
-  int joint = 0;                     ///< joint index of the structure-rock contact
+  std::string name;                 ///< e.g. "dam"
+  std::vector<Vec2> prism_profile;  ///< prism outline, (x, z) for sweep y, (y, z) for sweep x
+  char prism_sweep = 'y';           ///< axis the outline is swept along
+  double prism_from = 0.0;          ///< sweep start (m)
+  double prism_to = 0.0;            ///< sweep end (m)
+  std::filesystem::path mesh;       ///< closed mesh instead of a prism (absolute path)
+  int material = 0;                 ///< material index
+  int joint = -1;                   ///< joint index of the structure-rock contact (-1: none)
 };
 
 /// Plan-view region (m); missing bounds are open.
@@ -68,9 +68,9 @@ struct PointLoad {
 
 /// Loads of the scene.
 struct Loads {
-  std::optional<Vec3> gravity;          ///< m/s2 vector (a number g means (0, 0, -g))
-  std::vector<WaterLoad> water;         ///< water pressure entries
-  std::vector<PointLoad> point_loads;   ///< point loads
+  std::optional<Vec3> gravity;         ///< m/s2 vector (a number g means (0, 0, -g))
+  std::vector<WaterLoad> water;        ///< water pressure entries
+  std::vector<PointLoad> point_loads;  ///< point loads
 };
 
 /// A measure point attached to the block that contains it.
@@ -88,42 +88,42 @@ struct BlocksAnalysis {
 
 /// One RQD ball.
 struct RqdBall {
-  std::string name;             ///< ball name
-  Vec3 center = Vec3::Zero();   ///< m
-  double length = 0.0;          ///< scanline length (m), centred on the ball centre
-  int directions = 2000;        ///< Fibonacci-sphere directions
+  std::string name;            ///< ball name
+  Vec3 center = Vec3::Zero();  ///< m
+  double length = 0.0;         ///< scanline length (m), centred on the ball centre
+  int directions = 2000;       ///< Fibonacci-sphere directions
 };
 
 /// analysis.rqd
 struct RqdAnalysis {
   std::vector<double> thresholds{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};  ///< m
-  std::vector<RqdBall> balls;                ///< RQD balls
-  std::filesystem::path boreholes_file;      ///< collars (absolute path), empty if none
-  double run_length = 3.0;                   ///< core run length (m)
-  std::filesystem::path measured_file;       ///< measured log (absolute path), empty if none
-  std::optional<double> grid_spacing;        ///< RQD/P32 grid cell size (m)
-  int grid_direction_count = 200;            ///< directions per grid cell
+  std::vector<RqdBall> balls;                                     ///< RQD balls
+  std::filesystem::path boreholes_file;  ///< collars (absolute path), empty if none
+  double run_length = 3.0;               ///< core run length (m)
+  std::filesystem::path measured_file;   ///< measured log (absolute path), empty if none
+  std::optional<double> grid_spacing;    ///< RQD/P32 grid cell size (m)
+  int grid_direction_count = 200;        ///< directions per grid cell
 };
 
 /// analysis.dda
 struct DdaAnalysis {
-  bool dynamic = true;                  ///< dynamic | static
-  bool deformable = true;               ///< deformable (12 DOF) | rigid (6 DOF)
-  int steps = 1000;                     ///< number of steps of size time_step
-  double time_step = 0.002;             ///< s, the largest allowed
+  bool dynamic = true;                    ///< dynamic | static
+  bool deformable = true;                 ///< deformable (12 DOF) | rigid (6 DOF)
+  int steps = 1000;                       ///< number of steps of size time_step
+  double time_step = 0.002;               ///< s, the largest allowed
   double max_displacement_ratio = 0.001;  ///< of the domain size, per step
-  std::optional<double> penalty;        ///< N/m; none means auto
+  std::optional<double> penalty;          ///< N/m; none means auto
 };
 
 /// analysis.overload
 struct OverloadAnalysis {
-  std::vector<double> factors;     ///< load factors K, increasing
-  std::vector<std::string> scales; ///< loads multiplied: "water", "gravity", "point_loads"
+  std::vector<double> factors;      ///< load factors K, increasing
+  std::vector<std::string> scales;  ///< loads multiplied: "water", "gravity", "point_loads"
 };
 
 /// analysis.strength_reduction
 struct StrengthReductionAnalysis {
-  std::vector<double> factors;     ///< strength reduction factors, increasing
+  std::vector<double> factors;  ///< strength reduction factors, increasing
 };
 
 /// The `analysis` section: a stage runs only when its entry is present.
@@ -137,21 +137,21 @@ struct Analysis {
 
 /// A whole scene, validated, with names resolved to indices.
 struct Scene {
-  std::filesystem::path file;            ///< the scene file as given
-  int version = 1;                       ///< format version
-  std::string name;                      ///< site name
-  std::uint64_t seed = 0;                ///< seed of every random draw
-  std::filesystem::path domain_mesh;     ///< closed mesh domain (absolute), empty for a box
-  geometry::DfnSpec dfn;                 ///< domain box and everything the DFN is made of
-  std::vector<Material> materials;       ///< in scene order
-  int rock_material = -1;                ///< material of the rock (-1: not given)
-  std::vector<Joint> joints;             ///< named joints, then inline ones (structures)
-  int default_joint = -1;                ///< joint used where none is named (-1: not given)
-  std::vector<StructureSpec> structures; ///< structures
-  Loads loads;                           ///< loads
-  std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
-  std::vector<Monitor> monitors;         ///< measure points
-  Analysis analysis;                     ///< what to compute
+  std::filesystem::path file;             ///< the scene file as given
+  int version = 1;                        ///< format version
+  std::string name;                       ///< site name
+  std::uint64_t seed = 0;                 ///< seed of every random draw
+  std::filesystem::path domain_mesh;      ///< closed mesh domain (absolute), empty for a box
+  geometry::DfnSpec dfn;                  ///< domain box and everything the DFN is made of
+  std::vector<Material> materials;        ///< in scene order
+  int rock_material = -1;                 ///< material of the rock (-1: not given)
+  std::vector<Joint> joints;              ///< named joints, then inline ones (structures)
+  int default_joint = -1;                 ///< joint used where none is named (-1: not given)
+  std::vector<StructureSpec> structures;  ///< structures
+  Loads loads;                            ///< loads
+  std::vector<std::string> fixed_faces;   ///< supports.fixed: bottom, top, west, east, south, north
+  std::vector<Monitor> monitors;          ///< measure points
+  Analysis analysis;                      ///< what to compute
 };
 
 /// Reads and validates a scene. Relative paths inside it are resolved against its folder;

@@ -12,18 +12,26 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 /// A number, or null where JSON has none (infinite kappa of identical normals).
-Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+Json number(double value) {
+  return std::isfinite(value) ? Json(value) : Json(nullptr);
+}
 
 /// [x, y, z]
-Json vector3(const geometry::Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+Json vector3(const geometry::Vec3& v) {
+  return Json::array({v.x(), v.y(), v.z()});
+}
 
 /// Scene-facing name of a set's origin.
 const char* originName(geometry::DiscOrigin origin) {
   switch (origin) {
-    case geometry::DiscOrigin::JointSet: return "joint_set";
-    case geometry::DiscOrigin::Fault: return "fault";
-    case geometry::DiscOrigin::Interlayer: return "interlayer";
-    case geometry::DiscOrigin::FabFile: return "fab_file";
+    case geometry::DiscOrigin::JointSet:
+      return "joint_set";
+    case geometry::DiscOrigin::Fault:
+      return "fault";
+    case geometry::DiscOrigin::Interlayer:
+      return "interlayer";
+    case geometry::DiscOrigin::FabFile:
+      return "fab_file";
   }
   return "unknown";
 }
@@ -50,7 +58,9 @@ void appendTimings(Json& j, const Timings& timings) {
 
 }  // namespace
 
-const char* version() { return ROCKMASS_VERSION; }
+const char* version() {
+  return ROCKMASS_VERSION;
+}
 
 std::string formatDfnSummary(const RunInfo& run, const geometry::FractureNetwork& network,
                              const std::vector<geometry::SetStatistics>& stats) {

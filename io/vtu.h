@@ -12,19 +12,23 @@ namespace rockmass::io {
 
 /// One named data array: raw little-endian values of a VTK scalar type.
 struct VtuArray {
-  std::string name;     ///< Name attribute
-  std::string type;     ///< VTK type name: Float64, Float32, Int64, Int32 or UInt8
-  int components = 1;   ///< values per tuple
-  std::string bytes;    ///< the values' bytes (x86-64 and ARM are little-endian)
+  std::string name;    ///< Name attribute
+  std::string type;    ///< VTK type name: Float64, Float32, Int64, Int32 or UInt8
+  int components = 1;  ///< values per tuple
+  std::string bytes;   ///< the values' bytes (x86-64 and ARM are little-endian)
 };
 
 /// VTK type name of a C++ scalar type.
 template <class T>
 constexpr const char* vtkTypeName() {
-  if constexpr (std::is_same_v<T, double>) return "Float64";
-  else if constexpr (std::is_same_v<T, float>) return "Float32";
-  else if constexpr (std::is_same_v<T, std::int64_t>) return "Int64";
-  else if constexpr (std::is_same_v<T, std::int32_t>) return "Int32";
+  if constexpr (std::is_same_v<T, double>)
+    return "Float64";
+  else if constexpr (std::is_same_v<T, float>)
+    return "Float32";
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return "Int64";
+  else if constexpr (std::is_same_v<T, std::int32_t>)
+    return "Int32";
   else {
     static_assert(std::is_same_v<T, std::uint8_t>, "unsupported VTK array type");
     return "UInt8";

@@ -144,7 +144,7 @@ TEST(Cli, BadSceneExitsWithTwoAndALocatedMessage) {
 
 TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
   EXPECT_EQ(run("dfn /nonexistent/scene.yaml -o /tmp/rockmass_cli_none").exit_code, 2);
-  EXPECT_EQ(run("dfn").exit_code, 2);           // no scene, no -o
+  EXPECT_EQ(run("dfn").exit_code, 2);  // no scene, no -o
   EXPECT_EQ(run("unknown-command x").exit_code, 2);
   EXPECT_EQ(run("dfn a.yaml -o b --seed notanumber").exit_code, 2);
   const Result version = run("--version");

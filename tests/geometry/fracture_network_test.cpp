@@ -12,11 +12,15 @@
 namespace rockmass::geometry {
 namespace {
 
-DistributionSpec normal(double mean, double std) { return {DistributionKind::Normal, mean, std, {}, {}}; }
+DistributionSpec normal(double mean, double std) {
+  return {DistributionKind::Normal, mean, std, {}, {}};
+}
 DistributionSpec lognormal(double mean, double std) {
   return {DistributionKind::Lognormal, mean, std, {}, {}};
 }
-DistributionSpec constant(double value) { return {DistributionKind::Constant, value, 0, {}, {}}; }
+DistributionSpec constant(double value) {
+  return {DistributionKind::Constant, value, 0, {}, {}};
+}
 
 /// A joint set dipping 40 towards 120 with normal scatter, lognormal traces.
 JointSetSpec jointSet(double spacing, double trace_mean, double trace_std) {
@@ -120,8 +124,7 @@ TEST(FractureNetwork, MeanTraceOnAPlaneIsTheFieldMean) {
 TEST(FractureNetwork, TruncatedTraceScaleUsesTruncatedMoments) {
   // A uniform on [1, 3] truncated to [1, 2] is a uniform on [1, 2]: E[L] = 1.5,
   // E[L^2] = 7/3, so c = (4 / pi) 2.25 / (7/3). The quadrature is good to 1e-6.
-  const DistributionSpec truncated{DistributionKind::Uniform, 2.0, 2.0 / std::sqrt(12.0), 1.0,
-                                   2.0};
+  const DistributionSpec truncated{DistributionKind::Uniform, 2.0, 2.0 / std::sqrt(12.0), 1.0, 2.0};
   EXPECT_NEAR(traceToDiameterScale(truncated), 4.0 / kPi * 2.25 / (7.0 / 3.0), 1e-6);
 }
 

@@ -82,8 +82,7 @@ std::string attribute(const std::string& xml, const std::string& name) {
 
 /// Decodes standard base64 (the test's own decoder, independent of the writer).
 std::string base64Decode(const std::string& text) {
-  const std::string alphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   unsigned buffer = 0;
   int bits = 0;
