@@ -4,28 +4,18 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "tests/support/test_support.h"
+
+namespace rockmass {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh folder under the system temporary directory, removed at the end of the test.
-class TempDir {
- public:
-  explicit TempDir(const std::string& name)
-      : path_(fs::temp_directory_path() / ("rockmass_cli_" + name)) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::readFile;
+using test::TempDir;
+using test::writeFile;
 
 struct Result {
   int exit_code = -1;
@@ -43,17 +33,6 @@ Result run(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-void writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
 }
 
 /// A small scene: two joint sets, a fault and an interlayer in a 40 m cube.
@@ -94,7 +73,7 @@ std::string withoutTimings(const std::string& summary) {
 }
 
 TEST(Cli, DfnWritesEveryFileAndTheSameSeedGivesTheSameBytes) {
-  TempDir dir("reproducible");
+  TempDir dir("cli_reproducible");
   writeFile(dir.path() / "scene.yaml", kScene);
   const std::string scene = (dir.path() / "scene.yaml").string();
   const Result first = run("dfn " + scene + " -o " + (dir.path() / "a").string());
@@ -128,7 +107,7 @@ TEST(Cli, DfnWritesEveryFileAndTheSameSeedGivesTheSameBytes) {
 }
 
 TEST(Cli, BadSceneExitsWithTwoAndALocatedMessage) {
-  TempDir dir("bad");
+  TempDir dir("cli_bad");
   std::string text = kScene;
   text.replace(text.find("mean: 2.0, std: 1.5"), 19, "mean: -2.0, std: 1.5");
   writeFile(dir.path() / "scene.yaml", text);
@@ -153,7 +132,7 @@ TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
 }
 
 TEST(Cli, UnwritableOutputIsAFailureNotACrash) {
-  TempDir dir("unwritable");
+  TempDir dir("cli_unwritable");
   writeFile(dir.path() / "scene.yaml", kScene);
   writeFile(dir.path() / "file", "not a folder");
   const Result result = run("dfn " + (dir.path() / "scene.yaml").string() + " -o " +
@@ -164,3 +143,4 @@ TEST(Cli, UnwritableOutputIsAFailureNotACrash) {
 }
 
 }  // namespace
+}  // namespace rockmass

@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "tests/support/test_support.h"
 
 namespace rockmass::io {
 namespace {
@@ -85,27 +86,7 @@ TEST(FabRoundTrip, EmptyFileHasAnEmptyFractureSection) {
 
 TEST(FabParse, MinimalExampleOfSceneFormat) {
   // The minimal form of docs/scene-format.md, "FAB files" (Scale = 100 is ignored).
-  const std::string text =
-      "BEGIN FORMAT\n"
-      "    Format = Ascii\n"
-      "    Length_Unit = Meter\n"
-      "    XAxis = East\n"
-      "    Scale = 100.0\n"
-      "    No_Fractures = 1\n"
-      "    No_TessFractures = 0\n"
-      "    No_Nodes = 4\n"
-      "    No_Properties = 0\n"
-      "END FORMAT\n"
-      "\n"
-      "BEGIN FRACTURE\n"
-      "1 4 1\n"
-      "1 -1 -1 5\n"
-      "2 11 -1 5\n"
-      "3 11 11 5\n"
-      "4 -1 11 5\n"
-      "0 0 0 1\n"
-      "END FRACTURE\n";
-  const FabFile fab = parseFab(text, "minimal.fab");
+  const FabFile fab = parseFab(test::kSceneFormatFab, "minimal.fab");
   ASSERT_EQ(fab.fractures.size(), 1u);
   EXPECT_EQ(fab.fractures[0].id, 1);
   EXPECT_EQ(fab.fractures[0].set, 1);

@@ -1,15 +1,14 @@
 #include "io/scene.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
 
 #include "io/input_error.h"
+#include "tests/support/test_support.h"
 
 namespace rockmass::io {
 namespace {
@@ -53,46 +52,15 @@ const std::string lognormal_trace = "{distribution: lognormal, mean: 20, std: 10
 /// A temporary folder, removed with everything in it at the end of the test.
 class SceneFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() /
-          ("rockmass_scene_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-
   /// Writes `text` to dir/name and returns the path.
   fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path path = dir / name;
-    std::ofstream(path) << text;
-    return path;
+    return test::writeFile(dir / name, text);
   }
 
-  fs::path dir;  ///< the temporary folder of the test
+  test::TempDir temp{std::string("scene_") +
+                     ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+  const fs::path& dir = temp.path();  ///< the temporary folder of the test
 };
-
-/// The FAB example of scene-format.md: one square at z = 5 in set 1.
-const std::string square_fab =
-    "BEGIN FORMAT\n"
-    "    Format = Ascii\n"
-    "    Length_Unit = Meter\n"
-    "    XAxis = East\n"
-    "    Scale = 100.0\n"
-    "    No_Fractures = 1\n"
-    "    No_TessFractures = 0\n"
-    "    No_Nodes = 4\n"
-    "    No_Properties = 0\n"
-    "END FORMAT\n"
-    "\n"
-    "BEGIN FRACTURE\n"
-    "1 4 1\n"
-    "1 -1 -1 5\n"
-    "2 11 -1 5\n"
-    "3 11 11 5\n"
-    "4 -1 11 5\n"
-    "0 0 0 1\n"
-    "END FRACTURE\n";
 
 // ----- malformed scenes: each message is checked in full -----
 
@@ -512,7 +480,7 @@ analysis:
 )";
 
 TEST_F(SceneFiles, FullSceneParsesToTheExpectedValues) {
-  write("mapped.fab", square_fab);
+  write("mapped.fab", test::kSceneFormatFab);
   write("holes.csv", "id,x,y,z,azimuth,plunge,length\n");
   fs::create_directories(dir / "logs");
   write("logs/rqd_log.csv", "id,from,to,rqd\n");
@@ -672,7 +640,7 @@ TEST_F(SceneFiles, FullSceneParsesToTheExpectedValues) {
 }
 
 TEST_F(SceneFiles, FabFileBecomesAPolygonSetNamedAfterItsStem) {
-  write("mapped_joints.fab", square_fab);
+  write("mapped_joints.fab", test::kSceneFormatFab);
   const Scene scene = loadScene(
       write("scene.yaml", valid_head + two_joints +
                               "default_joint: soft\nfractures:\n  - {file: mapped_joints.fab}\n"));
