@@ -11,6 +11,7 @@ packages=(
   libcli11-dev           # app: command line
   nlohmann-json3-dev     # io: summary.json
   libtbb-dev             # parallel loops
+  libembree-dev          # rqd: ray casting of scanlines through the discs
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
 )

@@ -1,0 +1,320 @@
+// Ray-casting scene of fracture discs on Embree 3.
+//
+// How all hits along a finite segment are collected: one rtcIntersect1 call per segment,
+// and no hit is ever committed to the ray. Exact form: the user-geometry intersect callback
+// tests the disc in double precision, records a hit inside [0, L] and leaves the ray
+// untouched. Triangulated form: an intersection filter records each triangle hit and rejects
+// it (valid = 0). Either way the ray's tfar never shrinks, so Embree visits every primitive
+// whose bounds the segment crosses, in one traversal. We chose this over repeated queries
+// from just past the last hit because (a) it is one traversal instead of k + 1, and (b) a
+// restart offset is an epsilon that would skip two discs closer than it, or find the same
+// disc again; here nothing is skipped and duplicates are removed by disc id instead (one disc
+// is one fracture; a plane is crossed at most once by a line, so two triangles of one disc
+// sharing the edge the segment passes through give the same crossing).
+//
+// Precision: doubles in, Embree is float inside. Coordinates are shifted to the centre of
+// the discs' bounds before rounding to float, to keep float errors small.
+// - Exact form: Embree (float) only culls by bounding boxes, which are padded by
+//   `bounds_pad` so that float rounding of the ray and boxes can never cull a true hit; the
+//   disc test and t are evaluated in double by Disc::intersectLine on the unshifted data, so
+//   the result is the double-precision brute force result.
+// - Triangulated form: Embree decides in float whether a triangle is hit, so a segment
+//   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim or of a
+//   fan edge may be found or missed differently than the double-precision polygon test;
+//   hits near a disc's rim may therefore differ between the two forms. The t of every hit
+//   found is re-evaluated in double with Disc::intersectLine (the fan lies in the disc's
+//   plane), so the distances returned are exact.
+#include "rqd/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace rockmass::rqd {
+
+using geometry::Disc;
+using geometry::Vec3;
+
+namespace {
+
+/// What one hits() call carries through Embree's callbacks (lives on the caller's stack).
+struct Query {
+  const std::vector<Disc>* discs = nullptr;                   ///< the scene's discs
+  const std::vector<std::uint32_t>* triangle_disc = nullptr;  ///< triangle -> disc index
+  Vec3 start = Vec3::Zero();                                  ///< segment start, unshifted (m)
+  Vec3 dir = Vec3::UnitX();                                   ///< unit direction of the segment
+  double length = 0.0;                                        ///< segment length L (m)
+  double float_t_shift = 0.0;      ///< Embree ray t minus segment t (m): the ray starts early
+  std::vector<ScanlineHit> found;  ///< hits in [0, L], possibly repeated
+};
+
+/// Embree's context, extended with the query (the context must come first).
+struct QueryContext {
+  RTCIntersectContext embree;
+  Query* query;
+};
+
+const QueryContext& queryContext(const RTCIntersectContext* context) {
+  return *reinterpret_cast<const QueryContext*>(context);
+}
+
+void record(Query& query, const Disc& disc, std::optional<double> t) {
+  // Closed interval [0, L], decided in double precision.
+  if (t && *t >= 0.0 && *t <= query.length) query.found.push_back({*t, disc.id});
+}
+
+/// Exact form: double-precision ray-ellipse (or ray-polygon) test; never commits a hit.
+void intersectDisc(const RTCIntersectFunctionNArguments* args) {
+  Query& query = *queryContext(args->context).query;
+  const Disc& disc = (*query.discs)[args->primID];
+  // rtcIntersect1 only: one ray, and the query's double-precision segment describes it.
+  assert(args->N == 1);
+  if (args->valid[0] == 0) return;
+  record(query, disc, disc.intersectLine(query.start, query.dir));
+}
+
+/// Exact form: occlusion queries are not used; report nothing.
+void occludedDisc(const RTCOccludedFunctionNArguments*) {}
+
+/// Triangulated form: records each triangle hit with its t in double, then rejects it so
+/// that traversal continues.
+void filterTriangleHit(const RTCFilterFunctionNArguments* args) {
+  Query& query = *queryContext(args->context).query;
+  for (unsigned int i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    args->valid[i] = 0;
+    const unsigned int primitive = RTCHitN_primID(args->hit, args->N, i);
+    const Disc& disc = (*query.discs)[(*query.triangle_disc)[primitive]];
+    std::optional<double> t = disc.intersectLine(query.start, query.dir);
+    if (!t) {
+      // Float says hit, double says just outside the rim: keep Embree's verdict, with the
+      // double-precision distance to the disc's plane.
+      const double denominator = disc.normal.dot(query.dir);
+      t = denominator != 0.0
+              ? disc.normal.dot(disc.center - query.start) / denominator
+              : static_cast<double>(RTCRayN_tfar(args->ray, args->N, i)) - query.float_t_shift;
+    }
+    record(query, disc, t);
+  }
+}
+
+/// Axis-aligned bounds of a disc (m): exact for ellipses and polygons.
+geometry::Box discBounds(const Disc& disc) {
+  if (!disc.polygon.empty()) {
+    geometry::Box box{disc.polygon.front(), disc.polygon.front()};
+    for (const Vec3& p : disc.polygon) {
+      box.min = box.min.cwiseMin(p);
+      box.max = box.max.cwiseMax(p);
+    }
+    return box;
+  }
+  // Half-extent along axis k of centre + a cos(s) major + b sin(s) minor.
+  const Vec3 major = disc.a * disc.major;
+  const Vec3 minor = disc.b * disc.minor();
+  const Vec3 half = (major.cwiseAbs2() + minor.cwiseAbs2()).cwiseSqrt();
+  return {disc.center - half, disc.center + half};
+}
+
+bool hasArea(const Disc& disc) {
+  if (!disc.polygon.empty()) return disc.polygon.size() >= 3 && disc.area() > 0.0;
+  return disc.a > 0.0 && disc.b > 0.0 && std::isfinite(disc.a) && std::isfinite(disc.b);
+}
+
+}  // namespace
+
+struct ScanlineScene::Impl {
+  DiscForm form = DiscForm::ExactEllipse;
+  std::vector<Disc> discs;                   ///< the discs in the scene (primitive order)
+  std::vector<std::uint32_t> triangle_disc;  ///< triangulated form: triangle -> disc index
+  Vec3 offset = Vec3::Zero();                ///< subtracted from coordinates given to Embree (m)
+  /// Padding of the exact form's boxes and of the ray's ends (m): covers float rounding of
+  /// shifted coordinates (relative 6e-8) and of the ray along segments far longer than the
+  /// scene, with a wide margin; it only costs a few extra double-precision disc tests.
+  double bounds_pad = 0.0;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  ~Impl() {
+    if (scene != nullptr) rtcReleaseScene(scene);
+    if (device != nullptr) rtcReleaseDevice(device);
+  }
+
+  void check(const char* what) const {
+    const RTCError error = rtcGetDeviceError(device);
+    if (error != RTC_ERROR_NONE) {
+      throw std::runtime_error(std::string("Embree failed to ") + what + " (error code " +
+                               std::to_string(static_cast<int>(error)) + ")");
+    }
+  }
+
+  static void bounds(const RTCBoundsFunctionArguments* args) {
+    const Impl& impl = *static_cast<const Impl*>(args->geometryUserPtr);
+    const geometry::Box box = discBounds(impl.discs[args->primID]);
+    const Vec3 low = box.min - impl.offset;
+    const Vec3 high = box.max - impl.offset;
+    const auto pad = static_cast<float>(impl.bounds_pad);
+    RTCBounds& out = *args->bounds_o;
+    out.lower_x = static_cast<float>(low.x()) - pad;
+    out.lower_y = static_cast<float>(low.y()) - pad;
+    out.lower_z = static_cast<float>(low.z()) - pad;
+    out.upper_x = static_cast<float>(high.x()) + pad;
+    out.upper_y = static_cast<float>(high.y()) + pad;
+    out.upper_z = static_cast<float>(high.z()) + pad;
+  }
+
+  void addUserGeometry() {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned int>(discs.size()));
+    rtcSetGeometryUserData(geometry, this);
+    rtcSetGeometryBoundsFunction(geometry, &Impl::bounds, this);
+    rtcSetGeometryIntersectFunction(geometry, &intersectDisc);
+    rtcSetGeometryOccludedFunction(geometry, &occludedDisc);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+  }
+
+  void addTriangles(int segments) {
+    std::vector<Vec3> vertices;
+    std::vector<std::uint32_t> triangles;
+    for (std::size_t d = 0; d < discs.size(); ++d) {
+      const Disc& disc = discs[d];
+      const std::vector<Vec3> outline = disc.outline(segments);
+      const Vec3 fan_centre =
+          disc.polygon.empty() ? disc.center : geometry::polygonCentroid(disc.polygon);
+      const auto first = static_cast<std::uint32_t>(vertices.size());
+      vertices.push_back(fan_centre);
+      vertices.insert(vertices.end(), outline.begin(), outline.end());
+      const auto n = static_cast<std::uint32_t>(outline.size());
+      for (std::uint32_t k = 0; k < n; ++k) {
+        triangles.insert(triangles.end(), {first, first + 1 + k, first + 1 + (k + 1) % n});
+        triangle_disc.push_back(static_cast<std::uint32_t>(d));
+      }
+    }
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertex_buffer = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), vertices.size()));
+    auto* index_buffer = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), triangles.size() / 3));
+    if (vertex_buffer == nullptr || index_buffer == nullptr) check("allocate triangle buffers");
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
+      const Vec3 shifted = vertices[v] - offset;
+      for (int k = 0; k < 3; ++k) vertex_buffer[3 * v + k] = static_cast<float>(shifted[k]);
+    }
+    std::copy(triangles.begin(), triangles.end(), index_buffer);
+    rtcSetGeometryIntersectFilterFunction(geometry, &filterTriangleHit);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+  }
+};
+
+ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm form, int segments)
+    : impl_(std::make_unique<Impl>()) {
+  if (form == DiscForm::Triangulated && segments < 3) {
+    throw std::invalid_argument("a triangulated disc needs at least 3 outline segments, got " +
+                                std::to_string(segments));
+  }
+  Impl& impl = *impl_;
+  impl.form = form;
+  for (const Disc& disc : network.discs) {
+    if (hasArea(disc)) impl.discs.push_back(disc);
+  }
+  if (!impl.discs.empty()) {
+    geometry::Box all = discBounds(impl.discs.front());
+    for (const Disc& disc : impl.discs) {
+      const geometry::Box box = discBounds(disc);
+      all.min = all.min.cwiseMin(box.min);
+      all.max = all.max.cwiseMax(box.max);
+    }
+    impl.offset = all.center();
+    impl.bounds_pad = 1e-4 * (1.0 + all.size().maxCoeff());
+  }
+
+  impl.device = rtcNewDevice(nullptr);
+  if (impl.device == nullptr) {
+    throw std::runtime_error("Embree could not create a device (error code " +
+                             std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) +
+                             "); check that the CPU supports SSE2");
+  }
+  impl.scene = rtcNewScene(impl.device);
+  rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
+  if (!impl.discs.empty()) {
+    if (form == DiscForm::ExactEllipse) {
+      impl.addUserGeometry();
+    } else {
+      impl.addTriangles(segments);
+    }
+  }
+  rtcCommitScene(impl.scene);
+  impl.check("build the scene");
+}
+
+ScanlineScene::~ScanlineScene() = default;
+ScanlineScene::ScanlineScene(ScanlineScene&&) noexcept = default;
+ScanlineScene& ScanlineScene::operator=(ScanlineScene&&) noexcept = default;
+
+DiscForm ScanlineScene::form() const {
+  return impl_->form;
+}
+
+std::vector<ScanlineHit> ScanlineScene::hits(const Vec3& start, const Vec3& end) const {
+  const Impl& impl = *impl_;
+  const double length = (end - start).norm();
+  if (!(length > 0.0) || !std::isfinite(length) || impl.discs.empty()) return {};
+
+  Query query;
+  query.discs = &impl.discs;
+  query.triangle_disc = &impl.triangle_disc;
+  query.start = start;
+  query.dir = (end - start) / length;
+  query.length = length;
+  query.float_t_shift = impl.bounds_pad;
+
+  QueryContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.query = &query;
+
+  // The float ray starts `bounds_pad` before the segment and ends `bounds_pad` after it, so
+  // that rounding cannot lose a hit at t = 0 or t = L; [0, L] is then enforced in double.
+  const Vec3 origin = start - impl.offset - impl.bounds_pad * query.dir;
+  RTCRayHit ray_hit{};
+  ray_hit.ray.org_x = static_cast<float>(origin.x());
+  ray_hit.ray.org_y = static_cast<float>(origin.y());
+  ray_hit.ray.org_z = static_cast<float>(origin.z());
+  ray_hit.ray.dir_x = static_cast<float>(query.dir.x());
+  ray_hit.ray.dir_y = static_cast<float>(query.dir.y());
+  ray_hit.ray.dir_z = static_cast<float>(query.dir.z());
+  ray_hit.ray.tnear = 0.0f;
+  ray_hit.ray.tfar = static_cast<float>(length + 2.0 * impl.bounds_pad);
+  ray_hit.ray.mask = std::numeric_limits<unsigned int>::max();
+  ray_hit.ray.flags = 0;
+  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl.scene, &context.embree, &ray_hit);
+
+  std::vector<ScanlineHit>& found = query.found;
+  // One disc, one crossing: drop repeats (triangles sharing an edge or the fan centre).
+  std::sort(found.begin(), found.end(), [](const ScanlineHit& p, const ScanlineHit& q) {
+    return p.disc_id != q.disc_id ? p.disc_id < q.disc_id : p.t < q.t;
+  });
+  found.erase(std::unique(found.begin(), found.end(),
+                          [](const ScanlineHit& p, const ScanlineHit& q) {
+                            return p.disc_id == q.disc_id;
+                          }),
+              found.end());
+  std::sort(found.begin(), found.end(), [](const ScanlineHit& p, const ScanlineHit& q) {
+    return p.t != q.t ? p.t < q.t : p.disc_id < q.disc_id;
+  });
+  return std::move(found);
+}
+
+}  // namespace rockmass::rqd
