@@ -188,7 +188,7 @@ void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain
     disc.center = enlarged.min + Vec3(uniformOpen01(rng) * size.x(), uniformOpen01(rng) * size.y(),
                                       uniformOpen01(rng) * size.z());
     sampler.sample(rng, disc);
-    if (domain.distance(disc.center) > disc.a) continue;
+    // A centre outside the domain may still belong to a disc that reaches into it.
     if (!domain.contains(disc.center) && disc.areaInside(domain) <= 0.0) continue;
     disc.set = set_index;
     disc.joint = spec.joint;
@@ -199,11 +199,12 @@ void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain
   network.sets.push_back(info);
 }
 
-/// Adds `disc` when it touches the domain; returns whether it did.
-bool addIfInside(Disc disc, const Box& domain, FractureNetwork& network) {
-  if (disc.areaInside(domain) <= 0.0) return false;
+/// Adds `disc` when it touches the domain. Returns the id it will get (its 1-based position,
+/// see generateNetwork), or 0 when it was left out.
+std::int64_t addIfInside(Disc disc, const Box& domain, FractureNetwork& network) {
+  if (disc.areaInside(domain) <= 0.0) return 0;
   network.discs.push_back(std::move(disc));
-  return true;
+  return static_cast<std::int64_t>(network.discs.size());
 }
 
 /// A deterministic set: its SetInfo with the given mean normal.
@@ -237,10 +238,8 @@ void generateFault(const FaultSpec& spec, int set_index, const Box& domain,
       Disc surface = disc;
       surface.center = spec.center + side * spec.thickness * disc.normal;
       info.generated += 1;
-      if (addIfInside(surface, domain, network)) {
-        // Ids are assigned at the end; remember the position for now.
-        (side < 0 ? slab.lower : slab.upper)
-            .push_back(static_cast<std::int64_t>(network.discs.size()));
+      if (const std::int64_t id = addIfInside(surface, domain, network)) {
+        (side < 0 ? slab.lower : slab.upper).push_back(id);
       }
     }
     network.slabs.push_back(std::move(slab));
@@ -316,10 +315,8 @@ void generateInterlayer(const InterlayerSpec& spec, int set_index, const Box& do
       disc.joint = spec.joint;
       disc.origin = DiscOrigin::Interlayer;
       info.generated += 1;
-      if (addIfInside(std::move(disc), domain, network) && spec.thickness > 0.0) {
-        (side == 0 ? slab.lower : slab.upper)
-            .push_back(static_cast<std::int64_t>(network.discs.size()));
-      }
+      const std::int64_t id = addIfInside(std::move(disc), domain, network);
+      if (id != 0 && spec.thickness > 0.0) (side == 0 ? slab.lower : slab.upper).push_back(id);
     }
   }
   if (normal_sum.norm() > 0.0) info.mean_normal = normal_sum.normalized();
@@ -412,7 +409,7 @@ FractureNetwork generateNetwork(const DfnSpec& spec, std::uint64_t seed) {
   for (const PolygonSetSpec& polygons : spec.polygon_sets) {
     generatePolygonSet(polygons, set_index++, spec.domain, network);
   }
-  // Ids are born here, 1..N in order; slabs recorded 1-based positions, which are the ids.
+  // Ids are born here, 1..N in order (addIfInside already handed these out to slabs).
   for (std::size_t i = 0; i < network.discs.size(); ++i) {
     network.discs[i].id = static_cast<std::int64_t>(i) + 1;
   }

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "geometry/distribution.h"
+#include "io/atomic_file.h"
 #include "io/fab.h"
 #include "io/input_error.h"
 
@@ -37,13 +38,6 @@ constexpr double kStandardGravity = 9.81;
 // ---------------------------------------------------------------------------------------------
 // Text helpers
 // ---------------------------------------------------------------------------------------------
-
-/// The shortest text that reads back as `x` ("0.5", "1e+06").
-std::string formatNumber(double x) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
-  return std::string(buffer.data(), result.ptr);
-}
 
 /// Items joined by ", ".
 std::string joined(const std::vector<std::string>& items) {
@@ -119,11 +113,11 @@ struct Range {
   std::string text() const {
     const bool bounded_low = low > -kInf, bounded_high = high < kInf;
     if (bounded_low && bounded_high) {
-      return std::string(" in ") + (low_open ? "(" : "[") + formatNumber(low) + ", " +
-             formatNumber(high) + (high_open ? ")" : "]");
+      return std::string(" in ") + (low_open ? "(" : "[") + formatDouble(low) + ", " +
+             formatDouble(high) + (high_open ? ")" : "]");
     }
-    if (bounded_low) return (low_open ? " > " : " >= ") + formatNumber(low);
-    if (bounded_high) return (high_open ? " < " : " <= ") + formatNumber(high);
+    if (bounded_low) return (low_open ? " > " : " >= ") + formatDouble(low);
+    if (bounded_high) return (high_open ? " < " : " <= ") + formatDouble(high);
     return "";
   }
 };
@@ -597,7 +591,7 @@ void checkTraceLength(const Cursor& c, const geometry::Distribution& distributio
       spec.kind == DistributionKind::Constant ? spec.mean > 0 : distribution.lower() >= 0;
   if (!positive) {
     c.fail("expected only values > 0 for a trace length, but the distribution reaches " +
-           formatNumber(distribution.lower()));
+           formatDouble(distribution.lower()));
   }
 }
 
@@ -606,7 +600,7 @@ DistributionSpec readSpacing(const Cursor& c) {
   const DistributionSpec spec = readDistribution(c).spec();
   if (spec.mean <= 0) {
     c.get("mean").value_or(c).fail("expected a mean > 0 for a spacing, got " +
-                                   formatNumber(spec.mean));
+                                   formatDouble(spec.mean));
   }
   return spec;
 }
@@ -874,8 +868,8 @@ class SceneReader {
     for (int axis = 0; axis < 3; ++axis) {
       const double min = scene_.dfn.domain.min[axis], max = scene_.dfn.domain.max[axis];
       if (!(min < max)) {
-        box.fail("expected min < max in every component, got " + formatNumber(min) +
-                 " >= " + formatNumber(max) + " in " + "xyz"[axis]);
+        box.fail("expected min < max in every component, got " + formatDouble(min) +
+                 " >= " + formatDouble(max) + " in " + "xyz"[axis]);
       }
     }
   }

@@ -186,8 +186,9 @@ struct ScanlineScene::Impl {
     for (std::size_t d = 0; d < discs.size(); ++d) {
       const Disc& disc = discs[d];
       const std::vector<Vec3> outline = disc.outline(segments);
-      const Vec3 fan_centre =
-          disc.polygon.empty() ? disc.center : geometry::polygonCentroid(disc.polygon);
+      // Ellipses are fanned from their centre, polygons from their centroid: both are
+      // Disc::center (see geometry/disc.h).
+      const Vec3& fan_centre = disc.center;
       const auto first = static_cast<std::uint32_t>(vertices.size());
       vertices.push_back(fan_centre);
       vertices.insert(vertices.end(), outline.begin(), outline.end());
