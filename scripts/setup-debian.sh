@@ -12,6 +12,11 @@ packages=(
   nlohmann-json3-dev     # io: summary.json
   libtbb-dev             # parallel loops
   libembree-dev          # rqd: ray casting of scanlines through the discs
+  libopenvdb-dev libboost-iostreams-dev   # rqd: RQD and P32 volumes (OpenVDB grids)
+  libcgal-dev libgmp-dev libmpfr-dev   # blocks: exact Nef polyhedra
+  libassimp-dev          # blocks, io: mesh domains and block meshes
+  libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
+  python3-matplotlib python3-numpy     # figures from the CSV outputs
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
 )

@@ -1,0 +1,53 @@
+// rockmass sub-commands: what they share (options, scene loading, output folder) and how
+// main() finds them. Each sub-command lives in its own file and exposes one add*Command().
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "geometry/fracture_network.h"
+#include "io/scene.h"
+
+namespace rockmass::app {
+
+using Clock = std::chrono::steady_clock;
+
+/// Options every sub-command takes.
+struct CommonOptions {
+  std::string scene;                  ///< scene file
+  std::string output;                 ///< output folder
+  std::optional<std::uint64_t> seed;  ///< overrides the scene's seed
+};
+
+/// A registered sub-command: its CLI11 node and what runs when it was parsed.
+struct Command {
+  CLI::App* cli = nullptr;
+  std::function<int()> run;  ///< returns the exit code; throws io::InputError on bad input
+};
+
+/// Seconds since `start`.
+double secondsSince(Clock::time_point start);
+
+/// Adds SCENE, -o OUTDIR and --seed to a sub-command.
+void addCommonOptions(CLI::App& command, CommonOptions& options);
+
+/// Reads the scene and applies command-line overrides.
+io::Scene loadScene(const CommonOptions& options);
+
+/// Creates the output folder (an error naming it when that is impossible).
+std::filesystem::path prepareOutput(const std::string& output);
+
+/// Generates the scene's fracture network; an impossible distribution becomes an
+/// io::InputError that names the scene file.
+geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::string& scene_path);
+
+// One function per sub-command (each in <name>_command.cpp).
+Command addDfnCommand(CLI::App& app);
+
+}  // namespace rockmass::app
