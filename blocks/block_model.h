@@ -1,0 +1,61 @@
+// The block model: what both cutters (exact CGAL Nef and fast convex splitting) produce, and
+// what the DDA engine, the statistics and the writers consume.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/box.h"
+#include "geometry/polyhedron.h"
+
+namespace rockmass::blocks {
+
+/// What made a face of a convex piece.
+enum class FaceKind {
+  Disc,        ///< a fracture disc (id = disc id of the FractureNetwork)
+  Boundary,    ///< the domain boundary (id = box face 0..5: x_min, x_max, y_min, y_max,
+               ///< z_min, z_max; or the face index of a mesh domain)
+  Structure,   ///< the outer surface of a structure (id = structure index)
+  Fictitious,  ///< an internal cut between two pieces of the same block (id = -1)
+};
+
+/// Provenance of one face.
+struct FaceSource {
+  FaceKind kind = FaceKind::Fictitious;
+  int id = -1;
+  bool operator==(const FaceSource&) const = default;
+};
+
+/// A convex piece of a block: its polyhedron and, per face, where the face came from.
+struct Piece {
+  geometry::Polyhedron shape;            ///< convex, closed, outward
+  std::vector<FaceSource> face_sources;  ///< one per shape.faces entry
+};
+
+/// A block: one or more convex pieces glued across fictitious faces; one rigid or
+/// deformable body for the DDA.
+struct Block {
+  int id = 0;                     ///< 1..N in a deterministic order
+  int material = -1;              ///< index into the scene's materials
+  std::vector<Piece> pieces;      ///< convex decomposition
+  geometry::MassProperties mass;  ///< sum over pieces (volume m3, moments about the origin)
+  geometry::Box bounds;           ///< bounding box of all pieces
+};
+
+/// Two blocks touching across real (non-fictitious) faces.
+struct Adjacency {
+  int block_a = 0;    ///< smaller block id
+  int block_b = 0;    ///< larger block id
+  double area = 0.0;  ///< shared face area (m2)
+  FaceSource source;  ///< what separates them (a disc, or a structure surface)
+};
+
+/// All blocks of a domain.
+struct BlockModel {
+  geometry::Box domain;              ///< bounding box of the domain
+  double domain_volume = 0.0;        ///< m3 (the box volume, or the mesh's volume)
+  std::vector<Block> blocks;         ///< sorted by id
+  std::vector<Adjacency> adjacency;  ///< sorted by (block_a, block_b)
+};
+
+}  // namespace rockmass::blocks
