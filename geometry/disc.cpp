@@ -176,10 +176,26 @@ double Disc::areaInside(const Box& box) const {
   if (polygon.empty() && box.contains(center.array() - a) && box.contains(center.array() + a)) {
     return area();
   }
+  return polygonArea(clipPolygonToBox(areaOutline(), box));
+}
+
+std::vector<Vec3> Disc::areaOutline() const {
   constexpr int kClipSegments = 128;
-  const std::vector<Vec3> shape =
-      polygon.empty() ? areaPreservingOutline(*this, kClipSegments) : polygon;
-  return polygonArea(clipPolygonToBox(shape, box));
+  return polygon.empty() ? areaPreservingOutline(*this, kClipSegments) : polygon;
+}
+
+Box Disc::bounds() const {
+  if (!polygon.empty()) {
+    Box box{polygon.front(), polygon.front()};
+    for (const Vec3& p : polygon) {
+      box.min = box.min.cwiseMin(p);
+      box.max = box.max.cwiseMax(p);
+    }
+    return box;
+  }
+  // Half-extent along axis k of centre + a cos(s) major + b sin(s) minor.
+  const Vec3 half = ((a * major).cwiseAbs2() + (b * minor()).cwiseAbs2()).cwiseSqrt();
+  return {center - half, center + half};
 }
 
 }  // namespace rockmass::geometry

@@ -42,6 +42,11 @@ struct Disc {
   /// Area (m2) of the part of the fracture inside `box`: exact for polygons; for ellipses
   /// a 128-gon scaled to the ellipse's exact area is clipped (relative error below 1e-3).
   double areaInside(const Box& box) const;
+  /// The polygon areaInside clips (m): the exact polygon, or a 128-gon scaled about the
+  /// centre to exactly pi a b. Clipping it once per disc lets callers measure many boxes.
+  std::vector<Vec3> areaOutline() const;
+  /// Axis-aligned bounding box (m): exact for ellipses (from the semi-axes) and polygons.
+  Box bounds() const;
 };
 
 /// Area of a planar polygon (m2), by Newell's method.

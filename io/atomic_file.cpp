@@ -47,10 +47,20 @@ std::string writeAndClose(const std::filesystem::path& temporary, std::string_vi
 
 }  // namespace
 
-/// Writes to a temporary file beside `path`, checks the stream, then renames it onto `path`.
-void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& temporary)>& write) {
   const std::filesystem::path temporary = temporaryPathFor(path);
-  std::string reason = writeAndClose(temporary, content);
+  std::string reason;
+  try {
+    write(temporary);
+  } catch (const std::exception& error) {
+    reason = error.what();
+    if (reason.empty()) reason = "the writer failed";
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw;
+  }
   if (reason.empty()) {
     std::error_code error;
     std::filesystem::rename(temporary, path, error);
@@ -60,6 +70,14 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
   std::error_code ignored;
   std::filesystem::remove(temporary, ignored);
   throw std::runtime_error("cannot write " + path.string() + ": " + reason);
+}
+
+/// Writes to a temporary file beside `path`, checks the stream, then renames it onto `path`.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+  writeAtomically(path, [&](const std::filesystem::path& temporary) {
+    const std::string reason = writeAndClose(temporary, content);
+    if (!reason.empty()) throw std::runtime_error(reason);
+  });
 }
 
 /// Shortest round-trip text of `value` (std::to_chars); "nan", "inf" or "-inf" otherwise.

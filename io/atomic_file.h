@@ -2,6 +2,8 @@
 /// Atomic output: write to a temporary name in the same folder, then rename, so a failed
 /// or interrupted run never leaves a half-written file that looks whole.
 #include <filesystem>
+#include <functional>
+#include <string>
 #include <string_view>
 
 namespace rockmass::io {
@@ -10,6 +12,14 @@ namespace rockmass::io {
 /// folders. Throws std::runtime_error naming the path when anything fails; the temporary
 /// file is removed then.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
+
+/// Creates `path` atomically with a writer that needs a file name (a library that opens the
+/// file itself): calls `write(temporary)`, which must create the whole file at `temporary`
+/// (a hidden name beside `path`) and throw on failure, then renames it onto `path`. Creates
+/// no folders. Throws std::runtime_error "cannot write <path>: <reason>" when `write` throws
+/// a std::exception or the rename fails; the temporary file is removed then.
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& temporary)>& write);
 
 /// Shortest text that reads back to the same double (std::to_chars).
 std::string formatDouble(double value);

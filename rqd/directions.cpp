@@ -1,6 +1,7 @@
 #include "rqd/directions.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/orientation.h"
@@ -22,6 +23,20 @@ std::vector<geometry::Vec3> fibonacciSphere(int count) {
     directions.emplace_back(r * std::cos(longitude), r * std::sin(longitude), z);
   }
   return directions;
+}
+
+}  // namespace rockmass::rqd
+
+namespace rockmass::rqd {
+
+std::vector<geometry::Vec3> scanlineAxes(int count) {
+  if (count < 1 || count > std::numeric_limits<int>::max() / 2) {
+    throw std::invalid_argument("scanlineAxes: the axis count must be in [1, 2^30), got " +
+                                std::to_string(count));
+  }
+  std::vector<geometry::Vec3> axes = fibonacciSphere(2 * count);
+  axes.resize(static_cast<std::size_t>(count));
+  return axes;
 }
 
 }  // namespace rockmass::rqd

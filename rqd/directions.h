@@ -16,3 +16,14 @@ namespace rockmass::rqd {
 std::vector<geometry::Vec3> fibonacciSphere(int count);
 
 }  // namespace rockmass::rqd
+
+namespace rockmass::rqd {
+
+/// `count` (>= 1) scanline axes spread evenly over the directions of space, for measures
+/// that do not depend on a scanline's sense (a segment centred on a point and its reverse
+/// give the same RQD): the upper half (z > 0) of fibonacciSphere(2 count), which is exactly
+/// its first `count` points. Each axis stands for 2 pi / count of solid angle on the
+/// hemisphere. Throws std::invalid_argument for count < 1.
+std::vector<geometry::Vec3> scanlineAxes(int count);
+
+}  // namespace rockmass::rqd

@@ -50,8 +50,8 @@ struct Query {
   Vec3 start = Vec3::Zero();                                  ///< segment start, unshifted (m)
   Vec3 dir = Vec3::UnitX();                                   ///< unit direction of the segment
   double length = 0.0;                                        ///< segment length L (m)
-  double float_t_shift = 0.0;      ///< Embree ray t minus segment t (m): the ray starts early
-  std::vector<ScanlineHit> found;  ///< hits in [0, L], possibly repeated
+  double float_t_shift = 0.0;  ///< Embree ray t minus segment t (m): the ray starts early
+  std::vector<ScanlineHit>* found = nullptr;  ///< hits in [0, L], possibly repeated
 };
 
 /// Embree's context, extended with the query (the context must come first).
@@ -66,7 +66,7 @@ const QueryContext& queryContext(const RTCIntersectContext* context) {
 
 void record(Query& query, const Disc& disc, std::optional<double> t) {
   // Closed interval [0, L], decided in double precision.
-  if (t && *t >= 0.0 && *t <= query.length) query.found.push_back({*t, disc.id});
+  if (t && *t >= 0.0 && *t <= query.length) query.found->push_back({*t, disc.id});
 }
 
 /// Exact form: double-precision ray-ellipse (or ray-polygon) test; never commits a hit.
@@ -104,23 +104,6 @@ void filterTriangleHit(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-/// Axis-aligned bounds of a disc (m): exact for ellipses and polygons.
-geometry::Box discBounds(const Disc& disc) {
-  if (!disc.polygon.empty()) {
-    geometry::Box box{disc.polygon.front(), disc.polygon.front()};
-    for (const Vec3& p : disc.polygon) {
-      box.min = box.min.cwiseMin(p);
-      box.max = box.max.cwiseMax(p);
-    }
-    return box;
-  }
-  // Half-extent along axis k of centre + a cos(s) major + b sin(s) minor.
-  const Vec3 major = disc.a * disc.major;
-  const Vec3 minor = disc.b * disc.minor();
-  const Vec3 half = (major.cwiseAbs2() + minor.cwiseAbs2()).cwiseSqrt();
-  return {disc.center - half, disc.center + half};
-}
-
 bool hasArea(const Disc& disc) {
   if (!disc.polygon.empty()) return disc.polygon.size() >= 3 && disc.area() > 0.0;
   return disc.a > 0.0 && disc.b > 0.0 && std::isfinite(disc.a) && std::isfinite(disc.b);
@@ -155,7 +138,7 @@ struct ScanlineScene::Impl {
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
     const Impl& impl = *static_cast<const Impl*>(args->geometryUserPtr);
-    const geometry::Box box = discBounds(impl.discs[args->primID]);
+    const geometry::Box box = impl.discs[args->primID].bounds();
     const Vec3 low = box.min - impl.offset;
     const Vec3 high = box.max - impl.offset;
     const auto pad = static_cast<float>(impl.bounds_pad);
@@ -230,9 +213,9 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
     if (hasArea(disc)) impl.discs.push_back(disc);
   }
   if (!impl.discs.empty()) {
-    geometry::Box all = discBounds(impl.discs.front());
+    geometry::Box all = impl.discs.front().bounds();
     for (const Disc& disc : impl.discs) {
-      const geometry::Box box = discBounds(disc);
+      const geometry::Box box = disc.bounds();
       all.min = all.min.cwiseMin(box.min);
       all.max = all.max.cwiseMax(box.max);
     }
@@ -268,11 +251,20 @@ DiscForm ScanlineScene::form() const {
 }
 
 std::vector<ScanlineHit> ScanlineScene::hits(const Vec3& start, const Vec3& end) const {
+  std::vector<ScanlineHit> found;
+  hits(start, end, found);
+  return found;
+}
+
+void ScanlineScene::hits(const Vec3& start, const Vec3& end,
+                         std::vector<ScanlineHit>& found) const {
+  found.clear();
   const Impl& impl = *impl_;
   const double length = (end - start).norm();
-  if (!(length > 0.0) || !std::isfinite(length) || impl.discs.empty()) return {};
+  if (!(length > 0.0) || !std::isfinite(length) || impl.discs.empty()) return;
 
   Query query;
+  query.found = &found;
   query.discs = &impl.discs;
   query.triangle_disc = &impl.triangle_disc;
   query.start = start;
@@ -302,7 +294,6 @@ std::vector<ScanlineHit> ScanlineScene::hits(const Vec3& start, const Vec3& end)
   ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl.scene, &context.embree, &ray_hit);
 
-  std::vector<ScanlineHit>& found = query.found;
   // One disc, one crossing: drop repeats (triangles sharing an edge or the fan centre).
   std::sort(found.begin(), found.end(), [](const ScanlineHit& p, const ScanlineHit& q) {
     return p.disc_id != q.disc_id ? p.disc_id < q.disc_id : p.t < q.t;
@@ -315,7 +306,6 @@ std::vector<ScanlineHit> ScanlineScene::hits(const Vec3& start, const Vec3& end)
   std::sort(found.begin(), found.end(), [](const ScanlineHit& p, const ScanlineHit& q) {
     return p.t != q.t ? p.t < q.t : p.disc_id < q.disc_id;
   });
-  return std::move(found);
 }
 
 }  // namespace rockmass::rqd

@@ -44,6 +44,10 @@ class ScanlineScene {
   /// id), each disc at most once, t in [0, |end - start|] (closed). Thread-safe: each call
   /// keeps its state on its own stack. A zero-length segment hits nothing.
   std::vector<ScanlineHit> hits(const geometry::Vec3& start, const geometry::Vec3& end) const;
+  /// The same, written into `out` (cleared first): a caller looping over many segments
+  /// reuses one buffer instead of allocating per segment.
+  void hits(const geometry::Vec3& start, const geometry::Vec3& end,
+            std::vector<ScanlineHit>& out) const;
 
   /// The form the scene was built with.
   DiscForm form() const;

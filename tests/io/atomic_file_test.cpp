@@ -90,6 +90,38 @@ TEST_F(AtomicFileTest, FailedRenameRemovesTheTemporary) {
   EXPECT_TRUE(fs::is_directory(folder / "out.txt"));
 }
 
+TEST_F(AtomicFileTest, WriterGetsATemporaryBesideTheTarget) {
+  // A writer that opens the file itself (as OpenVDB does) writes the temporary, which then
+  // becomes the target.
+  fs::path seen;
+  writeAtomically(folder / "grid.vdb", [&](const fs::path& temporary) {
+    seen = temporary;
+    std::ofstream(temporary, std::ios::binary) << "vdb";
+  });
+  EXPECT_EQ(seen.parent_path(), folder);
+  EXPECT_NE(seen, folder / "grid.vdb");
+  EXPECT_EQ(readBytes(folder / "grid.vdb"), "vdb");
+  EXPECT_EQ(entries(), std::set<std::string>{"grid.vdb"});
+}
+
+TEST_F(AtomicFileTest, FailingWriterLeavesNothingAndNamesThePath) {
+  // The old file survives, the half-written temporary goes, the message says which file.
+  writeFileAtomically(folder / "grid.vdb", "old");
+  try {
+    writeAtomically(folder / "grid.vdb", [](const fs::path& temporary) {
+      std::ofstream(temporary, std::ios::binary) << "half";
+      throw std::runtime_error("disk full");
+    });
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find((folder / "grid.vdb").string()), std::string::npos) << message;
+    EXPECT_NE(message.find("disk full"), std::string::npos) << message;
+  }
+  EXPECT_EQ(readBytes(folder / "grid.vdb"), "old");
+  EXPECT_EQ(entries(), std::set<std::string>{"grid.vdb"});
+}
+
 TEST(FormatDouble, GivesTheShortestForms) {
   EXPECT_EQ(formatDouble(0.1), "0.1");
   EXPECT_EQ(formatDouble(1e21), "1e+21");

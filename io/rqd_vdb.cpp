@@ -1,0 +1,56 @@
+#include "io/rqd_vdb.h"
+
+#include "io/atomic_file.h"
+
+namespace rockmass::io {
+namespace {
+
+/// An empty grid placed on the volume's cells.
+VdbScalarGrid onCells(const rqd::CellGrid& cells, std::string name) {
+  VdbScalarGrid grid;
+  grid.name = std::move(name);
+  grid.first_voxel_center = cells.cellCenter(0, 0, 0);
+  grid.voxel_size = cells.cell_size;
+  grid.dims = cells.dims;
+  return grid;
+}
+
+std::vector<float> toFloat(const std::vector<double>& values) {
+  return {values.begin(), values.end()};
+}
+
+}  // namespace
+
+std::string rqdGridName(double threshold) {
+  return "rqd_" + formatDouble(threshold) + "m";
+}
+
+std::vector<VdbScalarGrid> rqdVdbGrids(const rqd::RqdVolume& volume) {
+  std::vector<VdbScalarGrid> grids;
+  for (std::size_t t = 0; t < volume.thresholds.size(); ++t) {
+    const double threshold = volume.thresholds[t];
+    VdbScalarGrid grid = onCells(volume.grid, rqdGridName(threshold));
+    grid.values = toFloat(volume.mean_rqd[t]);
+    grid.units = "percent";
+    grid.description = "mean RQD(t = " + formatDouble(threshold) + " m) of " +
+                       std::to_string(volume.direction_count) + " scanline axes of " +
+                       formatDouble(volume.scanline_length) +
+                       " m centred on each cell centre, clipped to the rock domain";
+    grid.numbers = {{"threshold_m", threshold},
+                    {"scanline_length_m", volume.scanline_length},
+                    {"direction_count", volume.direction_count}};
+    grids.push_back(std::move(grid));
+  }
+  VdbScalarGrid p32 = onCells(volume.grid, "p32");
+  p32.values = toFloat(volume.p32);
+  p32.units = "m2/m3";
+  p32.description = "fracture area (one face) inside each cell per cell volume";
+  grids.push_back(std::move(p32));
+  return grids;
+}
+
+void writeRqdVdb(const std::filesystem::path& path, const rqd::RqdVolume& volume) {
+  writeVdb(path, rqdVdbGrids(volume));
+}
+
+}  // namespace rockmass::io

@@ -1,0 +1,25 @@
+#pragma once
+/// The RQD and P32 volumes as an OpenVDB file (`rqd.vdb`).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/vdb_file.h"
+#include "rqd/rqd_volume.h"
+
+namespace rockmass::io {
+
+/// Name of the grid of mean RQD at threshold t (m): "rqd_" + formatDouble(t) + "m", e.g.
+/// "rqd_1m", "rqd_0.1m", "rqd_10m".
+std::string rqdGridName(double threshold);
+
+/// The grids of `rqd.vdb`: one per threshold (rqdGridName, units "percent", metadata
+/// "threshold_m", "scanline_length_m", "direction_count"), then "p32" (units "m2/m3"). Voxel
+/// (i, j, k) is cell (i, j, k) of the volume's grid, centred at its cell centre.
+std::vector<VdbScalarGrid> rqdVdbGrids(const rqd::RqdVolume& volume);
+
+/// Writes rqdVdbGrids(volume) to `path` with writeVdb (atomic, byte-identical for the same
+/// volume). Throws std::runtime_error naming the path when writing fails.
+void writeRqdVdb(const std::filesystem::path& path, const rqd::RqdVolume& volume);
+
+}  // namespace rockmass::io
