@@ -718,26 +718,70 @@ BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
   return blocks;
 }
 
-/// analysis.rqd
-RqdAnalysis readRqdAnalysis(const Cursor& c) {
-  const Cursor m = c.map({"thresholds", "balls", "boreholes", "grid"});
+/// analysis.rqd.boreholes.calibration; `joint_sets` names the joint sets in order.
+RqdCalibration readRqdCalibration(const Cursor& c, const std::vector<std::string>& joint_sets) {
+  const Cursor m = c.map({"sets", "range", "tolerance", "max_evaluations"});
+  RqdCalibration calibration;
+  if (const auto sets = m.get("sets")) {
+    const std::vector<Cursor> items = sets->items();
+    if (items.empty()) sets->failExpected("a non-empty list of joint set names");
+    for (const Cursor& item : items) {
+      const int index = lookupName(item, joint_sets, "joint set");
+      if (std::find(calibration.sets.begin(), calibration.sets.end(), index) !=
+          calibration.sets.end()) {
+        item.fail("joint set '" + item.string() + "' is listed twice");
+      }
+      calibration.sets.push_back(index);
+    }
+  } else {
+    for (int i = 0; i < static_cast<int>(joint_sets.size()); ++i) calibration.sets.push_back(i);
+    if (joint_sets.empty()) m.fail("calibration needs at least one joint set in the scene");
+  }
+  if (const auto range = m.get("range")) {
+    const std::vector<double> bounds = range->increasingNumbers(kPositive);
+    if (bounds.size() != 2) range->failExpected("a list of 2 increasing numbers > 0");
+    calibration.min_multiplier = bounds[0];
+    calibration.max_multiplier = bounds[1];
+  }
+  calibration.tolerance = m.numberOr("tolerance", calibration.tolerance, kPositive);
+  calibration.max_evaluations =
+      m.integerOr("max_evaluations", calibration.max_evaluations, atLeast(2));
+  return calibration;
+}
+
+/// analysis.rqd; `joint_sets` names the joint sets in order.
+RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets) {
+  const Cursor m = c.map({"thresholds", "balls", "boreholes", "grid", "merge_distance"});
   RqdAnalysis rqd;
   if (const auto thresholds = m.get("thresholds")) {
     rqd.thresholds = thresholds->increasingNumbers(kPositive);
   }
+  rqd.merge_distance = m.numberOr("merge_distance", rqd.merge_distance, kNonNegative);
   UniqueNames ball_names;
   forEachItem(m, "balls", [&](const Cursor& item) {
-    const Cursor ball = item.map({"name", "center", "length", "directions"});
-    rqd.balls.push_back({.name = ball_names.claimName(ball),
-                         .center = ball.at("center").vec3(),
-                         .length = ball.at("length").number(kPositive),
-                         .directions = ball.integerOr("directions", 2000, atLeast(1))});
+    const Cursor ball = item.map({"name", "center", "length", "directions", "radius"});
+    rqd.balls.push_back(
+        {.name = ball_names.claimName(ball),
+         .center = ball.at("center").vec3(),
+         .length = ball.at("length").number(kPositive),
+         .directions = ball.integerOr("directions", 2000, atLeast(4)),
+         .radius = ball.valueOr("radius", std::optional<double>{}, [](const Cursor& v) {
+           return std::optional(v.number(kPositive));
+         })});
   });
   if (const auto holes = m.get("boreholes")) {
-    holes->map({"file", "run_length", "measured"});
+    holes->map({"file", "run_length", "measured", "measured_threshold", "calibration"});
     rqd.boreholes_file = holes->at("file").existingFile();
     rqd.run_length = holes->numberOr("run_length", rqd.run_length, kPositive);
     rqd.measured_file = holes->valueOr("measured", fs::path{}, &Cursor::existingFile);
+    rqd.measured_threshold =
+        holes->numberOr("measured_threshold", rqd.measured_threshold, kPositive);
+    if (const auto calibration = holes->get("calibration")) {
+      if (rqd.measured_file.empty()) {
+        calibration->fail("calibration needs a measured log: give boreholes.measured");
+      }
+      rqd.calibration = readRqdCalibration(*calibration, joint_sets);
+    }
   }
   if (const auto grid = m.get("grid")) {
     grid->map({"spacing", "direction_count"});
@@ -784,11 +828,11 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 }
 
 /// The `analysis` section: each stage present only when its key is.
-Analysis readAnalysis(const Cursor& c) {
+Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets) {
   const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
-  if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v);
+  if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v, joint_sets);
   if (const auto v = m.get("dda")) analysis.dda = readDdaAnalysis(*v);
   if (const auto v = m.get("overload")) analysis.overload = readOverloadAnalysis(*v);
   if (const auto v = m.get("strength_reduction")) {
@@ -848,7 +892,9 @@ class SceneReader {
       const Cursor monitor = c.map({"name", "point"});
       scene_.monitors.push_back({monitor_names.claimName(monitor), monitor.at("point").vec3()});
     });
-    if (const auto analysis = m.get("analysis")) scene_.analysis = readAnalysis(*analysis);
+    if (const auto analysis = m.get("analysis")) {
+      scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets));
+    }
     return std::move(scene_);
   }
 

@@ -88,21 +88,34 @@ struct BlocksAnalysis {
 
 /// One RQD ball.
 struct RqdBall {
-  std::string name;            ///< ball name
-  Vec3 center = Vec3::Zero();  ///< m
-  double length = 0.0;         ///< scanline length (m), centred on the ball centre
-  int directions = 2000;       ///< Fibonacci-sphere directions
+  std::string name;              ///< ball name
+  Vec3 center = Vec3::Zero();    ///< m
+  double length = 0.0;           ///< scanline length (m), centred on the ball centre
+  int directions = 2000;         ///< Fibonacci-sphere directions (>= 4: the surface needs them)
+  std::optional<double> radius;  ///< surface radius R at RQD 100 (m); none: length / 2
+};
+
+/// analysis.rqd.boreholes.calibration: one intensity multiplier for a group of joint sets.
+struct RqdCalibration {
+  std::vector<int> sets;         ///< joint set indices of the group (all joint sets if none given)
+  double min_multiplier = 0.25;  ///< lower end of the search bracket (> 0)
+  double max_multiplier = 4.0;   ///< upper end (the network is generated at it)
+  double tolerance = 0.5;        ///< stop when |mean bias| <= this (RQD points)
+  int max_evaluations = 40;      ///< evaluations allowed
 };
 
 /// analysis.rqd
 struct RqdAnalysis {
   std::vector<double> thresholds{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};  ///< m
   std::vector<RqdBall> balls;                                     ///< RQD balls
-  std::filesystem::path boreholes_file;  ///< collars (absolute path), empty if none
-  double run_length = 3.0;               ///< core run length (m)
-  std::filesystem::path measured_file;   ///< measured log (absolute path), empty if none
-  std::optional<double> grid_spacing;    ///< RQD/P32 grid cell size (m)
-  int grid_direction_count = 200;        ///< directions per grid cell
+  std::filesystem::path boreholes_file;       ///< collars (absolute path), empty if none
+  double run_length = 3.0;                    ///< core run length (m)
+  std::filesystem::path measured_file;        ///< measured log (absolute path), empty if none
+  double measured_threshold = 0.1;            ///< threshold of the measured RQD (m)
+  std::optional<RqdCalibration> calibration;  ///< calibrate against the measured log
+  double merge_distance = 1e-3;               ///< hits closer than this are one fracture (m)
+  std::optional<double> grid_spacing;         ///< RQD/P32 grid cell size (m)
+  int grid_direction_count = 200;             ///< directions per grid cell
 };
 
 /// analysis.dda

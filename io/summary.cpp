@@ -2,18 +2,17 @@
 
 #include <cmath>
 
-#include <nlohmann/json.hpp>
-
 #include "geometry/orientation.h"
+#include "io/summary_json.h"
 
 namespace rockmass::io {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using Json = SummaryJson;
 
 /// A number, or null where JSON has none (infinite kappa of identical normals).
 Json number(double value) {
-  return std::isfinite(value) ? Json(value) : Json(nullptr);
+  return finiteOrNull(value);
 }
 
 /// [x, y, z]
@@ -36,9 +35,11 @@ const char* originName(geometry::DiscOrigin origin) {
   return "unknown";
 }
 
+}  // namespace
+
 /// The fields every summary starts with.
-Json runHeader(const RunInfo& run) {
-  Json j;
+SummaryJson summaryHeader(const RunInfo& run) {
+  SummaryJson j;
   j["rockmass_version"] = version();
   j["command"] = run.command;
   j["scene"] = run.scene;
@@ -49,14 +50,15 @@ Json runHeader(const RunInfo& run) {
   return j;
 }
 
-/// Timings go last: the only part that differs between identical runs.
-void appendTimings(Json& j, const Timings& timings) {
-  Json t = Json::object();
+void appendTimings(SummaryJson& j, const Timings& timings) {
+  SummaryJson t = SummaryJson::object();
   for (const auto& [stage, seconds] : timings) t[stage] = seconds;
   j["timings"] = t;
 }
 
-}  // namespace
+SummaryJson finiteOrNull(double value) {
+  return std::isfinite(value) ? SummaryJson(value) : SummaryJson(nullptr);
+}
 
 const char* version() {
   return ROCKMASS_VERSION;
@@ -64,7 +66,7 @@ const char* version() {
 
 std::string formatDfnSummary(const RunInfo& run, const geometry::FractureNetwork& network,
                              const std::vector<geometry::SetStatistics>& stats) {
-  Json j = runHeader(run);
+  Json j = summaryHeader(run);
   j["domain"] = {{"min", vector3(network.domain.min)},
                  {"max", vector3(network.domain.max)},
                  {"volume", network.domain.volume()}};

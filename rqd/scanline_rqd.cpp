@@ -1,5 +1,6 @@
 #include "rqd/scanline_rqd.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -65,7 +66,9 @@ std::vector<double> rqd(std::span<const double> hits, double length,
     for (double piece : pieces) {
       if (piece >= t) intact_length += piece;
     }
-    result.push_back(100.0 * intact_length / length);
+    // The pieces sum to the length up to rounding: keep RQD within [0, 100]; one intact
+    // piece gives exactly 100.
+    result.push_back(std::min(100.0, 100.0 * (intact_length / length)));
   }
   return result;
 }

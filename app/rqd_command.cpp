@@ -1,0 +1,281 @@
+// rockmass rqd: RQD balls, virtual boreholes and the calibration of the fracture intensity
+// against measured logs, from the scene's analysis.rqd section.
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/command.h"
+#include "io/atomic_file.h"
+#include "io/borehole_file.h"
+#include "io/input_error.h"
+#include "io/rqd_output.h"
+#include "io/summary.h"
+#include "rqd/ball_mesh.h"
+#include "rqd/borehole.h"
+#include "rqd/calibration.h"
+#include "rqd/embree_scene.h"
+#include "rqd/rqd_ball.h"
+
+namespace rockmass::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Options of `rockmass rqd` beyond the common ones; each overrides the scene.
+struct RqdOptions {
+  CommonOptions common;
+  std::optional<int> directions;                  ///< directions of every ball
+  std::optional<std::vector<double>> thresholds;  ///< thresholds (m)
+  std::string form = "exact";                     ///< exact | triangulated
+  int segments = 24;                              ///< fan segments per disc (triangulated)
+  std::optional<double> radius;                   ///< surface radius of every ball (m)
+  std::optional<double> merge_distance;           ///< m
+};
+
+/// Reports progress of a long evaluation on stderr, at most once a second.
+class ProgressReporter {
+ public:
+  explicit ProgressReporter(std::string what) : what_(std::move(what)) {}
+  void operator()(std::size_t done, std::size_t total) {
+    if (secondsSince(last_) < 1.0) return;
+    last_ = Clock::now();
+    std::fprintf(stderr, "rqd: %s: %zu of %zu scanlines\n", what_.c_str(), done, total);
+  }
+
+ private:
+  std::string what_;
+  Clock::time_point last_ = Clock::now();
+};
+
+/// The scene's analysis.rqd with the command-line overrides applied and checked.
+io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOptions& options) {
+  const std::string& file = options.common.scene;
+  if (!scene.analysis.rqd) {
+    throw io::InputError(file +
+                         ": analysis.rqd: missing; the rqd command needs it (balls, "
+                         "boreholes)");
+  }
+  io::RqdAnalysis rqd = *scene.analysis.rqd;
+  if (options.thresholds) {
+    const std::vector<double>& t = *options.thresholds;
+    if (t.empty()) throw io::InputError("--thresholds: expected a non-empty list of numbers");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (!(t[i] > 0.0) || (i > 0 && !(t[i] > t[i - 1]))) {
+        throw io::InputError("--thresholds: expected increasing numbers > 0 (m), got " +
+                             io::formatDouble(t[i]) + " at position " + std::to_string(i + 1));
+      }
+    }
+    rqd.thresholds = t;
+  }
+  if (options.directions) {
+    if (*options.directions < 4) {
+      throw io::InputError("--directions: expected an integer >= 4, got " +
+                           std::to_string(*options.directions));
+    }
+    for (io::RqdBall& ball : rqd.balls) ball.directions = *options.directions;
+  }
+  if (options.radius) {
+    if (!(*options.radius > 0.0)) throw io::InputError("--ball-radius: expected a number > 0 (m)");
+    for (io::RqdBall& ball : rqd.balls) ball.radius = options.radius;
+  }
+  if (options.merge_distance) {
+    if (!(*options.merge_distance >= 0.0)) {
+      throw io::InputError("--merge-distance: expected a number >= 0 (m)");
+    }
+    rqd.merge_distance = *options.merge_distance;
+  }
+  const geometry::Box& domain = scene.dfn.domain;
+  for (const io::RqdBall& ball : rqd.balls) {
+    if (!((ball.center.array() > domain.min.array()).all() &&
+          (ball.center.array() < domain.max.array()).all())) {
+      throw io::InputError(file + ": analysis.rqd.balls: the centre of ball '" + ball.name +
+                           "' must lie strictly inside the domain box");
+    }
+  }
+  if (rqd.balls.empty() && rqd.boreholes_file.empty()) {
+    throw io::InputError(file + ": analysis.rqd: nothing to compute; give balls or boreholes");
+  }
+  return rqd;
+}
+
+/// Evaluates every ball of the scene.
+std::vector<io::BallReport> evaluateBalls(const rqd::ScanlineScene& scene,
+                                          const io::Scene& scene_file,
+                                          const io::RqdAnalysis& settings) {
+  std::vector<io::BallReport> reports;
+  for (const io::RqdBall& ball : settings.balls) {
+    const auto start = Clock::now();
+    io::BallReport report;
+    report.name = ball.name;
+    report.spec = {ball.center, ball.length, ball.directions, scene_file.dfn.domain};
+    report.radius = ball.radius.value_or(0.5 * ball.length);
+    ProgressReporter progress("ball " + ball.name);
+    report.result =
+        rqd::evaluateBall(scene, report.spec, settings.thresholds, settings.merge_distance,
+                          [&](std::size_t done, std::size_t total) { progress(done, total); });
+    for (std::size_t k = 0; k < settings.thresholds.size(); ++k) {
+      report.shapes.push_back(rqd::ballShape(report.result.directions, report.result.column(k)));
+    }
+    std::fprintf(stderr, "rqd: ball %s: %d directions x %zu thresholds (%.2f s)\n",
+                 ball.name.c_str(), ball.directions, settings.thresholds.size(),
+                 secondsSince(start));
+    reports.push_back(std::move(report));
+  }
+  return reports;
+}
+
+/// Simulated logs of the holes, and their error against the measured log if there is one.
+io::BoreholeReport evaluateBoreholes(const rqd::ScanlineScene& scene, const io::Scene& scene_file,
+                                     const io::RqdAnalysis& settings) {
+  io::BoreholeReport report;
+  report.holes = io::readBoreholes(settings.boreholes_file, scene_file.dfn.domain);
+  report.thresholds = settings.thresholds;
+  std::vector<std::vector<double>> hits;
+  for (const rqd::Borehole& hole : report.holes) {
+    hits.push_back(rqd::boreholeHits(scene, hole));
+    report.runs.push_back(rqd::coreRuns(hole.length, settings.run_length));
+    report.run_rqd.push_back(rqd::intervalsRqd(hits.back(), hole.length, report.runs.back(),
+                                               settings.thresholds, settings.merge_distance));
+    const rqd::DepthInterval whole{0.0, hole.length};
+    report.hole_rqd.push_back(rqd::intervalsRqd(hits.back(), hole.length, {&whole, 1},
+                                                settings.thresholds, settings.merge_distance));
+  }
+  if (!settings.measured_file.empty()) {
+    report.measured = io::readMeasuredLog(settings.measured_file, report.holes);
+    report.measured_file = settings.measured_file.filename().string();
+    report.measured_threshold = settings.measured_threshold;
+    const double threshold[] = {settings.measured_threshold};
+    for (const rqd::LoggedInterval& entry : report.measured) {
+      const auto h = static_cast<std::size_t>(entry.hole);
+      report.simulated.push_back(rqd::intervalsRqd(hits[h], report.holes[h].length,
+                                                   {&entry.interval, 1}, threshold,
+                                                   settings.merge_distance)[0]);
+    }
+  }
+  std::fprintf(stderr, "rqd: %zu boreholes%s\n", report.holes.size(),
+               report.measured.empty() ? "" : ", compared with the measured log");
+  return report;
+}
+
+/// Calibrates the intensity multiplier of the scene's set group (see rqd/calibration.h).
+io::CalibrationReport calibrate(const io::Scene& scene, const io::RqdAnalysis& settings,
+                                const io::BoreholeReport& boreholes, rqd::DiscForm form,
+                                int segments, const std::string& scene_path) {
+  const io::RqdCalibration& c = *settings.calibration;
+  io::CalibrationReport report;
+  for (const int set : c.sets) report.sets.push_back(scene.dfn.joint_sets[set].name);
+  report.settings = {.min_multiplier = c.min_multiplier,
+                     .max_multiplier = c.max_multiplier,
+                     .threshold = settings.measured_threshold,
+                     .tolerance = c.tolerance,
+                     .max_evaluations = c.max_evaluations,
+                     .merge_distance = settings.merge_distance};
+  io::Scene scaled = scene;
+  scaled.dfn = rqd::scaleIntensity(scene.dfn, c.sets, c.max_multiplier);
+  const geometry::FractureNetwork network = generateNetwork(scaled, scene_path);
+  report.discs_at_max = network.discs.size();
+  // Joint sets come first in the network, in scene order: set index = joint set index.
+  const rqd::ScanlineScene ray_scene(network, form, segments);
+  const std::vector<rqd::ThinnedHole> holes =
+      rqd::thinnedHoles(ray_scene, network, boreholes.holes, c.sets, scene.seed, c.max_multiplier);
+  report.result = rqd::calibrateMultiplier(holes, boreholes.measured, report.settings);
+  std::fprintf(stderr,
+               "rqd: calibration: multiplier %.4g, bias %.3g, rms %.3g (%d evaluations%s)\n",
+               report.result.multiplier, report.result.error.bias, report.result.error.rms,
+               report.result.evaluations,
+               report.result.bracketed ? "" : "; not bracketed, best end of the range");
+  return report;
+}
+
+int runRqd(const RqdOptions& options) {
+  const io::Scene scene = loadScene(options.common);
+  const io::RqdAnalysis settings = rqdSettings(scene, options);
+  const rqd::DiscForm form =
+      options.form == "triangulated" ? rqd::DiscForm::Triangulated : rqd::DiscForm::ExactEllipse;
+  const fs::path out = prepareOutput(options.common.output);
+
+  auto start = Clock::now();
+  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
+  const double dfn_seconds = secondsSince(start);
+  std::fprintf(stderr, "rqd: %zu discs (%.2f s)\n", network.discs.size(), dfn_seconds);
+
+  start = Clock::now();
+  io::RqdReport report;
+  report.discs = network.discs.size();
+  report.form = options.form;
+  report.segments = options.segments;
+  report.merge_distance = settings.merge_distance;
+  report.thresholds = settings.thresholds;
+  const rqd::ScanlineScene ray_scene(network, form, options.segments);
+  report.balls = evaluateBalls(ray_scene, scene, settings);
+  if (!settings.boreholes_file.empty()) {
+    report.boreholes = evaluateBoreholes(ray_scene, scene, settings);
+  }
+  const double rqd_seconds = secondsSince(start);
+
+  io::RunInfo run;
+  run.command = "rqd";
+  run.scene = options.common.scene;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  run.stages = {"dfn", "rqd"};
+  run.timings = {{"dfn", dfn_seconds}, {"rqd", rqd_seconds}};
+  if (settings.calibration) {
+    start = Clock::now();
+    report.calibration =
+        calibrate(scene, settings, *report.boreholes, form, options.segments, options.common.scene);
+    run.stages.push_back("calibration");
+    run.timings.emplace_back("calibration", secondsSince(start));
+  }
+
+  start = Clock::now();
+  if (!report.balls.empty()) {
+    io::writeFileAtomically(out / "rqd_balls.csv", io::formatRqdBallsCsv(report.balls));
+    std::map<int, std::vector<std::array<int, 3>>> triangles;  // per direction count
+    for (const io::BallReport& ball : report.balls) {
+      auto [it, fresh] = triangles.try_emplace(ball.spec.directions);
+      if (fresh) it->second = rqd::sphereTriangles(ball.result.directions);
+      for (std::size_t k = 0; k < ball.result.thresholds.size(); ++k) {
+        io::writeFileAtomically(out / io::ballPlyName(ball.name, ball.result.thresholds[k]),
+                                io::formatBallPly(ball, k, it->second));
+      }
+    }
+  }
+  if (report.boreholes) {
+    io::writeFileAtomically(out / "boreholes.csv", io::formatBoreholesCsv(*report.boreholes));
+  }
+  run.timings.emplace_back("write", secondsSince(start));
+  io::writeFileAtomically(out / "summary.json", io::formatRqdSummary(run, report));
+  std::fprintf(stderr, "rqd: wrote %s\n", out.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command addRqdCommand(CLI::App& app) {
+  auto options = std::make_shared<RqdOptions>();
+  CLI::App* cli = app.add_subcommand(
+      "rqd", "RQD balls, virtual boreholes and intensity calibration (analysis.rqd)");
+  addCommonOptions(*cli, options->common);
+  cli->add_option("--directions", options->directions,
+                  "Directions of every RQD ball (overrides balls[].directions, >= 4)");
+  cli->add_option("--thresholds", options->thresholds,
+                  "RQD thresholds in m, increasing, comma-separated (overrides thresholds)")
+      ->delimiter(',');
+  cli->add_option("--form", options->form, "Disc form for ray casting")
+      ->check(CLI::IsMember({"exact", "triangulated"}));
+  cli->add_option("--segments", options->segments, "Fan segments per disc (triangulated form)")
+      ->check(CLI::Range(3, 1024));
+  cli->add_option("--ball-radius", options->radius,
+                  "Surface radius at RQD 100 of every ball, m (default: half its length)");
+  cli->add_option("--merge-distance", options->merge_distance,
+                  "Hits closer than this are one fracture, m (default 0.001)");
+  return {cli, [options] { return runRqd(*options); }};
+}
+
+}  // namespace rockmass::app

@@ -1,0 +1,24 @@
+#pragma once
+/// Parts shared by the summary.json writers of io/ (internal to io: nlohmann::json is a
+/// private dependency of the module, so only io's .cpp files include this).
+#include <nlohmann/json.hpp>
+
+#include "io/summary.h"
+
+namespace rockmass::io {
+
+/// The JSON type of summaries (keys keep their insertion order).
+using SummaryJson = nlohmann::ordered_json;
+
+/// The fields every summary starts with: version, command, scene, name, seed, stages,
+/// effects.
+SummaryJson summaryHeader(const RunInfo& run);
+
+/// Adds "timings" (seconds per stage); call it last: the only part that differs between
+/// identical runs.
+void appendTimings(SummaryJson& j, const Timings& timings);
+
+/// A number, or null where JSON has none (an infinite or undefined value).
+SummaryJson finiteOrNull(double value);
+
+}  // namespace rockmass::io
