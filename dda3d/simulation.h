@@ -48,7 +48,10 @@ struct DdaSettings {
   /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
   /// blocks; 1e-6 keeps the hysteresis and costs no accuracy.
   double close_threshold_ratio = 1e-6;
-  double open_threshold_ratio = 2e-7;  ///< a closed contact opens when d > T A / k_n + this * l0
+  /// A closed contact opens when d > T A / k_n + this * l0. The 2D reference's 2e-7 lets a
+  /// stiff penalty pull with k_n * 2e-7 l0 (~10^5 N here) before opening, which glues a
+  /// wedge to a plane it should leave; 1e-10 keeps only a round-off margin.
+  double open_threshold_ratio = 1e-10;
   /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
   double half_domain_size = 0.0;
   SolverOptions solver{.kind = SolverKind::Eigen};

@@ -2,6 +2,10 @@
 // rigid rotation of a whole model.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include <Eigen/Geometry>
 
 #include "dda3d/model.h"
@@ -14,6 +18,37 @@ inline DdaBlock boxBlock(const geometry::Vec3& low, const geometry::Vec3& high, 
                          bool fixed) {
   DdaBlock block;
   block.pieces.push_back(geometry::boxPolyhedron({low, high}));
+  block.material = material;
+  block.fixed = fixed;
+  return block;
+}
+
+/// A prism: the convex polygon `profile` in the (y, z) plane swept along x from x0 to x1.
+inline DdaBlock prismBlock(std::vector<geometry::Vec2> profile, double x0, double x1, int material,
+                           bool fixed) {
+  double area = 0.0;
+  for (std::size_t k = 0; k < profile.size(); ++k) {
+    const geometry::Vec2& a = profile[k];
+    const geometry::Vec2& b = profile[(k + 1) % profile.size()];
+    area += a.x() * b.y() - b.x() * a.y();
+  }
+  if (area < 0.0) std::reverse(profile.begin(), profile.end());  // CCW: the x1 face looks +x
+  const int n = static_cast<int>(profile.size());
+  geometry::Polyhedron p;
+  for (double x : {x0, x1}) {
+    for (const geometry::Vec2& q : profile) p.vertices.emplace_back(x, q.x(), q.y());
+  }
+  std::vector<int> low, high;
+  for (int k = 0; k < n; ++k) {
+    high.push_back(n + k);
+    low.push_back(n - 1 - k);
+    const int next = (k + 1) % n;
+    p.faces.push_back({k, next, n + next, n + k});
+  }
+  p.faces.push_back(low);
+  p.faces.push_back(high);
+  DdaBlock block;
+  block.pieces.push_back(p);
   block.material = material;
   block.fixed = fixed;
   return block;
