@@ -2,6 +2,7 @@
 /// Atomic output: write to a temporary name in the same folder, then rename, so a failed
 /// or interrupted run never leaves a half-written file that looks whole.
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 namespace rockmass::io {
@@ -13,5 +14,9 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
 
 /// Shortest text that reads back to the same double (std::to_chars).
 std::string formatDouble(double value);
+
+/// `field` as a CSV field (RFC 4180): quoted, with doubled quotes, when it holds a comma,
+/// quote or newline; unchanged otherwise.
+std::string csvField(const std::string& field);
 
 }  // namespace rockmass::io

@@ -2,14 +2,11 @@
 
 #include <cmath>
 
-#include <nlohmann/json.hpp>
-
 #include "geometry/orientation.h"
+#include "io/summary_json.h"
 
 namespace rockmass::io {
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 /// A number, or null where JSON has none (infinite kappa of identical normals).
 Json number(double value) {
@@ -36,6 +33,8 @@ const char* originName(geometry::DiscOrigin origin) {
   return "unknown";
 }
 
+}  // namespace
+
 /// The fields every summary starts with.
 Json runHeader(const RunInfo& run) {
   Json j;
@@ -55,8 +54,6 @@ void appendTimings(Json& j, const Timings& timings) {
   for (const auto& [stage, seconds] : timings) t[stage] = seconds;
   j["timings"] = t;
 }
-
-}  // namespace
 
 const char* version() {
   return ROCKMASS_VERSION;
