@@ -23,16 +23,18 @@ enum class SolverKind {
 /// Settings of a backend.
 struct SolverOptions {
   SolverKind kind = SolverKind::Cholmod;
-  int block_size = 12;        ///< unknowns per block (6 rigid, 12 deformable), for Pcg
+  int block_size = 12;        ///< unknowns per block (6 rigid, 12 deformable), for Pcg's
+                              ///< block-Jacobi preconditioner
   double tolerance = 1e-10;   ///< Pcg: relative residual |K d - F| / |F|
   int max_iterations = 5000;  ///< Pcg
 };
 
 /// One solve's account, for the step statistics.
 struct SolveStats {
-  bool analyzed = false;  ///< the symbolic analysis was redone (pattern changed)
-  int iterations = 0;     ///< Pcg iterations (0 for direct solvers)
-  double residual = 0.0;  ///< relative residual reached
+  bool analyzed = false;   ///< the symbolic analysis was redone (pattern changed)
+  int iterations = 0;      ///< Pcg iterations (0 for direct solvers)
+  double residual = 0.0;   ///< relative residual |K d - F| / |F| reached by the last solve
+  bool converged = false;  ///< factorization succeeded (direct) / tolerance reached (Pcg)
 };
 
 /// Solves K d = F for a symmetric positive definite K, stored with both triangles.

@@ -89,4 +89,15 @@ std::string formatDouble(double value) {
   return std::string(buffer, result.ptr);
 }
 
+/// Quoted (with doubled quotes) only when the field holds a comma, quote or newline.
+std::string csvField(const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string quoted = "\"";
+  for (char c : field) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
 }  // namespace rockmass::io

@@ -24,4 +24,8 @@ void writeAtomically(const std::filesystem::path& path,
 /// Shortest text that reads back to the same double (std::to_chars).
 std::string formatDouble(double value);
 
+/// `field` as a CSV field (RFC 4180): quoted, with doubled quotes, when it holds a comma,
+/// quote or newline; unchanged otherwise.
+std::string csvField(const std::string& field);
+
 }  // namespace rockmass::io

@@ -17,17 +17,6 @@ using geometry::Disc;
 using geometry::FractureNetwork;
 using geometry::Vec3;
 
-/// `field` as a CSV field: quoted (with doubled quotes) when it holds a comma, quote or newline.
-std::string csvField(const std::string& field) {
-  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
-  std::string quoted = "\"";
-  for (char c : field) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + '"';
-}
-
 /// Appends ",x,y,z" in shortest round-trip form.
 void appendCsvVector(std::string& out, const Vec3& v) {
   for (int axis = 0; axis < 3; ++axis) out += ',' + formatDouble(v[axis]);

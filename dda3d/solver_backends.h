@@ -1,0 +1,20 @@
+// The backends behind makeLinearSolver(), one file each. Internal to dda3d.
+#pragma once
+
+#include <memory>
+
+#include "dda3d/linear_solver.h"
+
+namespace rockmass::dda3d {
+
+/// Eigen::SimplicialLDLT (eigen_ldlt_solver.cpp).
+std::unique_ptr<LinearSolver> makeEigenLdltSolver();
+/// CHOLMOD supernodal LL^T (cholmod_solver.cpp).
+std::unique_ptr<LinearSolver> makeCholmodSolver();
+/// Block-Jacobi preconditioned conjugate gradients (pcg_solver.cpp).
+std::unique_ptr<LinearSolver> makePcgSolver(const SolverOptions& options);
+
+/// |K x - f| / |f| (|K x| when f = 0): what a solve left over, relative to the load.
+double relativeResidual(const SparseMatrix& k, const Eigen::VectorXd& x, const Eigen::VectorXd& f);
+
+}  // namespace rockmass::dda3d

@@ -1,0 +1,135 @@
+#pragma once
+/// Files of the `dda` stage: history.csv (monitors), dda.pvd + dda_<step>.vtu frames (block
+/// motion for ParaView) and the debug dump of one step (system matrix, right-hand side and
+/// contacts). Written from the plain structs below, which the CLI fills from the engine's
+/// state, so the writers do not depend on the engine's internals.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dda3d/linear_solver.h"
+#include "geometry/polyhedron.h"
+#include "geometry/vec.h"
+
+namespace rockmass::io {
+
+// ---------------------------------------------------------------------------------------------
+// history.csv
+
+/// One monitor reading.
+struct MonitorSample {
+  double time = 0.0;                                     ///< simulated time since 0 (s)
+  int monitor = 0;                                       ///< index into the monitor names
+  geometry::Vec3 displacement = geometry::Vec3::Zero();  ///< of the point since time 0 (m)
+  geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< of the point (m/s)
+};
+
+/// history.csv: `time,monitor,ux,uy,uz,vx,vy,vz,u`, one row per sample in the given order;
+/// monitor is the monitor's name, u = |(ux, uy, uz)| (m). Numbers round-trip exactly.
+std::string formatHistoryCsv(const std::vector<std::string>& monitor_names,
+                             const std::vector<MonitorSample>& samples);
+
+// ---------------------------------------------------------------------------------------------
+// dda.pvd + frames
+
+/// One block in an output frame.
+struct DdaBlockState {
+  int id = 0;                                            ///< block id (as in blocks.csv)
+  int material = 0;                                      ///< material index (scene order)
+  std::vector<geometry::Polyhedron> pieces;              ///< convex pieces, current vertices (m)
+  geometry::Vec3 displacement = geometry::Vec3::Zero();  ///< of the centroid since time 0 (m)
+  geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< of the centroid (m/s)
+  /// Stress (Pa) in Voigt order sx, sy, sz, tyz, tzx, txy (tension positive).
+  std::array<double, 6> stress{};
+};
+
+/// The state of every block after `step` accepted steps.
+struct DdaFrame {
+  int step = 0;                       ///< accepted steps so far (0: the initial state)
+  double time = 0.0;                  ///< simulated time (s)
+  std::vector<DdaBlockState> blocks;  ///< in block order
+};
+
+/// A frame as VTK XML unstructured grid: one polyhedron cell (type 42) per convex piece, with
+/// cell data block (id), material, displacement (3), velocity (3), stress (6), the block's
+/// values repeated on each of its pieces.
+std::string formatDdaFrameVtu(const DdaFrame& frame);
+
+/// "dda_<step, 6 digits>.vtu"; wider steps keep all their digits.
+std::string ddaFrameFileName(int step);
+
+/// One dataset of a ParaView collection.
+struct PvdEntry {
+  double time = 0.0;  ///< s
+  std::string file;   ///< relative to the .pvd
+};
+
+/// A ParaView collection file (.pvd) listing `entries` as time steps.
+std::string formatPvd(const std::vector<PvdEntry>& entries);
+
+/// Writes dda_<step>.vtu frames into a folder and keeps dda.pvd listing them: after every
+/// frame the .pvd is rewritten (atomically), so an interrupted run leaves a collection whose
+/// every entry exists.
+class DdaFrameWriter {
+ public:
+  /// Frames go to `folder` (which must exist); a frame is due every `every` steps (>= 1).
+  DdaFrameWriter(std::filesystem::path folder, int every);
+  /// True when `step` is a multiple of the frame interval.
+  bool due(int step) const { return step % every_ == 0; }
+  /// Writes the frame and updates dda.pvd. A frame whose step was already written is
+  /// ignored, so the caller may always write the last step.
+  void write(const DdaFrame& frame);
+  /// The frames written so far.
+  const std::vector<PvdEntry>& entries() const { return entries_; }
+
+ private:
+  std::filesystem::path folder_;
+  int every_ = 1;
+  int last_step_ = -1;
+  std::vector<PvdEntry> entries_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Debug dump of one step
+
+/// How a contact was found.
+enum class ContactKind { VertexFace, EdgeEdge };
+/// Open-close state of a contact.
+enum class ContactState { Open, Sliding, Locked };
+
+/// One point-to-face contact entry of the dumped step.
+struct DdaContactRecord {
+  ContactKind kind = ContactKind::VertexFace;
+  ContactState state = ContactState::Open;
+  int block_i = 0;  ///< block id of the vertex / first edge
+  int piece_i = 0;  ///< piece index in block i
+  int block_j = 0;  ///< block id of the reference face / second edge
+  int piece_j = 0;  ///< piece index in block j
+  int face_j = 0;   ///< reference face index in piece j (-1 for edge-edge)
+  geometry::Vec3 point = geometry::Vec3::Zero();   ///< contact point P (m)
+  geometry::Vec3 normal = geometry::Vec3::Zero();  ///< unit normal out of block j
+  double gap = 0.0;                                ///< normal distance d (m), < 0 penetrating
+  double normal_force = 0.0;                       ///< N, compression positive
+  double shear_force = 0.0;                        ///< N, magnitude
+  double shear_displacement = 0.0;                 ///< accumulated shear offset (m)
+};
+
+/// The system matrix in Matrix Market coordinate format (1-based): `symmetric` with the lower
+/// triangle when K is exactly symmetric, `general` with every entry otherwise.
+std::string formatMatrixMarket(const dda3d::SparseMatrix& k);
+
+/// A vector in Matrix Market array format (one column).
+std::string formatMatrixMarketVector(const Eigen::VectorXd& v);
+
+/// contacts CSV: `kind,state,block_i,piece_i,block_j,piece_j,face_j,x,y,z,nx,ny,nz,gap,
+/// normal_force,shear_force,shear_displacement`, kind vertex-face | edge-edge, state
+/// open | sliding | locked.
+std::string formatContactsCsv(const std::vector<DdaContactRecord>& contacts);
+
+/// Writes debug_step<step>_K.mtx, debug_step<step>_F.mtx and debug_step<step>_contacts.csv
+/// into `folder` (the system of the step's last open-close iteration).
+void writeDdaDebugDump(const std::filesystem::path& folder, int step, const dda3d::SparseMatrix& k,
+                       const Eigen::VectorXd& f, const std::vector<DdaContactRecord>& contacts);
+
+}  // namespace rockmass::io

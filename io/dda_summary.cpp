@@ -1,0 +1,97 @@
+#include "io/dda_summary.h"
+
+#include <algorithm>
+
+#include "io/summary_json.h"
+
+namespace rockmass::io {
+namespace {
+
+using Json = SummaryJson;
+
+/// One array with `value(step)` for every step.
+template <class Value>
+Json perStep(const std::vector<DdaStepRecord>& steps, Value value) {
+  Json array = Json::array();
+  for (const DdaStepRecord& s : steps) array.push_back(value(s));
+  return array;
+}
+
+/// The phase names in first-seen order.
+std::vector<std::string> phaseNames(const std::vector<DdaStepRecord>& steps) {
+  std::vector<std::string> names;
+  for (const DdaStepRecord& s : steps) {
+    for (const auto& [name, seconds] : s.phase_seconds) {
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+  }
+  return names;
+}
+
+/// Seconds of phase `name` in step `s` (0 when it did not run).
+double phaseSeconds(const DdaStepRecord& s, const std::string& name) {
+  double total = 0.0;
+  for (const auto& [phase, seconds] : s.phase_seconds) {
+    if (phase == name) total += seconds;
+  }
+  return total;
+}
+
+}  // namespace
+
+std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
+  Json j = summaryHeader(run);
+  j["blocks"] = dda.blocks;
+  j["fixed_blocks"] = dda.fixed_blocks;
+  j["pieces"] = dda.pieces;
+  j["unknowns"] = dda.unknowns;
+  j["mode"] = dda.dynamic ? "dynamic" : "static";
+  j["kinematics"] = dda.deformable ? "deformable" : "rigid";
+  j["solver"] = dda.solver;
+  j["steps_requested"] = dda.steps_requested;
+  j["steps_taken"] = dda.steps.size();
+  j["time_step"] = dda.time_step;
+  j["duration"] = dda.duration;
+  j["penalty"] = dda.penalty;
+  Json monitors = Json::array();
+  for (const DdaMonitorResult& m : dda.monitors) {
+    monitors.push_back({{"name", m.name},
+                        {"block", m.block},
+                        {"ux", m.displacement.x()},
+                        {"uy", m.displacement.y()},
+                        {"uz", m.displacement.z()},
+                        {"u", m.displacement.norm()}});
+  }
+  j["monitors"] = monitors;
+  const auto& s = dda.steps;
+  j["steps"] = {
+      {"time", perStep(s, [](const DdaStepRecord& r) { return r.time; })},
+      {"time_step", perStep(s, [](const DdaStepRecord& r) { return r.time_step; })},
+      {"contacts", perStep(s, [](const DdaStepRecord& r) { return r.contacts; })},
+      {"open", perStep(s, [](const DdaStepRecord& r) { return r.open; })},
+      {"sliding", perStep(s, [](const DdaStepRecord& r) { return r.sliding; })},
+      {"locked", perStep(s, [](const DdaStepRecord& r) { return r.locked; })},
+      {"iterations", perStep(s, [](const DdaStepRecord& r) { return r.open_close_iterations; })},
+      {"retries", perStep(s, [](const DdaStepRecord& r) { return r.retries; })},
+      {"solver_iterations", perStep(s, [](const DdaStepRecord& r) { return r.solver_iterations; })},
+      {"max_displacement", perStep(s, [](const DdaStepRecord& r) { return r.max_displacement; })},
+      {"max_penetration", perStep(s, [](const DdaStepRecord& r) { return r.max_penetration; })},
+  };
+  appendTimings(j, run.timings);
+  Json totals = Json::object(), per_step = Json::object();
+  for (const std::string& name : phaseNames(s)) {
+    double total = 0.0;
+    Json values = Json::array();
+    for (const DdaStepRecord& r : s) {
+      values.push_back(phaseSeconds(r, name));
+      total += values.back().get<double>();
+    }
+    totals[name] = total;
+    per_step[name] = values;
+  }
+  j["timings"]["dda_phases"] = totals;
+  j["timings"]["dda_steps"] = per_step;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rockmass::io

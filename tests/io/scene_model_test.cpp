@@ -1,0 +1,212 @@
+// Scene + blocks -> DDA model: materials and joints by material pair, gravity present or
+// absent, supports.fixed by face provenance or by geometry, monitors located by
+// point-in-convex-polyhedron, and the errors a user can cause. Blocks are hand-built boxes.
+#include "io/scene_model.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/input_error.h"
+
+namespace rockmass::io {
+namespace {
+
+using geometry::Box;
+using geometry::Vec3;
+
+/// A block made of one box piece; faces on the domain box boundary are tagged Boundary with
+/// the box face id (what the cutters do), the others Disc 1.
+blocks::Block boxBlock(int id, const Box& box, const Box& domain, int material = 0) {
+  blocks::Piece piece;
+  piece.shape = geometry::boxPolyhedron(box);
+  for (int f = 0; f < 6; ++f) {
+    const int axis = f / 2;
+    const bool max_side = f % 2 == 1;
+    const double at = max_side ? box.max[axis] : box.min[axis];
+    const double bound = max_side ? domain.max[axis] : domain.min[axis];
+    piece.face_sources.push_back(at == bound ? blocks::FaceSource{blocks::FaceKind::Boundary, f}
+                                             : blocks::FaceSource{blocks::FaceKind::Disc, 1});
+  }
+  blocks::Block block;
+  block.id = id;
+  block.material = material;
+  block.mass = geometry::massProperties(piece.shape);
+  block.bounds = box;
+  block.pieces.push_back(piece);
+  return block;
+}
+
+/// The domain [0, 2] x [0, 1] x [0, 2] cut into four unit-wide columns of blocks:
+/// block 1 (x < 1, z < 1), 2 (x > 1, z < 1), 3 (x < 1, z > 1), 4 (x > 1, z > 1, soft).
+blocks::BlockModel fourBlocks() {
+  blocks::BlockModel model;
+  model.domain = Box{{0, 0, 0}, {2, 1, 2}};
+  model.domain_volume = 4.0;
+  model.blocks.push_back(boxBlock(1, {{0, 0, 0}, {1, 1, 1}}, model.domain));
+  model.blocks.push_back(boxBlock(2, {{1, 0, 0}, {2, 1, 1}}, model.domain));
+  model.blocks.push_back(boxBlock(3, {{0, 0, 1}, {1, 1, 2}}, model.domain));
+  model.blocks.push_back(boxBlock(4, {{1, 0, 1}, {2, 1, 2}}, model.domain, 1));
+  return model;
+}
+
+/// A scene over that domain; `extra` adds top-level keys.
+Scene scene(const std::string& extra) {
+  return parseScene(
+      "version: 1\n"
+      "domain: {box: {min: [0, 0, 0], max: [2, 1, 2]}}\n"
+      "materials:\n"
+      "  rock: {density: 2600, young: 10.0e9, poisson: 0.25}\n"
+      "  soft: {unit_weight: 20.0e3, young: 0.75e9, poisson: 0.4}\n"
+      "  concrete: {density: 2446.5, young: 17.6e9, poisson: 0.167}\n"
+      "rock_material: rock\n"
+      "joints: {rock_joint: {friction: 0.86, cohesion: 0.8e6}, weak: {friction: 0.35}}\n"
+      "default_joint: rock_joint\n" +
+          extra,
+      "tiny.yaml");
+}
+
+TEST(SceneModel, MaterialsJointsAndGravity) {
+  const dda3d::DdaModel model = buildDdaModel(
+      scene("loads: {gravity: 9.81}\n"
+            "interlayers:\n"
+            "  - {name: P1, profile: [[0, 1], [2, 1]], sweep: y, thickness: 0.2, material: soft,"
+            " joint: weak}\n"
+            "structures:\n"
+            "  - name: dam\n"
+            "    prism: {profile: [[0, 2], [1, 2], [0, 3]], sweep: y, from: 0, to: 1}\n"
+            "    material: concrete\n"
+            "    joint: {friction: 1.2, cohesion: 1.4e6}\n"),
+      fourBlocks());
+  ASSERT_EQ(model.materials.size(), 3u);
+  EXPECT_EQ(model.materials[0].density, 2600.0);
+  EXPECT_EQ(model.materials[1].young, 0.75e9);
+  EXPECT_EQ(model.materials[2].poisson, 0.167);
+  // unit_weight / 9.81 (the scene reader's conversion)
+  EXPECT_DOUBLE_EQ(model.materials[1].density, 20.0e3 / 9.81);
+  ASSERT_EQ(model.joints.size(), 3u);  // rock_joint, weak, then the dam's inline joint
+  EXPECT_EQ(model.joints[model.default_joint].friction, 0.86);
+  // rock-rock: default; soft-rock: the interlayer's joint; soft-soft: default;
+  // concrete against rock or soft: the dam's joint; the table is symmetric.
+  EXPECT_EQ(model.joint_table[0][0], 0);
+  EXPECT_EQ(model.joint_table[1][0], 1);
+  EXPECT_EQ(model.joint_table[0][1], 1);
+  EXPECT_EQ(model.joint_table[1][1], 0);
+  EXPECT_EQ(model.joint_table[2][0], 2);
+  EXPECT_EQ(model.joint_table[1][2], 2);
+  EXPECT_EQ(model.joints[2].cohesion, 1.4e6);
+  EXPECT_EQ(model.gravity, Vec3(0, 0, -9.81));
+  ASSERT_EQ(model.blocks.size(), 4u);
+  EXPECT_EQ(model.blocks[3].material, 1);
+  EXPECT_EQ(model.blocks[2].pieces[0].vertices.size(), 8u);
+}
+
+TEST(SceneModel, NoGravityMeansNoBodyForce) {
+  // Absent loads.gravity: zero vector, which the engine reads as "no body force term".
+  EXPECT_EQ(buildDdaModel(scene(""), fourBlocks()).gravity, Vec3::Zero());
+  EXPECT_EQ(buildDdaModel(scene("loads: {gravity: [0.5, 0, -9.8]}\n"), fourBlocks()).gravity,
+            Vec3(0.5, 0, -9.8));
+}
+
+TEST(SceneModel, FixedFacesHoldTheBlocksTouchingThem) {
+  const blocks::BlockModel blocks = fourBlocks();
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {"bottom"}, true),
+            (std::vector<bool>{true, true, false, false}));
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {"west"}, true),
+            (std::vector<bool>{true, false, true, false}));
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {"top", "east"}, true),
+            (std::vector<bool>{false, true, true, true}));
+  // Every block touches south and north (the domain is one block deep).
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {"south"}, true), std::vector<bool>(4, true));
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {}, true), std::vector<bool>(4, false));
+  const dda3d::DdaModel model = buildDdaModel(scene("supports: {fixed: [bottom]}\n"), blocks);
+  EXPECT_TRUE(model.blocks[0].fixed && model.blocks[1].fixed);
+  EXPECT_FALSE(model.blocks[2].fixed || model.blocks[3].fixed);
+}
+
+TEST(SceneModel, FixedFacesByGeometryWithoutProvenance) {
+  // A mesh domain (or a cutter that lost the tags): every face Fictitious; the block is still
+  // held when a face lies in the bottom plane, within the tolerance (1e-6 of the diagonal
+  // 3 m = 3e-6 m: 1e-7 m is inside it, 1e-4 m is not).
+  blocks::BlockModel blocks = fourBlocks();
+  for (blocks::Block& block : blocks.blocks) {
+    for (blocks::Piece& piece : block.pieces) {
+      for (blocks::FaceSource& s : piece.face_sources) s = {};
+    }
+  }
+  blocks.blocks[0].pieces[0].shape.vertices[0].z() = 1e-7;
+  blocks.blocks[1].pieces[0].shape.vertices[0].z() = 1e-4;
+  EXPECT_EQ(blocksOnDomainFaces(blocks, {"bottom"}, false),
+            (std::vector<bool>{true, false, false, false}));
+}
+
+TEST(SceneModel, AnEdgeOnTheFaceDoesNotHoldABlock) {
+  // A tetrahedron standing on one edge on the bottom plane: its bounding box touches the
+  // bottom, but none of its faces lies on it.
+  blocks::BlockModel blocks = fourBlocks();
+  blocks::Piece wedge;
+  wedge.shape.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 1}, {0.5, 0, 1}};
+  wedge.shape.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  wedge.face_sources.assign(4, {blocks::FaceKind::Disc, 1});
+  ASSERT_GT(geometry::massProperties(wedge.shape).volume, 0.0) << "faces must point outward";
+  blocks.blocks[0].pieces = {wedge};
+  EXPECT_FALSE(blocksOnDomainFaces(blocks, {"bottom"}, true)[0]);
+  EXPECT_TRUE(blocksOnDomainFaces(blocks, {"south"}, true)[0]);  // face {0, 1, 3} is at y = 0
+}
+
+TEST(SceneModel, MonitorsAttachToTheBlockThatContainsThem) {
+  const blocks::BlockModel blocks = fourBlocks();
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(1.5, 0.5, 1.5)), 3);
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(0.25, 0.5, 0.75)), 0);
+  // On the domain top: inside block 4's closed piece.
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(1.5, 0.5, 2.0)), 3);
+  // On the joint between blocks 1 and 3 (z = 1), 1e-9 m into block 3: block 3 (deeper);
+  // exactly on it: both are at depth 0, the lower index wins.
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(0.5, 0.5, 1.0 + 1e-9)), 2);
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(0.5, 0.5, 1.0)), 0);
+  // Outside the domain by more than the tolerance.
+  EXPECT_EQ(findContainingBlock(blocks, Vec3(0.5, 0.5, 2.001)), -1);
+
+  const dda3d::DdaModel model =
+      buildDdaModel(scene("monitors:\n  - {name: P4, point: [1.5, 0.5, 1.5]}\n"
+                          "  - {name: toe, point: [0.1, 0.1, 0.1]}\n"),
+                    blocks);
+  ASSERT_EQ(model.monitors.size(), 2u);
+  EXPECT_EQ(model.monitors[0].name, "P4");
+  EXPECT_EQ(model.monitors[0].block, 3);
+  EXPECT_EQ(model.monitors[1].block, 0);
+  EXPECT_EQ(model.monitors[1].point, Vec3(0.1, 0.1, 0.1));
+}
+
+/// The message of the InputError that buildDdaModel throws ("no error" otherwise).
+std::string errorOf(const Scene& s, const blocks::BlockModel& blocks) {
+  try {
+    buildDdaModel(s, blocks);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SceneModel, ErrorsNameWhatIsWrong) {
+  EXPECT_EQ(errorOf(scene("monitors:\n  - {name: lost, point: [5, 0.5, 1]}\n"), fourBlocks()),
+            "tiny.yaml: monitors: lost at (5, 0.5, 1) lies in no block; a monitor must be "
+            "inside the rock or a structure");
+  blocks::BlockModel no_material = fourBlocks();
+  no_material.blocks[2].material = -1;
+  EXPECT_EQ(errorOf(scene(""), no_material),
+            "tiny.yaml: block 3 has no material: give `rock_material` (the material of the "
+            "rock outside every slab)");
+  const Scene no_default = parseScene(
+      "version: 1\n"
+      "domain: {box: {min: [0, 0, 0], max: [2, 1, 2]}}\n"
+      "materials: {rock: {density: 2600, young: 10.0e9, poisson: 0.25}}\n"
+      "rock_material: rock\n",
+      "tiny.yaml");
+  EXPECT_EQ(errorOf(no_default, fourBlocks()),
+            "tiny.yaml: analysis.dda needs the strength of the contacts between blocks: give "
+            "`joints` and `default_joint`");
+}
+
+}  // namespace
+}  // namespace rockmass::io
