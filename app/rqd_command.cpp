@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -129,11 +130,21 @@ std::vector<io::BallReport> evaluateBalls(const rqd::ScanlineScene& scene,
   return reports;
 }
 
-/// Simulated logs of the holes, and their error against the measured log if there is one.
-io::BoreholeReport evaluateBoreholes(const rqd::ScanlineScene& scene, const io::Scene& scene_file,
-                                     const io::RqdAnalysis& settings) {
+/// The holes and the measured log of the scene, read and checked (before any work is done).
+io::BoreholeReport readBoreholeFiles(const io::Scene& scene, const io::RqdAnalysis& settings) {
   io::BoreholeReport report;
-  report.holes = io::readBoreholes(settings.boreholes_file, scene_file.dfn.domain);
+  report.holes = io::readBoreholes(settings.boreholes_file, scene.dfn.domain);
+  if (!settings.measured_file.empty()) {
+    report.measured = io::readMeasuredLog(settings.measured_file, report.holes);
+    report.measured_file = settings.measured_file.filename().string();
+    report.measured_threshold = settings.measured_threshold;
+  }
+  return report;
+}
+
+/// Simulated logs of the holes, and their error against the measured log if there is one.
+void evaluateBoreholes(const rqd::ScanlineScene& scene, const io::RqdAnalysis& settings,
+                       io::BoreholeReport& report) {
   report.thresholds = settings.thresholds;
   std::vector<std::vector<double>> hits;
   for (const rqd::Borehole& hole : report.holes) {
@@ -145,10 +156,7 @@ io::BoreholeReport evaluateBoreholes(const rqd::ScanlineScene& scene, const io::
     report.hole_rqd.push_back(rqd::intervalsRqd(hits.back(), hole.length, {&whole, 1},
                                                 settings.thresholds, settings.merge_distance));
   }
-  if (!settings.measured_file.empty()) {
-    report.measured = io::readMeasuredLog(settings.measured_file, report.holes);
-    report.measured_file = settings.measured_file.filename().string();
-    report.measured_threshold = settings.measured_threshold;
+  if (!report.measured.empty()) {
     const double threshold[] = {settings.measured_threshold};
     for (const rqd::LoggedInterval& entry : report.measured) {
       const auto h = static_cast<std::size_t>(entry.hole);
@@ -159,7 +167,6 @@ io::BoreholeReport evaluateBoreholes(const rqd::ScanlineScene& scene, const io::
   }
   std::fprintf(stderr, "rqd: %zu boreholes%s\n", report.holes.size(),
                report.measured.empty() ? "" : ", compared with the measured log");
-  return report;
 }
 
 /// Calibrates the intensity multiplier of the scene's set group (see rqd/calibration.h).
@@ -197,6 +204,8 @@ int runRqd(const RqdOptions& options) {
   const io::RqdAnalysis settings = rqdSettings(scene, options);
   const rqd::DiscForm form =
       options.form == "triangulated" ? rqd::DiscForm::Triangulated : rqd::DiscForm::ExactEllipse;
+  std::optional<io::BoreholeReport> boreholes;
+  if (!settings.boreholes_file.empty()) boreholes = readBoreholeFiles(scene, settings);
   const fs::path out = prepareOutput(options.common.output);
 
   auto start = Clock::now();
@@ -213,8 +222,9 @@ int runRqd(const RqdOptions& options) {
   report.thresholds = settings.thresholds;
   const rqd::ScanlineScene ray_scene(network, form, options.segments);
   report.balls = evaluateBalls(ray_scene, scene, settings);
-  if (!settings.boreholes_file.empty()) {
-    report.boreholes = evaluateBoreholes(ray_scene, scene, settings);
+  if (boreholes) {
+    evaluateBoreholes(ray_scene, settings, *boreholes);
+    report.boreholes = std::move(boreholes);
   }
   const double rqd_seconds = secondsSince(start);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <set>
@@ -97,16 +98,12 @@ class CsvReader {
 constexpr std::string_view kCollarHeader = "id,x,y,z,azimuth,plunge,length";
 constexpr std::string_view kLogHeader = "id,from,to,rqd";
 
-/// "(x, y, z)" for messages.
+/// "(x, y, z)" for messages, to 6 significant digits (a human reads it; rounding of the
+/// hole's direction must not show as 5.000000000000002).
 std::string point(const geometry::Vec3& p) {
-  std::string text = "(";
-  text += formatDouble(p.x());
-  text += ", ";
-  text += formatDouble(p.y());
-  text += ", ";
-  text += formatDouble(p.z());
-  text += ")";
-  return text;
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return buffer;
 }
 
 }  // namespace
