@@ -103,6 +103,8 @@ struct RqdAnalysis {
   std::filesystem::path measured_file;   ///< measured log (absolute path), empty if none
   std::optional<double> grid_spacing;    ///< RQD/P32 grid cell size (m)
   int grid_direction_count = 200;        ///< directions per grid cell
+  std::optional<double> grid_length;     ///< grid scanline length (m); none: 2 x largest threshold
+  std::optional<geometry::Box> grid_region;  ///< box the grid fills (m); none: the domain box
 };
 
 /// analysis.dda
