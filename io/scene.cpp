@@ -784,10 +784,22 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
     }
   }
   if (const auto grid = m.get("grid")) {
-    grid->map({"spacing", "direction_count"});
+    grid->map({"spacing", "direction_count", "length", "region"});
     rqd.grid_spacing = grid->at("spacing").number(kPositive);
     rqd.grid_direction_count =
         grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
+    if (const auto length = grid->get("length")) rqd.grid_length = length->number(kPositive);
+    if (const auto region = grid->get("region")) {
+      const Cursor box = region->map({"min", "max"});
+      const geometry::Box read{box.at("min").vec3(), box.at("max").vec3()};
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(read.min[axis] < read.max[axis])) {
+          box.fail("expected min < max in every component, got " + formatDouble(read.min[axis]) +
+                   " >= " + formatDouble(read.max[axis]) + " in " + "xyz"[axis]);
+        }
+      }
+      rqd.grid_region = read;
+    }
   }
   return rqd;
 }

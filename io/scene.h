@@ -116,6 +116,8 @@ struct RqdAnalysis {
   double merge_distance = 1e-3;               ///< hits closer than this are one fracture (m)
   std::optional<double> grid_spacing;         ///< RQD/P32 grid cell size (m)
   int grid_direction_count = 200;             ///< directions per grid cell
+  std::optional<double> grid_length;     ///< grid scanline length (m); none: 2 x largest threshold
+  std::optional<geometry::Box> grid_region;  ///< box the grid fills (m); none: the domain box
 };
 
 /// analysis.dda

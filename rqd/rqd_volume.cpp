@@ -53,10 +53,11 @@ void validate(const VolumeSpec& spec, const geometry::FractureNetwork& network) 
 }
 
 /// Sum over `axes` of RQD(t) of the scanlines through `center`, clipped to `domain`, into
-/// `sums` (one per threshold); returns how many scanlines had length.
+/// `sums` (one per threshold); returns how many scanlines had length. `hits`, `distances`
+/// and `values` (one per threshold) are work buffers.
 int sumRqd(const ScanlineScene& scene, const geometry::Box& domain, const Vec3& center,
            const std::vector<Vec3>& axes, const VolumeSpec& spec, std::vector<ScanlineHit>& hits,
-           std::vector<double>& distances, std::vector<double>& sums) {
+           std::vector<double>& distances, std::vector<double>& values, std::vector<double>& sums) {
   std::fill(sums.begin(), sums.end(), 0.0);
   int used = 0;
   const double half = 0.5 * spec.scanline_length;
@@ -74,7 +75,7 @@ int sumRqd(const ScanlineScene& scene, const geometry::Box& domain, const Vec3& 
     distances.clear();
     // Hits lie in [0, |end - start|] by contract; min() guards the last rounding bit.
     for (const ScanlineHit& hit : hits) distances.push_back(std::min(hit.t, length));
-    const std::vector<double> values = rqd(distances, length, spec.thresholds, spec.merge_distance);
+    rqd(distances, length, spec.thresholds, values, spec.merge_distance);
     for (std::size_t t = 0; t < sums.size(); ++t) sums[t] += values[t];
     ++used;
   }
@@ -121,11 +122,12 @@ RqdVolume computeRqdVolume(const ScanlineScene& scene, const geometry::FractureN
   const auto computeCells = [&](const tbb::blocked_range<std::int64_t>& range) {
     std::vector<ScanlineHit> hits;
     std::vector<double> distances;
+    std::vector<double> values(threshold_count);
     std::vector<double> sums(threshold_count);
     for (std::int64_t cell = range.begin(); cell != range.end(); ++cell) {
       const auto [i, j, k] = volume.grid.coordinates(cell);
       const int used = sumRqd(scene, network.domain, volume.grid.cellCenter(i, j, k), axes, spec,
-                              hits, distances, sums);
+                              hits, distances, values, sums);
       // Cell centres lie at least half a cell inside the domain, so every axis has length.
       assert(used > 0);
       for (std::size_t t = 0; t < threshold_count; ++t) {

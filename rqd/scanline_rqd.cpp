@@ -36,6 +36,22 @@ void requireValidScanline(std::span<const double> hits, double length, double me
   }
 }
 
+/// Calls `piece(length)` for each intact piece (> 0), in order, between the merged `hits`;
+/// the scanline must be valid (requireValidScanline).
+template <typename PieceFunction>
+void forEachPiece(std::span<const double> hits, double length, double merge_distance,
+                  PieceFunction&& piece) {
+  double piece_start = 0.0;
+  bool have_kept_hit = false;
+  for (double hit : hits) {
+    if (have_kept_hit && hit - piece_start <= merge_distance) continue;
+    if (hit > piece_start) piece(hit - piece_start);
+    piece_start = hit;
+    have_kept_hit = true;
+  }
+  if (length > piece_start) piece(length - piece_start);
+}
+
 }  // namespace
 
 std::vector<double> intactPieces(std::span<const double> hits, double length,
@@ -43,34 +59,34 @@ std::vector<double> intactPieces(std::span<const double> hits, double length,
   requireValidScanline(hits, length, merge_distance);
   std::vector<double> pieces;
   pieces.reserve(hits.size() + 1);
-  double piece_start = 0.0;
-  bool have_kept_hit = false;
-  for (double hit : hits) {
-    if (have_kept_hit && hit - piece_start <= merge_distance) continue;
-    if (hit > piece_start) pieces.push_back(hit - piece_start);
-    piece_start = hit;
-    have_kept_hit = true;
-  }
-  if (length > piece_start) pieces.push_back(length - piece_start);
+  forEachPiece(hits, length, merge_distance, [&](double piece) { pieces.push_back(piece); });
   return pieces;
 }
 
 std::vector<double> rqd(std::span<const double> hits, double length,
                         std::span<const double> thresholds, double merge_distance) {
-  for (double t : thresholds) requireNonNegative(t, "RQD threshold (m)");
-  const std::vector<double> pieces = intactPieces(hits, length, merge_distance);
-  std::vector<double> result;
-  result.reserve(thresholds.size());
-  for (double t : thresholds) {
-    double intact_length = 0.0;
-    for (double piece : pieces) {
-      if (piece >= t) intact_length += piece;
-    }
-    // The pieces sum to the length up to rounding: keep RQD within [0, 100]; one intact
-    // piece gives exactly 100.
-    result.push_back(std::min(100.0, 100.0 * (intact_length / length)));
-  }
+  std::vector<double> result(thresholds.size());
+  rqd(hits, length, thresholds, result, merge_distance);
   return result;
+}
+
+void rqd(std::span<const double> hits, double length, std::span<const double> thresholds,
+         std::span<double> out, double merge_distance) {
+  for (double t : thresholds) requireNonNegative(t, "RQD threshold (m)");
+  if (out.size() != thresholds.size()) {
+    throw std::invalid_argument("rqd: " + std::to_string(out.size()) + " outputs for " +
+                                std::to_string(thresholds.size()) + " thresholds");
+  }
+  requireValidScanline(hits, length, merge_distance);
+  std::fill(out.begin(), out.end(), 0.0);
+  forEachPiece(hits, length, merge_distance, [&](double piece) {
+    for (std::size_t i = 0; i < thresholds.size(); ++i) {
+      if (piece >= thresholds[i]) out[i] += piece;
+    }
+  });
+  // The pieces sum to the length up to rounding: keep RQD within [0, 100]; one intact piece
+  // gives exactly 100.
+  for (double& value : out) value = std::min(100.0, 100.0 * (value / length));
 }
 
 double priestHudsonRqd(double frequency, double threshold) {

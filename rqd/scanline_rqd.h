@@ -31,6 +31,12 @@ std::vector<double> rqd(std::span<const double> hits, double length,
                         std::span<const double> thresholds,
                         double merge_distance = kDefaultMergeDistance);
 
+/// The same RQD(t) values written into `out` (one per threshold, same size as `thresholds`),
+/// without allocating: for loops over many scanlines. Throws as rqd() does, and
+/// std::invalid_argument when `out` and `thresholds` differ in size.
+void rqd(std::span<const double> hits, double length, std::span<const double> thresholds,
+         std::span<double> out, double merge_distance = kDefaultMergeDistance);
+
 /// Expected RQD(t) in percent, 100 (1 + lambda t) exp(-lambda t), for exponentially
 /// distributed spacings of mean 1/lambda on an infinite scanline; `frequency` lambda is in
 /// fractures per metre (>= 0), `threshold` t in metres (>= 0). Priest, S. D. & Hudson, J. A.

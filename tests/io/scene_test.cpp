@@ -294,6 +294,28 @@ TEST(SceneErrors, ThresholdsMustIncrease) {
             "(the list must increase), got 2");
 }
 
+TEST(SceneRqdGrid, ReadsLengthAndRegion) {
+  const Scene scene =
+      parseScene(valid_head +
+                     "analysis:\n  rqd:\n    grid: {spacing: 2, direction_count: 50, length: 12.5,"
+                     " region: {min: [1, 2, -9], max: [9, 8, -1]}}\n",
+                 "scene.yaml");
+  const RqdAnalysis& rqd = *scene.analysis.rqd;
+  EXPECT_EQ(rqd.grid_spacing, 2.0);
+  EXPECT_EQ(rqd.grid_direction_count, 50);
+  EXPECT_EQ(rqd.grid_length, 12.5);
+  ASSERT_TRUE(rqd.grid_region.has_value());
+  EXPECT_EQ(rqd.grid_region->min, Vec3(1, 2, -9));
+  EXPECT_EQ(rqd.grid_region->max, Vec3(9, 8, -1));
+}
+
+TEST(SceneErrors, RqdGridRegionMustHaveVolume) {
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  rqd:\n    grid: {spacing: 2, region: {min: [0, 0, "
+                                 "5], max: [10, 10, 5]}}\n"),
+            "bad.yaml:5:32: analysis.rqd.grid.region: expected min < max in every component, got "
+            "5 >= 5 in z");
+}
+
 TEST(SceneErrors, WaterOnUnknownStructure) {
   EXPECT_EQ(errorOf(valid_head + "loads:\n  water:\n"
                                  "    - {level: 10, on: {structure: dan, facing: [1, 0, 0]}}\n"),
@@ -625,6 +647,8 @@ TEST_F(SceneFiles, FullSceneParsesToTheExpectedValues) {
   EXPECT_EQ(rqd.run_length, 3.0);
   EXPECT_EQ(rqd.grid_spacing, 5.0);
   EXPECT_EQ(rqd.grid_direction_count, 200);
+  EXPECT_FALSE(rqd.grid_length.has_value());  // defaults: 2 x largest threshold, domain box
+  EXPECT_FALSE(rqd.grid_region.has_value());
   ASSERT_TRUE(scene.analysis.dda.has_value());
   const DdaAnalysis& dda = *scene.analysis.dda;
   EXPECT_FALSE(dda.dynamic);

@@ -130,5 +130,17 @@ TEST(PriestHudsonRqd, MatchesPoissonHitsOnLongScanline) {
   }
 }
 
+TEST(ScanlineRqd, BufferFormGivesTheSameBitsAndChecksItsSize) {
+  // The allocation-free form used by RQD volumes: identical values (same summation order),
+  // and a buffer of the wrong size is refused rather than overrun.
+  const Values hits = {0.3, 0.3005, 1.7, 4.2, 4.9};
+  const Values thresholds = {0.1, 1.0, 2.5};
+  Values out(3);
+  rqd(hits, 6.0, thresholds, out);
+  EXPECT_EQ(out, rqd(hits, 6.0, thresholds));
+  Values short_buffer(2);
+  EXPECT_THROW(rqd(hits, 6.0, thresholds, short_buffer), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace rockmass::rqd

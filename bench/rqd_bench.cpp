@@ -1,0 +1,381 @@
+// RQD speed: Embree scanlines against brute force, multi-hit rays per second per core with
+// RQD included, an RQD ball, an RQD volume, and what accuracy costs (disc form and number of
+// directions). Prints Google Benchmark's table, then ratios and errors measured in this run.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/fisher.h"
+#include "geometry/fracture_network.h"
+#include "geometry/random.h"
+#include "rqd/directions.h"
+#include "rqd/embree_scene.h"
+#include "rqd/p32_grid.h"
+#include "rqd/rqd_volume.h"
+#include "rqd/scanline_rqd.h"
+
+namespace {
+
+using namespace rockmass;
+using geometry::Disc;
+using geometry::FractureNetwork;
+using geometry::Vec3;
+using rqd::DiscForm;
+using rqd::ScanlineHit;
+using rqd::ScanlineScene;
+
+constexpr double kCube = 100.0;          // side of the rock cube (m)
+constexpr double kSegmentLength = 30.0;  // scanline length of the ray benchmarks (m)
+constexpr int kSegmentCount = 4096;      // distinct random segments, cycled
+/// The thresholds of a typical run: the classic 0.1 m and 1, 2, ..., 10 m.
+const std::vector<double> kThresholds{0.1, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+
+/// `count` elliptical discs in the 100 m cube: three Fisher sets (kappa 20), semi-major axis
+/// lognormal with mean 4 m and standard deviation 2 m, b = 0.6 a. For 10^4 discs, P32 is
+/// about 0.38 m2/m3 and a 30 m scanline crosses about 6 discs.
+FractureNetwork discCube(int count) {
+  geometry::Rng rng = geometry::makeRng(2024, 7);
+  const double sigma2 = std::log(1.0 + 0.25);  // (std / mean)^2 = 0.25
+  std::lognormal_distribution<double> size(std::log(4.0) - 0.5 * sigma2, std::sqrt(sigma2));
+  const Vec3 poles[3] = {Vec3(0.2, 0.1, 1).normalized(), Vec3(1, 0.3, 0.1).normalized(),
+                         Vec3(-0.2, 1, 0.3).normalized()};
+  FractureNetwork network;
+  network.domain = geometry::Box{Vec3::Zero(), Vec3::Constant(kCube)};
+  network.sets.resize(3);
+  for (int i = 0; i < count; ++i) {
+    Disc disc;
+    disc.id = i + 1;
+    disc.set = i % 3;
+    disc.center = kCube * Vec3(geometry::uniformOpen01(rng), geometry::uniformOpen01(rng),
+                               geometry::uniformOpen01(rng));
+    disc.normal = geometry::sampleFisher(poles[i % 3], 20.0, rng);
+    Vec3 unused;
+    geometry::orthonormalBasis(disc.normal, disc.major, unused);
+    disc.a = size(rng);
+    disc.b = 0.6 * disc.a;
+    network.discs.push_back(disc);
+  }
+  return network;
+}
+
+const FractureNetwork& network(int count) {
+  static std::map<int, std::unique_ptr<FractureNetwork>> cache;
+  auto& slot = cache[count];
+  if (!slot) slot = std::make_unique<FractureNetwork>(discCube(count));
+  return *slot;
+}
+
+/// A scene per (disc count, form, segments), built once.
+const ScanlineScene& scene(int count, DiscForm form, int segments = 24) {
+  static std::map<std::tuple<int, DiscForm, int>, std::unique_ptr<ScanlineScene>> cache;
+  auto& slot = cache[{count, form, segments}];
+  if (!slot) slot = std::make_unique<ScanlineScene>(network(count), form, segments);
+  return *slot;
+}
+
+struct Segment {
+  Vec3 start;
+  Vec3 end;
+};
+
+/// kSegmentCount segments of 30 m starting uniformly in the cube, isotropic directions.
+const std::vector<Segment>& segments() {
+  static const std::vector<Segment> all = [] {
+    geometry::Rng rng = geometry::makeRng(99, 1);
+    std::normal_distribution<double> gaussian;
+    std::vector<Segment> out;
+    for (int i = 0; i < kSegmentCount; ++i) {
+      const Vec3 start = kCube * Vec3(geometry::uniformOpen01(rng), geometry::uniformOpen01(rng),
+                                      geometry::uniformOpen01(rng));
+      const Vec3 dir = Vec3(gaussian(rng), gaussian(rng), gaussian(rng)).normalized();
+      out.push_back({start, start + kSegmentLength * dir});
+    }
+    return out;
+  }();
+  return all;
+}
+
+/// Brute force: every disc tested with Disc::intersectLine, hits in [0, L] sorted.
+void bruteForceHits(const std::vector<Disc>& discs, const Segment& s,
+                    std::vector<ScanlineHit>& hits) {
+  hits.clear();
+  const double length = (s.end - s.start).norm();
+  const Vec3 dir = (s.end - s.start) / length;
+  for (const Disc& disc : discs) {
+    const std::optional<double> t = disc.intersectLine(s.start, dir);
+    if (t && *t >= 0.0 && *t <= length) hits.push_back({*t, disc.id});
+  }
+  std::sort(hits.begin(), hits.end(),
+            [](const ScanlineHit& p, const ScanlineHit& q) { return p.t < q.t; });
+}
+
+void setRayCounters(benchmark::State& state, std::int64_t hits) {
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["hits_per_ray"] =
+      static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+
+// ---- 1. Rays per second: Embree against brute force ---------------------------------------
+
+void BM_BruteForce(benchmark::State& state) {
+  const FractureNetwork& net = network(static_cast<int>(state.range(0)));
+  std::vector<ScanlineHit> hits;
+  std::int64_t total = 0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    bruteForceHits(net.discs, segments()[i++ % kSegmentCount], hits);
+    total += static_cast<std::int64_t>(hits.size());
+  }
+  setRayCounters(state, total);
+}
+BENCHMARK(BM_BruteForce)->Arg(1000)->Arg(10000)->Arg(100000);
+
+void embreeRays(benchmark::State& state, DiscForm form) {
+  const ScanlineScene& s = scene(static_cast<int>(state.range(0)), form);
+  std::vector<ScanlineHit> hits;
+  std::int64_t total = 0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Segment& segment = segments()[i++ % kSegmentCount];
+    s.hits(segment.start, segment.end, hits);
+    total += static_cast<std::int64_t>(hits.size());
+  }
+  setRayCounters(state, total);
+}
+void BM_EmbreeExact(benchmark::State& state) {
+  embreeRays(state, DiscForm::ExactEllipse);
+}
+void BM_EmbreeTriangulated(benchmark::State& state) {
+  embreeRays(state, DiscForm::Triangulated);
+}
+BENCHMARK(BM_EmbreeExact)->Arg(1000)->Arg(10000)->Arg(100000);
+BENCHMARK(BM_EmbreeTriangulated)->Arg(1000)->Arg(10000)->Arg(100000);
+
+// ---- 2. Multi-hit rays per core with RQD evaluation -------------------------------------
+
+/// One scanline: all hits, then RQD for the 11 thresholds (as an RQD ball or volume does).
+double scanlineRqd(const ScanlineScene& s, const Vec3& start, const Vec3& end,
+                   std::vector<ScanlineHit>& hits, std::vector<double>& distances,
+                   std::vector<double>& values) {
+  s.hits(start, end, hits);
+  distances.clear();
+  const double length = (end - start).norm();
+  for (const ScanlineHit& hit : hits) distances.push_back(std::min(hit.t, length));
+  rqd::rqd(distances, length, kThresholds, values);
+  return values.front();
+}
+
+void rqdRays(benchmark::State& state, DiscForm form) {
+  const ScanlineScene& s = scene(10000, form);
+  std::vector<ScanlineHit> hits;
+  std::vector<double> distances;
+  std::vector<double> values(kThresholds.size());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Segment& segment = segments()[i++ % kSegmentCount];
+    benchmark::DoNotOptimize(scanlineRqd(s, segment.start, segment.end, hits, distances, values));
+  }
+  state.counters["rays_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+void BM_RqdRaysExact(benchmark::State& state) {
+  rqdRays(state, DiscForm::ExactEllipse);
+}
+void BM_RqdRaysTriangulated(benchmark::State& state) {
+  rqdRays(state, DiscForm::Triangulated);
+}
+BENCHMARK(BM_RqdRaysExact);
+BENCHMARK(BM_RqdRaysTriangulated);
+
+// ---- 3. An RQD ball and an RQD volume -----------------------------------------------------
+
+/// Mean RQD(0.1 m) of a ball of `directions` scanlines of 30 m through `center`.
+double ball(const ScanlineScene& s, const Vec3& center, const std::vector<Vec3>& directions,
+            std::vector<double>& per_threshold_mean) {
+  std::vector<ScanlineHit> hits;
+  std::vector<double> distances;
+  std::vector<double> values(kThresholds.size());
+  per_threshold_mean.assign(kThresholds.size(), 0.0);
+  for (const Vec3& d : directions) {
+    scanlineRqd(s, center - 0.5 * kSegmentLength * d, center + 0.5 * kSegmentLength * d, hits,
+                distances, values);
+    for (std::size_t t = 0; t < values.size(); ++t) per_threshold_mean[t] += values[t];
+  }
+  for (double& v : per_threshold_mean) v /= static_cast<double>(directions.size());
+  return per_threshold_mean.front();
+}
+
+void BM_RqdBall2000x11(benchmark::State& state) {
+  const DiscForm form = state.range(0) == 0 ? DiscForm::ExactEllipse : DiscForm::Triangulated;
+  const ScanlineScene& s = scene(10000, form);
+  const std::vector<Vec3> directions = rqd::fibonacciSphere(2000);
+  std::vector<double> means;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ball(s, Vec3::Constant(0.5 * kCube), directions, means));
+  }
+}
+BENCHMARK(BM_RqdBall2000x11)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+/// 50 x 50 x 40 = 10^5 cells of 2 m, 200 axes, 20 m scanlines, 11 thresholds, on the
+/// threads given (the machine has 2 cores).
+void BM_RqdVolume1e5Cells(benchmark::State& state) {
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(state.range(0)));
+  const FractureNetwork& net = network(10000);
+  const ScanlineScene& s = scene(10000, DiscForm::ExactEllipse);
+  rqd::VolumeSpec spec;
+  spec.region = geometry::Box{Vec3(0, 0, 10), Vec3(100, 100, 90)};
+  spec.cell_size = 2.0;
+  spec.scanline_length = 20.0;
+  spec.direction_count = 200;
+  spec.thresholds = kThresholds;
+  for (auto _ : state) {
+    const rqd::RqdVolume volume = rqd::computeRqdVolume(s, net, spec);
+    benchmark::DoNotOptimize(volume.p32.data());
+    state.counters["cells"] = static_cast<double>(volume.grid.cellCount());
+  }
+}
+BENCHMARK(BM_RqdVolume1e5Cells)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
+/// The P32 part of the volume alone (10^5 cells, 10^4 discs).
+void BM_P32Volume1e5Cells(benchmark::State& state) {
+  const FractureNetwork& net = network(10000);
+  const rqd::CellGrid grid =
+      rqd::cellGridIn(geometry::Box{Vec3(0, 0, 10), Vec3(100, 100, 90)}, 2.0);
+  for (auto _ : state) benchmark::DoNotOptimize(rqd::p32Grid(net, grid).data());
+}
+BENCHMARK(BM_P32Volume1e5Cells)->Unit(benchmark::kMillisecond);
+
+// ---- 4. Accuracy against time -------------------------------------------------------------
+
+/// Balls at a few centres: the per-direction RQD values (all thresholds) of a setting.
+std::vector<double> ballValues(const ScanlineScene& s, int directions) {
+  const std::vector<Vec3> axes = rqd::fibonacciSphere(directions);
+  std::vector<double> values;
+  std::vector<ScanlineHit> hits;
+  std::vector<double> distances;
+  for (const Vec3& center : {Vec3(30, 40, 50), Vec3(50, 50, 50), Vec3(70, 60, 40)}) {
+    for (const Vec3& d : axes) {
+      s.hits(center - 0.5 * kSegmentLength * d, center + 0.5 * kSegmentLength * d, hits);
+      distances.clear();
+      for (const ScanlineHit& hit : hits) distances.push_back(std::min(hit.t, kSegmentLength));
+      for (double v : rqd::rqd(distances, kSegmentLength, kThresholds)) values.push_back(v);
+    }
+  }
+  return values;
+}
+
+/// Disc form: time per scanline (RQD included) and the mean absolute RQD difference per
+/// scanline and threshold against the exact ellipse (2000 directions at 3 centres).
+/// Arg 0: exact; n > 0: triangulated with n segments.
+void BM_AccuracyForm(benchmark::State& state) {
+  const int segments_arg = static_cast<int>(state.range(0));
+  const DiscForm form = segments_arg == 0 ? DiscForm::ExactEllipse : DiscForm::Triangulated;
+  const ScanlineScene& s = scene(10000, form, segments_arg == 0 ? 24 : segments_arg);
+  std::vector<double> values;
+  for (auto _ : state) values = ballValues(s, 2000);
+  const std::vector<double> reference = ballValues(scene(10000, DiscForm::ExactEllipse), 2000);
+  double error = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) error += std::abs(values[i] - reference[i]);
+  state.counters["rqd_error"] = error / static_cast<double>(values.size());
+  state.counters["rays_per_s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * 3 * 2000, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_AccuracyForm)
+    ->Arg(0)
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(32)
+    ->Arg(64)
+    ->Unit(benchmark::kMillisecond);
+
+/// Direction count: the ball's mean RQD over directions (what a volume cell stores), its
+/// error against 32 000 directions (largest over thresholds and 3 centres), and the time.
+void BM_AccuracyDirections(benchmark::State& state) {
+  const int directions = static_cast<int>(state.range(0));
+  const ScanlineScene& s = scene(10000, DiscForm::ExactEllipse);
+  const std::vector<Vec3> centers{Vec3(30, 40, 50), Vec3(50, 50, 50), Vec3(70, 60, 40)};
+  const auto means = [&](int count) {
+    std::vector<double> all;
+    std::vector<double> per_threshold;
+    for (const Vec3& c : centers) {
+      ball(s, c, rqd::fibonacciSphere(count), per_threshold);
+      all.insert(all.end(), per_threshold.begin(), per_threshold.end());
+    }
+    return all;
+  };
+  std::vector<double> values;
+  for (auto _ : state) values = means(directions);
+  static const std::vector<double> reference = means(32000);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    worst = std::max(worst, std::abs(values[i] - reference[i]));
+  }
+  state.counters["mean_rqd_error"] = worst;
+}
+BENCHMARK(BM_AccuracyDirections)
+    ->Arg(100)
+    ->Arg(500)
+    ->Arg(2000)
+    ->Arg(8000)
+    ->Unit(benchmark::kMillisecond);
+
+/// Console output plus a record of each benchmark's real time and counters, for the ratios.
+class RecordingReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& run : runs) {
+      // CPU time: the ratios compare single-threaded benchmarks, and on a machine shared
+      // with other jobs the wall time also counts the time the thread waited for a core.
+      times[run.benchmark_name()] = run.GetAdjustedCPUTime();
+      for (const auto& [name, counter] : run.counters) {
+        counters[run.benchmark_name()][name] = counter.value;
+      }
+    }
+  }
+  std::map<std::string, double> times;                            ///< CPU time per iteration
+  std::map<std::string, std::map<std::string, double>> counters;  ///< final counter values
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  RecordingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto& t = reporter.times;
+  std::printf("\nSpeed-up over brute force (same run, CPU time per ray):\n");
+  for (const char* n : {"1000", "10000", "100000"}) {
+    const std::string brute = std::string("BM_BruteForce/") + n;
+    for (const char* form : {"BM_EmbreeExact/", "BM_EmbreeTriangulated/"}) {
+      const std::string embree = form + std::string(n);
+      if (t.count(brute) && t.count(embree)) {
+        std::printf("  %-30s %8.1fx\n", embree.c_str(), t.at(brute) / t.at(embree));
+      }
+    }
+  }
+  std::printf("\nRatios (same run, CPU time):\n");
+  const auto ratio = [&](const std::string& a, const std::string& b) {
+    if (t.count(a) && t.count(b))
+      std::printf("  %-32s / %-32s = %.3f\n", a.c_str(), b.c_str(), t.at(a) / t.at(b));
+  };
+  ratio("BM_RqdRaysTriangulated", "BM_RqdRaysExact");
+  ratio("BM_RqdRaysExact", "BM_EmbreeExact/10000");
+  for (const char* segments : {"8", "16", "32", "64"}) {
+    ratio(std::string("BM_AccuracyForm/") + segments, "BM_AccuracyForm/0");
+  }
+  for (const char* count : {"500", "2000", "8000"}) {
+    ratio(std::string("BM_AccuracyDirections/") + count, "BM_AccuracyDirections/100");
+  }
+  benchmark::Shutdown();
+  return 0;
+}
