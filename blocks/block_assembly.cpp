@@ -115,6 +115,35 @@ std::vector<SlabRegion> slabRegions(const CutInput& input) {
   return regions;
 }
 
+/// Adds the contacts of the structure pieces (all[rock_count..]) with each other and with
+/// the rock pieces whose bounding boxes come near a structure.
+void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
+                             const CutTolerances& tolerances, std::vector<PieceContact>& contacts) {
+  if (all.size() == rock_count) return;
+  std::vector<geometry::Box> structure_boxes;
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    structure_boxes.push_back(geometry::bounds(all[i].shape).enlarged(tolerances.distance));
+  }
+  std::vector<int> index;  // into `all`
+  for (std::size_t i = 0; i < rock_count; ++i) {
+    const geometry::Box b = geometry::bounds(all[i].shape);
+    const bool near =
+        std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const auto& s) {
+          return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
+        });
+    if (near) index.push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = rock_count; i < all.size(); ++i) index.push_back(static_cast<int>(i));
+  std::vector<Piece> subset;
+  for (int i : index) subset.push_back(all[i]);
+  for (PieceContact c : findPieceContacts(subset, tolerances.distance, tolerances.area)) {
+    c.piece_a = index[c.piece_a];
+    c.piece_b = index[c.piece_b];
+    if (c.piece_b < static_cast<int>(rock_count)) continue;  // rock-rock: given already
+    contacts.push_back(c);
+  }
+}
+
 }  // namespace
 
 CutTolerances cutTolerances(const geometry::Box& domain) {
@@ -140,7 +169,8 @@ std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances&
   return pieces;
 }
 
-BlockModel assembleBlocks(std::vector<Piece> rock_pieces, const CutInput& input,
+BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
+                          const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report) {
   std::vector<Piece> all = std::move(rock_pieces);
   const std::size_t rock_count = all.size();
@@ -160,8 +190,8 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces, const CutInput& input,
     }
   }
 
-  const std::vector<PieceContact> contacts =
-      findPieceContacts(all, tolerances.distance, tolerances.area);
+  std::vector<PieceContact> contacts = rock_contacts;
+  appendStructureContacts(all, rock_count, tolerances, contacts);
   UnionFind clusters(all.size());
   AssemblyReport local_report;
   const auto fictitious = [&](int piece, int face) {

@@ -7,6 +7,7 @@
 
 #include "blocks/block_model.h"
 #include "blocks/cutter.h"
+#include "blocks/piece_contacts.h"
 
 namespace rockmass::blocks {
 
@@ -32,13 +33,16 @@ struct AssemblyReport {
   int inconsistent_contacts = 0;  ///< contacts fictitious on one side only (treated as real)
 };
 
-/// Glues the rock pieces into blocks across contacts that are fictitious on both sides (one
+/// Glues the rock pieces into blocks across `rock_contacts` (their contacts among
+/// themselves, as findPieceContacts gives them) that are fictitious on both sides (one
 /// union-find), adds each structure as one block, assigns materials (a rock block takes the
 /// material of the slab that holds most of its volume, judged at piece centroids, else
 /// input.rock_material), orders the blocks by centroid (x, then y, then z) and numbers them
 /// 1..N, and lists the adjacency: one entry per (block_a, block_b, source) with the summed
 /// contact area, sorted. Pieces keep their face provenance.
-BlockModel assembleBlocks(std::vector<Piece> rock_pieces, const CutInput& input,
+/// Contacts between structures and rock are found here.
+BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
+                          const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report = nullptr);
 
 }  // namespace rockmass::blocks

@@ -125,10 +125,12 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
     if (below_loop.size() >= 3 && below_off_plane) {
       below.faces.push_back(std::move(below_loop));
       out.below.face_sources.push_back(piece.face_sources[f]);
+      out.below_origin.push_back(static_cast<int>(f));
     }
     if (above_loop.size() >= 3 && above_off_plane) {
       above.faces.push_back(std::move(above_loop));
       out.above.face_sources.push_back(piece.face_sources[f]);
+      out.above_origin.push_back(static_cast<int>(f));
     }
   }
   if (cap_points.size() < 3) return std::nullopt;
@@ -144,6 +146,8 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   above.faces.push_back(std::move(above_cap));
   out.below.face_sources.push_back(cap);
   out.above.face_sources.push_back(cap);
+  out.below_origin.push_back(-1);
+  out.above_origin.push_back(-1);
   return out;
 }
 
@@ -193,6 +197,12 @@ Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
 
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane) {
   std::vector<Vec3> out;
+  clipPolygon(polygon, plane, out);
+  return out;
+}
+
+void clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane, std::vector<Vec3>& out) {
+  out.clear();
   const std::size_t n = polygon.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = polygon[i];
@@ -203,7 +213,6 @@ std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& pla
     if ((sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0))
       out.push_back(p + (sp / (sp - sq)) * (q - p));
   }
-  return out;
 }
 
 }  // namespace rockmass::blocks

@@ -35,6 +35,9 @@ struct Plane {
 struct SplitPieces {
   Piece below;  ///< the half where distance <= 0; its new face has outward normal +n
   Piece above;  ///< the half where distance >= 0; its new face has outward normal -n
+  std::vector<int> below_origin;  ///< per face of `below`: the face of the input it is part of
+                                  ///< (-1 for the new face, which comes last)
+  std::vector<int> above_origin;  ///< the same for `above`
 };
 
 /// Splits a closed convex piece by `plane`. Returns nothing when the plane does not cross
@@ -62,5 +65,7 @@ Section planeSection(const Piece& piece, const Plane& plane, double tolerance);
 
 /// The part of a convex polygon where plane.distance >= 0 (Sutherland-Hodgman, one plane).
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane);
+/// The same into `out` (cleared first; must not alias `polygon`), reusing its storage.
+void clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane, std::vector<Vec3>& out);
 
 }  // namespace rockmass::blocks

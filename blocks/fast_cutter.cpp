@@ -1,11 +1,15 @@
 #include "blocks/fast_cutter.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "blocks/convex_partition.h"
 #include "blocks/convex_split.h"
+#include "blocks/piece_contacts.h"
 #include "geometry/disc.h"
 
 namespace rockmass::blocks {
@@ -21,10 +25,41 @@ struct CutPolygon {
   std::vector<Vec3> points;  ///< counter-clockwise about plane.normal
   std::vector<Plane> edges;  ///< per edge: perpendicular to the disc, normal pointing inside
   Box box;                   ///< bounding box of the points
+  int plane_id = 0;          ///< id of `plane` (see PlaneIds)
+  int first_edge_id = 0;     ///< id of edges[0]; edges[k] has first_edge_id + k
+};
+
+/// A piece being cut, with the id of the plane each face lies in. Faces made by one cutting
+/// plane share its id; coincident planes are merged when a polygon meets a face in its
+/// plane. Contacts are then searched among faces of one plane only.
+struct WorkPiece {
+  Piece piece;
+  std::vector<int> planes;  ///< per face
+};
+
+/// Union-find over plane ids (coincident planes end up with one root).
+class PlaneIds {
+ public:
+  int add() {
+    parent_.push_back(static_cast<int>(parent_.size()));
+    return parent_.back();
+  }
+  int find(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
 };
 
 /// The convex cutting polygons of one disc.
-void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance,
+void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance, PlaneIds& ids,
                     std::vector<CutPolygon>& out) {
   std::vector<Vec3> outline = disc.outline(segments);
   const Vec3 n = disc.normal.normalized();
@@ -41,6 +76,8 @@ void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance,
     CutPolygon polygon;
     polygon.disc_id = static_cast<int>(disc.id);
     polygon.plane = plane;
+    polygon.plane_id =
+        out.empty() || out.back().disc_id != polygon.disc_id ? ids.add() : out.back().plane_id;
     for (int i : part) polygon.points.push_back(outline[i]);
     const std::size_t m = polygon.points.size();
     polygon.box = {Vec3::Constant(std::numeric_limits<double>::infinity()),
@@ -54,6 +91,8 @@ void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance,
       if (inward.norm() <= tolerance) continue;  // a degenerate edge cuts nothing
       polygon.edges.push_back(Plane::through(p, inward.normalized()));
     }
+    polygon.first_edge_id = ids.add();
+    for (std::size_t k = 1; k < polygon.edges.size(); ++k) ids.add();
     out.push_back(std::move(polygon));
   }
 }
@@ -73,9 +112,9 @@ class PieceStore {
     cells_.resize(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2]);
   }
 
-  int add(Piece piece) {
+  int add(WorkPiece piece) {
     const int id = static_cast<int>(pieces_.size());
-    boxes_.push_back(geometry::bounds(piece.shape));
+    boxes_.push_back(geometry::bounds(piece.piece.shape));
     pieces_.push_back(std::move(piece));
     alive_.push_back(1);
     seen_.push_back(-1);
@@ -84,9 +123,9 @@ class PieceStore {
   }
   void kill(int id) {
     alive_[id] = 0;
-    pieces_[id] = Piece{};
+    pieces_[id] = WorkPiece{};
   }
-  const Piece& piece(int id) const { return pieces_[id]; }
+  const WorkPiece& piece(int id) const { return pieces_[id]; }
   const Box& box(int id) const { return boxes_[id]; }
 
   /// Live pieces whose boxes meet `box`, ascending.
@@ -109,8 +148,8 @@ class PieceStore {
   }
 
   /// The live pieces in creation order.
-  std::vector<Piece> takeAlive() {
-    std::vector<Piece> out;
+  std::vector<WorkPiece> takeAlive() {
+    std::vector<WorkPiece> out;
     for (std::size_t i = 0; i < pieces_.size(); ++i) {
       if (alive_[i]) out.push_back(std::move(pieces_[i]));
     }
@@ -139,12 +178,16 @@ class PieceStore {
   int dims_[3] = {1, 1, 1};
   double cell_size_[3] = {1, 1, 1};
   std::vector<std::vector<int>> cells_;
-  std::vector<Piece> pieces_;
+  std::vector<WorkPiece> pieces_;
   std::vector<Box> boxes_;
   std::vector<char> alive_;
   std::vector<int> seen_;
   int stamp_ = 0;
 };
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// True when the box lies more than `tolerance` on one side of the plane.
 bool boxMissesPlane(const Box& box, const Plane& plane, double tolerance) {
@@ -154,68 +197,93 @@ bool boxMissesPlane(const Box& box, const Plane& plane, double tolerance) {
   return std::abs(plane.distance(c)) > reach + tolerance;
 }
 
-/// Cuts one piece by one polygon. Returns the pieces that replace it, or nothing when the
-/// polygon leaves it unchanged.
-std::optional<std::vector<Piece>> cutPiece(const Piece& piece, const CutPolygon& polygon,
-                                           const CutTolerances& tol, FastCutReport& report) {
+/// Splits a work piece by a plane with id `plane_id`; faces keep their plane ids.
+std::optional<std::pair<WorkPiece, WorkPiece>> splitWork(const WorkPiece& work, const Plane& plane,
+                                                         int plane_id, double tolerance,
+                                                         FaceSource cap) {
+  std::optional<SplitPieces> split = splitPiece(work.piece, plane, tolerance, cap);
+  if (!split) return std::nullopt;
+  const auto planes = [&](const std::vector<int>& origin) {
+    std::vector<int> out;
+    out.reserve(origin.size());
+    for (int f : origin) out.push_back(f < 0 ? plane_id : work.planes[f]);
+    return out;
+  };
+  return std::pair{WorkPiece{std::move(split->below), planes(split->below_origin)},
+                   WorkPiece{std::move(split->above), planes(split->above_origin)}};
+}
+
+/// What cutting one piece by one polygon gives.
+struct CutResult {
+  std::optional<std::vector<WorkPiece>> pieces;  ///< replacements, or nothing: unchanged
+  std::vector<std::pair<int, int>> coincident;   ///< plane ids found to be one plane
+  long long splits = 0;                          ///< plane splits made
+};
+
+/// Cuts one piece by one polygon.
+CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTolerances& tol) {
+  CutResult result;
+  const Piece& piece = work.piece;
   const Section section = planeSection(piece, polygon.plane, tol.distance);
-  if (section.kind == SectionKind::None) return std::nullopt;
-  // A disc on a face that is already real (boundary, structure, another crack) adds nothing.
-  if (section.kind == SectionKind::OnFace &&
-      piece.face_sources[section.face].kind != FaceKind::Fictitious) {
-    return std::nullopt;
+  if (section.kind == SectionKind::None) return result;
+  if (section.kind == SectionKind::OnFace) {
+    result.coincident.emplace_back(work.planes[section.face], polygon.plane_id);
+    // A disc on a face that is already real (boundary, structure, another crack) adds nothing.
+    if (piece.face_sources[section.face].kind != FaceKind::Fictitious) return result;
   }
   // Does the polygon cover any of the section?
   std::vector<Vec3> covered = section.polygon;
   for (const Plane& edge : polygon.edges) {
     covered = clipPolygon(covered, edge);
-    if (covered.size() < 3) return std::nullopt;
+    if (covered.size() < 3) return result;
   }
-  if (geometry::polygonArea(covered) <= tol.area) return std::nullopt;
+  if (geometry::polygonArea(covered) <= tol.area) return result;
 
-  std::vector<Piece> out;
-  Piece core = piece;
+  std::vector<WorkPiece> out;
+  WorkPiece core = work;
   std::vector<Vec3> core_section = section.polygon;
-  for (const Plane& edge : polygon.edges) {
+  for (std::size_t k = 0; k < polygon.edges.size(); ++k) {
+    const Plane& edge = polygon.edges[k];
     double lowest = 0.0;
     for (const Vec3& p : core_section) lowest = std::min(lowest, edge.distance(p));
     if (lowest >= -tol.distance) continue;  // the section is inside this edge's half-plane
-    if (std::optional<SplitPieces> split =
-            splitPiece(core, edge, tol.distance, {FaceKind::Fictitious, -1})) {
-      ++report.splits;
-      out.push_back(std::move(split->below));  // outside the polygon: not cut by the disc
-      core = std::move(split->above);
+    if (auto split = splitWork(core, edge, polygon.first_edge_id + static_cast<int>(k),
+                               tol.distance, {FaceKind::Fictitious, -1})) {
+      ++result.splits;
+      out.push_back(std::move(split->first));  // outside the polygon: not cut by the disc
+      core = std::move(split->second);
     }
     core_section = clipPolygon(core_section, edge);
   }
   const FaceSource disc{FaceKind::Disc, polygon.disc_id};
   if (section.kind == SectionKind::Crossing) {
-    if (std::optional<SplitPieces> split = splitPiece(core, polygon.plane, tol.distance, disc)) {
-      ++report.splits;
-      out.push_back(std::move(split->below));
-      out.push_back(std::move(split->above));
+    if (auto split = splitWork(core, polygon.plane, polygon.plane_id, tol.distance, disc)) {
+      ++result.splits;
+      out.push_back(std::move(split->first));
+      out.push_back(std::move(split->second));
     } else {
       out.push_back(std::move(core));
     }
   } else {
-    // The disc lies on a face: its part inside the polygon becomes a crack, unless it is
-    // already one or lies on the domain boundary or a structure.
+    // The disc lies on a fictitious face: its part inside the polygon becomes a crack.
     bool relabelled = false;
-    for (std::size_t f = 0; f < core.shape.faces.size(); ++f) {
-      if (core.face_sources[f].kind != FaceKind::Fictitious) continue;
-      const std::vector<int>& face = core.shape.faces[f];
+    Piece& c = core.piece;
+    for (std::size_t f = 0; f < c.shape.faces.size(); ++f) {
+      if (c.face_sources[f].kind != FaceKind::Fictitious) continue;
+      const std::vector<int>& face = c.shape.faces[f];
       const bool on = std::all_of(face.begin(), face.end(), [&](int v) {
-        return std::abs(polygon.plane.distance(core.shape.vertices[v])) <= tol.distance;
+        return std::abs(polygon.plane.distance(c.shape.vertices[v])) <= tol.distance;
       });
       if (on) {
-        core.face_sources[f] = disc;
+        c.face_sources[f] = disc;
         relabelled = true;
       }
     }
-    if (out.empty() && !relabelled) return std::nullopt;
+    if (out.empty() && !relabelled) return result;
     out.push_back(std::move(core));
   }
-  return out;
+  result.pieces = std::move(out);
+  return result;
 }
 
 /// Throws when a structure piece overlaps the rock domain by more than a sliver.
@@ -258,31 +326,78 @@ BlockModel cutFast(const CutInput& input, FastCutReport* report) {
   const CutTolerances tol = cutTolerances(input.domain_box);
   checkStructuresOutsideRock(input, tol);
   FastCutReport counters;
+  const auto start = std::chrono::steady_clock::now();
 
+  // Plane ids: one per domain face, then per cutting polygon its plane and its edges.
+  PlaneIds plane_ids;
+  std::vector<Piece> domain = labelDomainPieces(input, tol);
+  std::vector<std::vector<int>> domain_planes(domain.size());
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    for (std::size_t f = 0; f < domain[i].shape.faces.size(); ++f) {
+      domain_planes[i].push_back(plane_ids.add());
+    }
+  }
+  if (domain.size() > 1) {
+    for (const PieceContact& c : findPieceContacts(domain, tol.distance, tol.area)) {
+      plane_ids.unite(domain_planes[c.piece_a][c.face_a], domain_planes[c.piece_b][c.face_b]);
+    }
+  }
   std::vector<CutPolygon> polygons;
   for (const geometry::Disc& disc : input.network->discs) {
-    if (disc.cuts) addCutPolygons(disc, input.disc_segments, tol.distance, polygons);
+    if (disc.cuts) addCutPolygons(disc, input.disc_segments, tol.distance, plane_ids, polygons);
   }
   counters.cutting_polygons = static_cast<int>(polygons.size());
 
   PieceStore store(input.domain_box, polygons.size());
-  for (Piece& piece : labelDomainPieces(input, tol)) store.add(std::move(piece));
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    store.add({std::move(domain[i]), std::move(domain_planes[i])});
+  }
+  std::vector<int> ids;
+  std::vector<CutResult> results;
   for (const CutPolygon& polygon : polygons) {
-    for (int id : store.query(polygon.box.enlarged(tol.distance))) {
-      if (boxMissesPlane(store.box(id), polygon.plane, tol.distance)) continue;
-      ++counters.piece_tests;
-      std::optional<std::vector<Piece>> replaced =
-          cutPiece(store.piece(id), polygon, tol, counters);
-      if (!replaced) continue;
-      store.kill(id);
-      for (Piece& p : *replaced) store.add(std::move(p));
+    ids = store.query(polygon.box.enlarged(tol.distance));
+    std::erase_if(
+        ids, [&](int id) { return boxMissesPlane(store.box(id), polygon.plane, tol.distance); });
+    counters.piece_tests += static_cast<long long>(ids.size());
+    // The pieces a polygon meets are cut independently (in parallel), then replaced in
+    // ascending order, so the result does not depend on the thread count.
+    results.assign(ids.size(), CutResult{});
+    const auto cut_one = [&](std::size_t k) {
+      results[k] = cutPiece(store.piece(ids[k]), polygon, tol);
+    };
+    if (ids.size() >= 32) {
+      tbb::parallel_for(std::size_t{0}, ids.size(), cut_one);
+    } else {
+      for (std::size_t k = 0; k < ids.size(); ++k) cut_one(k);
+    }
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      counters.splits += results[k].splits;
+      for (const auto& [a, b] : results[k].coincident) plane_ids.unite(a, b);
+      if (!results[k].pieces) continue;
+      store.kill(ids[k]);
+      for (WorkPiece& p : *results[k].pieces) store.add(std::move(p));
     }
   }
-  std::vector<Piece> pieces = store.takeAlive();
-  counters.pieces = static_cast<int>(pieces.size());
+  std::vector<WorkPiece> work = store.takeAlive();
+  counters.pieces = static_cast<int>(work.size());
+  counters.cut_seconds = secondsSince(start);
+
+  const auto assemble_start = std::chrono::steady_clock::now();
+  std::vector<Piece> pieces;
+  std::vector<std::vector<int>> planes;
+  pieces.reserve(work.size());
+  planes.reserve(work.size());
+  for (WorkPiece& w : work) {
+    for (int& id : w.planes) id = plane_ids.find(id);
+    pieces.push_back(std::move(w.piece));
+    planes.push_back(std::move(w.planes));
+  }
+  const std::vector<PieceContact> contacts =
+      findContactsByPlane(pieces, planes, tol.distance, tol.area);
   AssemblyReport assembly;
-  BlockModel model = assembleBlocks(std::move(pieces), input, tol, &assembly);
+  BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;
+  counters.assemble_seconds = secondsSince(assemble_start);
   if (report) *report = counters;
   return model;
 }

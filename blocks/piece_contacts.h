@@ -27,6 +27,15 @@ struct PieceContact {
 std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, double tolerance,
                                             double min_area);
 
+/// The same contacts when the plane of every face is known: `planes[i][f]` is the id of
+/// the plane that face f of piece i lies in, equal for faces in one geometric plane (a
+/// cutter knows it: the plane that made the face). Only faces with equal ids and opposite
+/// normals and bounding boxes (grown by `tolerance`, m) that meet are compared, so the search costs
+/// about the number of faces, not of piece pairs.
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area);
+
 /// Overlap area (m2) of two convex planar faces given counter-clockwise about `normal` (for
 /// `a`) and about -normal (for `b`), assumed coplanar.
 double faceOverlapArea(const std::vector<geometry::Vec3>& a, const std::vector<geometry::Vec3>& b,

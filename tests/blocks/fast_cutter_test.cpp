@@ -11,6 +11,7 @@
 
 #include "blocks/convex_split.h"
 #include "blocks/disc_scenes.h"
+#include "blocks/piece_contacts.h"
 #include "geometry/disc.h"
 #include "geometry/orientation.h"
 
@@ -311,6 +312,26 @@ TEST(FastCutter, RandomScenesConserveVolumeAndKeepProvenance) {
     const FractureNetwork network = randomDiscNetwork(spec);
     const Cut c = cut(network, 12);
     expectSoundModel(c.model, c.report);
+    // The cutter finds contacts among faces of one cutting plane only; a brute-force search
+    // over all pairs of pieces (same tolerances) must glue the very same blocks.
+    std::vector<Piece> all;
+    for (const Block& b : c.model.blocks) all.insert(all.end(), b.pieces.begin(), b.pieces.end());
+    const CutTolerances tol = cutTolerances(network.domain);
+    std::vector<int> parent(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) parent[i] = static_cast<int>(i);
+    const auto root = [&](int i) {
+      while (parent[i] != i) i = parent[i];
+      return i;
+    };
+    for (const PieceContact& k : findPieceContacts(all, tol.distance, tol.area)) {
+      if (all[k.piece_a].face_sources[k.face_a].kind == FaceKind::Fictitious &&
+          all[k.piece_b].face_sources[k.face_b].kind == FaceKind::Fictitious) {
+        parent[root(k.piece_a)] = root(k.piece_b);
+      }
+    }
+    std::size_t roots = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) roots += root(static_cast<int>(i)) == int(i);
+    EXPECT_EQ(roots, c.model.blocks.size());
     // Provenance: every disc face lies in its disc's plane and inside its polygon
     // (within 1e-9 x diagonal, the validity tolerance above).
     const double tolerance = 1e-9 * network.domain.diagonal();
