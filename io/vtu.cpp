@@ -74,6 +74,10 @@ std::string formatVtu(const VtuPiece& piece) {
   appendArray(out, makeVtuArray("connectivity", piece.connectivity));
   appendArray(out, makeVtuArray("offsets", piece.offsets));
   appendArray(out, makeVtuArray("types", piece.types));
+  if (!piece.faceoffsets.empty()) {
+    appendArray(out, makeVtuArray("faces", piece.faces));
+    appendArray(out, makeVtuArray("faceoffsets", piece.faceoffsets));
+  }
   out +=
       "      </Cells>\n"
       "    </Piece>\n"

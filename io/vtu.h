@@ -47,9 +47,15 @@ struct VtuPiece {
   std::vector<double> points;              ///< x, y, z of each point (m)
   std::vector<std::int64_t> connectivity;  ///< point indices of all cells, cell after cell
   std::vector<std::int64_t> offsets;       ///< end of each cell in connectivity
-  std::vector<std::uint8_t> types;         ///< VTK cell type of each cell (7 = polygon)
-  std::vector<VtuArray> cell_data;         ///< one value (tuple) per cell
-  std::vector<VtuArray> point_data;        ///< one value (tuple) per point
+  std::vector<std::uint8_t> types;         ///< VTK cell type of each cell (7 = polygon,
+                                           ///< 42 = polyhedron)
+  /// Polyhedron cells only (both empty otherwise): per cell, the face stream
+  /// [face count, then per face its point count and point indices], cell after cell...
+  std::vector<std::int64_t> faces;
+  /// ...and the end of each cell's stream in `faces` (-1 for a cell that is no polyhedron).
+  std::vector<std::int64_t> faceoffsets;
+  std::vector<VtuArray> cell_data;   ///< one value (tuple) per cell
+  std::vector<VtuArray> point_data;  ///< one value (tuple) per point
 };
 
 /// The .vtu text of `piece`.
