@@ -24,6 +24,10 @@ struct CutInput {
   /// of a closed mesh. domain_box bounds it.
   std::vector<geometry::Polyhedron> domain_pieces;
   geometry::Box domain_box;
+  /// The closed surface of a mesh domain exactly as read (outward faces, m); empty for a box
+  /// domain. The exact cutter builds its Nef polyhedron from it (no rounding of the pieces);
+  /// Boundary face ids of a mesh domain index its faces.
+  geometry::Polyhedron domain_surface;
   const geometry::FractureNetwork* network = nullptr;  ///< discs (those with cuts == true cut)
   int disc_segments = 24;                              ///< polygon points per ellipse (>= 3)
   int rock_material = -1;                              ///< material of blocks outside every slab
