@@ -30,6 +30,45 @@ struct DdaBlock {
   std::vector<geometry::Polyhedron> pieces;  ///< convex pieces sharing one displacement field
   int material = 0;                          ///< index into DdaModel::materials
   bool fixed = false;                        ///< held in place (a fixed block)
+  /// Initial stress (Pa) in Voigt order (sx, sy, sz, tyz, tzx, txy), compression negative.
+  Eigen::Matrix<double, 6, 1> initial_stress = Eigen::Matrix<double, 6, 1>::Zero();
+  /// Initial velocity (m/s) of the centroid and angular velocity (rad/s) about it.
+  geometry::Vec3 initial_velocity = geometry::Vec3::Zero();
+  geometry::Vec3 initial_angular_velocity = geometry::Vec3::Zero();
+};
+
+/// A constant force applied at a material point of a block (it moves with the block).
+struct DdaPointLoad {
+  int block = -1;                                 ///< index into DdaModel::blocks
+  geometry::Vec3 point = geometry::Vec3::Zero();  ///< initial position (m)
+  geometry::Vec3 force = geometry::Vec3::Zero();  ///< N
+};
+
+/// A material point held at its initial position by a penalty spring (Shi's fixed point).
+struct DdaFixedPoint {
+  int block = -1;                                 ///< index into DdaModel::blocks
+  geometry::Vec3 point = geometry::Vec3::Zero();  ///< initial position (m)
+};
+
+/// Hydrostatic pressure p(z) = unit_weight * max(0, level - z) acting on one face of one
+/// piece, pushing against the face's outward normal. Integrated exactly over the wet part.
+struct DdaPressure {
+  int block = -1;             ///< index into DdaModel::blocks
+  int piece = 0;              ///< index into DdaBlock::pieces
+  int face = 0;               ///< index into Polyhedron::faces of that piece
+  double level = 0.0;         ///< z of the free water surface (m)
+  double unit_weight = 9810;  ///< N/m3
+};
+
+/// A bolt: an elastic spring between a material point of one block and one of another
+/// (block_b = -1: anchored to the ground). Its force is stiffness * (length - free length).
+struct DdaBolt {
+  int block_a = -1;                                 ///< index into DdaModel::blocks
+  geometry::Vec3 point_a = geometry::Vec3::Zero();  ///< initial position (m)
+  int block_b = -1;                                 ///< index into DdaModel::blocks, or -1
+  geometry::Vec3 point_b = geometry::Vec3::Zero();  ///< initial position (m)
+  double stiffness = 0.0;                           ///< N/m
+  double pretension = 0.0;                          ///< N, > 0 pulls the two points together
 };
 
 /// A point attached to a block; its displacement and velocity are recorded.
@@ -50,6 +89,20 @@ struct DdaModel {
   int default_joint = 0;
   geometry::Vec3 gravity = geometry::Vec3::Zero();  ///< m/s2 (zero: no body force)
   std::vector<DdaMonitor> monitors;
+  std::vector<DdaPointLoad> point_loads;
+  std::vector<DdaFixedPoint> fixed_points;
+  std::vector<DdaPressure> pressures;
+  std::vector<DdaBolt> bolts;
+
+  /// Joint between two materials: joint_table when it has the pair, else default_joint.
+  const DdaJoint& jointBetween(int material_a, int material_b) const {
+    const auto in = [&](int m) { return m >= 0 && m < static_cast<int>(joint_table.size()); };
+    if (in(material_a) && material_b >= 0 &&
+        material_b < static_cast<int>(joint_table[material_a].size())) {
+      return joints.at(static_cast<std::size_t>(joint_table[material_a][material_b]));
+    }
+    return joints.at(static_cast<std::size_t>(default_joint));
+  }
 };
 
 }  // namespace rockmass::dda3d

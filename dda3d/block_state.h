@@ -1,0 +1,68 @@
+// The moving state of one DDA block: its current geometry, mass properties, velocity,
+// stress and strain, and the kinematics that move it by one step's displacement.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "dda3d/displacement_field.h"
+#include "geometry/polyhedron.h"
+#include "geometry/vec.h"
+
+namespace rockmass::dda3d {
+
+/// Block unknowns D (12; a rigid block uses the first 6 and keeps the rest zero).
+using BlockVector = Eigen::Matrix<double, kBlockDofs, 1>;
+/// A 12 x 12 sub-matrix of the system (a rigid block uses the top-left 6 x 6).
+using BlockMatrix = Eigen::Matrix<double, kBlockDofs, kBlockDofs>;
+/// Stress (Pa) or strain (-) in Voigt order (xx, yy, zz, yz, zx, xy).
+using VoigtVector = Eigen::Matrix<double, kVoigtSize, 1>;
+
+/// Topology of a convex piece, fixed for the whole run (vertices only move).
+struct PieceTopology {
+  std::vector<std::array<int, 2>> edges;       ///< unique vertex pairs
+  std::vector<std::vector<int>> neighbours;    ///< vertices joined to each vertex by an edge
+  std::vector<std::vector<int>> vertex_faces;  ///< faces around each vertex
+};
+
+/// Edges, vertex neighbours and vertex faces of a polyhedron given by its faces.
+PieceTopology pieceTopology(const geometry::Polyhedron& piece);
+
+/// The state of one block.
+struct BlockState {
+  std::vector<geometry::Polyhedron> pieces;  ///< current geometry (m)
+  std::vector<PieceTopology> topology;       ///< one per piece
+  int material = 0;                          ///< index into DdaModel::materials
+  bool fixed = false;                        ///< no unknowns: held in place
+  int dof_offset =
+      -1;             ///< index among movable blocks (rows start at dof_offset * dofs), -1 if fixed
+  double mass = 0.0;  ///< kg, constant through the run
+  double volume = 0.0;                               ///< m3, current
+  geometry::Vec3 centroid = geometry::Vec3::Zero();  ///< m, current
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  ///< integral of X X^T about the centroid, m5
+  BlockVector velocity = BlockVector::Zero();        ///< dD/dt at the start of the step
+  BlockVector last_displacement = BlockVector::Zero();  ///< D of the last accepted step
+  VoigtVector stress = VoigtVector::Zero();             ///< Pa, Voigt order
+  VoigtVector strain = VoigtVector::Zero();             ///< accumulated strain (-), Voigt order
+  double size = 0.0;                                    ///< bounding-box diagonal (m)
+
+  /// Recomputes volume, centroid, second moments and size from the current pieces.
+  void updateMassProperties();
+};
+
+/// Mass matrix rho * integral of T^T T over the block (kg, kg m, kg m2 entries), 12 x 12.
+/// Uses the second moments about the centroid; the first moments vanish there.
+BlockMatrix massMatrix(const BlockState& block);
+
+/// New position of material point `x` (m) of a block with centroid `centroid` moved by `d`:
+/// translation, the rigid rotation applied exactly (Rodrigues, angle |r|) and the strain
+/// part linearly: x' = c + u0 + R X + S X, S the symmetric strain tensor.
+geometry::Vec3 movedPoint(const geometry::Vec3& x, const geometry::Vec3& centroid,
+                          const BlockVector& d);
+
+/// The exact rotation matrix of the rotation vector (rx, ry, rz) (rad).
+Eigen::Matrix3d rotationMatrix(const geometry::Vec3& rotation);
+
+}  // namespace rockmass::dda3d

@@ -1,0 +1,137 @@
+#include "dda3d/block_system.h"
+
+#include <algorithm>
+
+namespace rockmass::dda3d {
+
+namespace {
+long long pairKey(int i, int j) {
+  return (static_cast<long long>(i) << 32) | static_cast<unsigned>(j);
+}
+}  // namespace
+
+BlockSystem::BlockSystem(int block_count, int dofs)
+    : block_count_(block_count),
+      dofs_(dofs),
+      diagonal_(static_cast<std::size_t>(block_count), BlockMatrix::Zero()),
+      rhs_(static_cast<std::size_t>(block_count), BlockVector::Zero()) {
+  setPairs({});
+}
+
+bool BlockSystem::setPairs(std::vector<std::pair<int, int>> pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  if (pairs == pairs_ && matrix_.rows() == static_cast<Eigen::Index>(block_count_) * dofs_) {
+    return false;
+  }
+  pairs_ = std::move(pairs);
+  off_diagonal_.assign(pairs_.size(), BlockMatrix::Zero());
+  pair_index_.clear();
+  columns_.assign(static_cast<std::size_t>(block_count_), {});
+  for (int b = 0; b < block_count_; ++b)
+    columns_[static_cast<std::size_t>(b)].push_back({b, -1, false});
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const auto [i, j] = pairs_[p];
+    pair_index_[pairKey(i, j)] = static_cast<int>(p);
+    // Column j holds K_ij (stored); column i holds K_ji = K_ij^T.
+    columns_[static_cast<std::size_t>(j)].push_back({i, static_cast<int>(p), false});
+    columns_[static_cast<std::size_t>(i)].push_back({j, static_cast<int>(p), true});
+  }
+  std::size_t nonzeros = 0;
+  for (auto& column : columns_) {
+    std::sort(column.begin(), column.end(),
+              [](const Source& x, const Source& y) { return x.row_block < y.row_block; });
+    nonzeros += column.size();
+  }
+  const Eigen::Index n = static_cast<Eigen::Index>(block_count_) * dofs_;
+  matrix_ = SparseMatrix(n, n);
+  matrix_.resizeNonZeros(static_cast<Eigen::Index>(nonzeros) * dofs_ * dofs_);
+  int* outer = matrix_.outerIndexPtr();
+  int* inner = matrix_.innerIndexPtr();
+  int at = 0;
+  for (int b = 0; b < block_count_; ++b) {
+    for (int c = 0; c < dofs_; ++c) {
+      outer[b * dofs_ + c] = at;
+      for (const Source& s : columns_[static_cast<std::size_t>(b)]) {
+        for (int r = 0; r < dofs_; ++r) inner[at++] = s.row_block * dofs_ + r;
+      }
+    }
+  }
+  outer[n] = at;
+  return true;
+}
+
+void BlockSystem::clear() {
+  for (BlockMatrix& m : diagonal_) m.setZero();
+  for (BlockMatrix& m : off_diagonal_) m.setZero();
+  for (BlockVector& f : rhs_) f.setZero();
+}
+
+BlockMatrix& BlockSystem::pairBlock(int i, int j, bool& transposed) {
+  transposed = i > j;
+  const auto found = pair_index_.find(transposed ? pairKey(j, i) : pairKey(i, j));
+  return off_diagonal_[static_cast<std::size_t>(found->second)];
+}
+
+void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k,
+                            double d0) {
+  if (i >= 0) {
+    diagonal_[static_cast<std::size_t>(i)].noalias() += k * a * a.transpose();
+    rhs_[static_cast<std::size_t>(i)] -= k * d0 * a;
+  }
+  if (j >= 0) {
+    diagonal_[static_cast<std::size_t>(j)].noalias() += k * b * b.transpose();
+    rhs_[static_cast<std::size_t>(j)] -= k * d0 * b;
+  }
+  if (i >= 0 && j >= 0 && i != j) {
+    bool transposed = false;
+    BlockMatrix& m = pairBlock(i, j, transposed);
+    if (transposed) {
+      m.noalias() += k * b * a.transpose();  // stored K_ji
+    } else {
+      m.noalias() += k * a * b.transpose();
+    }
+  } else if (i >= 0 && i == j) {
+    diagonal_[static_cast<std::size_t>(i)].noalias() += k * (a * b.transpose() + b * a.transpose());
+  }
+}
+
+const SparseMatrix& BlockSystem::matrix() {
+  double* values = matrix_.valuePtr();
+  int at = 0;
+  for (int b = 0; b < block_count_; ++b) {
+    for (int c = 0; c < dofs_; ++c) {
+      for (const Source& s : columns_[static_cast<std::size_t>(b)]) {
+        if (s.pair < 0) {
+          const BlockMatrix& m = diagonal_[static_cast<std::size_t>(b)];
+          for (int r = 0; r < dofs_; ++r) values[at++] = m(r, c);
+        } else {
+          const BlockMatrix& m = off_diagonal_[static_cast<std::size_t>(s.pair)];
+          if (s.transposed) {
+            for (int r = 0; r < dofs_; ++r) values[at++] = m(c, r);
+          } else {
+            for (int r = 0; r < dofs_; ++r) values[at++] = m(r, c);
+          }
+        }
+      }
+    }
+  }
+  return matrix_;
+}
+
+Eigen::VectorXd BlockSystem::rhs() const {
+  Eigen::VectorXd f(static_cast<Eigen::Index>(block_count_) * dofs_);
+  for (int b = 0; b < block_count_; ++b) {
+    f.segment(static_cast<Eigen::Index>(b) * dofs_, dofs_) =
+        rhs_[static_cast<std::size_t>(b)].head(dofs_);
+  }
+  return f;
+}
+
+BlockVector BlockSystem::unknowns(const Eigen::VectorXd& x, int i) const {
+  BlockVector d = BlockVector::Zero();
+  d.head(dofs_) = x.segment(static_cast<Eigen::Index>(i) * dofs_, dofs_);
+  return d;
+}
+
+}  // namespace rockmass::dda3d

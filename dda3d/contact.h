@@ -1,0 +1,53 @@
+// A DDA contact: one point-to-face entry between two blocks, with its open-close state.
+#pragma once
+
+#include <cstdint>
+
+#include "geometry/vec.h"
+
+namespace rockmass::dda3d {
+
+/// How the entry was found.
+enum class ContactKind : std::uint8_t {
+  VertexFace,  ///< a vertex of piece i near or in a face of piece j
+  EdgeEdge,    ///< crossing edges of piece i and piece j
+};
+
+/// Open-close state of a contact.
+enum class ContactState : std::uint8_t {
+  Open,     ///< no spring
+  Sliding,  ///< normal spring and a friction force f N against the sliding direction
+  Locked,   ///< normal spring and two shear springs
+};
+
+/// One point-to-face entry (formulation doc, "Point-to-face contact"): point P of block i
+/// against a plane of block j through P0 with outward unit normal n (out of j).
+struct Contact {
+  ContactKind kind = ContactKind::VertexFace;
+  int block_i = -1;  ///< block of the point
+  int piece_i = -1;  ///< piece of block_i
+  int block_j = -1;  ///< block of the face
+  int piece_j = -1;  ///< piece of block_j
+  int vertex = -1;   ///< VertexFace: vertex of piece_i
+  int face = -1;     ///< VertexFace: reference face of piece_j
+  int edge_i = -1;   ///< EdgeEdge: edge of piece_i (index into PieceTopology::edges)
+  int edge_j = -1;   ///< EdgeEdge: edge of piece_j
+
+  geometry::Vec3 point = geometry::Vec3::Zero();    ///< P at the start of the step (m)
+  geometry::Vec3 foot = geometry::Vec3::Zero();     ///< P', projection of P on the plane (m)
+  geometry::Vec3 normal = geometry::Vec3::UnitZ();  ///< unit, pointing out of block j
+  double gap0 = 0.0;  ///< d0 = n . (P - P0) at the start of the step (m), < 0: penetration
+  double area = 0.0;  ///< tributary area for cohesion and tension (m2)
+
+  ContactState state = ContactState::Open;
+  bool bonded = true;  ///< cohesion and tensile strength intact (lost once slid or opened)
+  /// Accumulated shear offset of P relative to j while locked (m), in the tangent plane.
+  geometry::Vec3 shear = geometry::Vec3::Zero();
+  /// Unit direction of i's motion relative to j while sliding.
+  geometry::Vec3 slide_direction = geometry::Vec3::Zero();
+  double normal_force = 0.0;  ///< N, compression positive, from the last solve
+  double gap = 0.0;           ///< d after the last solve (m)
+  int flips = 0;              ///< locked <-> sliding changes in the current step (reset every step)
+};
+
+}  // namespace rockmass::dda3d

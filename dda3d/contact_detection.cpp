@@ -1,0 +1,300 @@
+#include "dda3d/contact_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace rockmass::dda3d {
+
+using geometry::Box;
+using geometry::Polyhedron;
+using geometry::Vec3;
+
+namespace {
+
+/// Edges nearly parallel within this angle give no edge-to-edge entry (sin 5 deg).
+constexpr double kParallelSine = 0.087;
+/// Edge parameters this close to an end are vertex contacts, handled as vertex-to-face.
+constexpr double kEdgeEndMargin = 1e-6;
+/// A face of piece i counts for a vertex's tributary area when its normal is within 10 deg
+/// of the opposite of the contact normal.
+constexpr double kAreaCosine = 0.985;
+/// A vertex may touch face f when none of its edges dives into f's plane steeper than this
+/// (cosine of the angle with the inward normal; 0.3 ~ 17 deg below the plane).
+constexpr double kConeSlack = 0.3;
+
+struct Plane {
+  Vec3 normal;
+  double offset;  // n . x on the plane
+  double area;
+};
+
+std::vector<Plane> facePlanes(const Polyhedron& piece) {
+  std::vector<Plane> planes;
+  planes.reserve(piece.faces.size());
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+    const std::vector<int>& face = piece.faces[f];
+    Vec3 newell = Vec3::Zero();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      newell += piece.vertices[face[k]].cross(piece.vertices[face[(k + 1) % face.size()]]);
+    }
+    const double twice_area = newell.norm();
+    const Vec3 n = twice_area > 0.0 ? Vec3(newell / twice_area) : Vec3(Vec3::Zero());
+    planes.push_back({n, n.dot(piece.vertices[face[0]]), 0.5 * twice_area});
+  }
+  return planes;
+}
+
+/// True when q (on the face's plane) lies inside the convex face, within `tolerance` (m).
+bool insideFace(const Polyhedron& piece, const std::vector<int>& face, const Vec3& normal,
+                const Vec3& q, double tolerance) {
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Vec3& a = piece.vertices[face[k]];
+    const Vec3& b = piece.vertices[face[(k + 1) % face.size()]];
+    const Vec3 edge = b - a;
+    if ((edge.cross(q - a)).dot(normal) < -tolerance * edge.norm()) return false;
+  }
+  return true;
+}
+
+/// Share of the areas of piece i's faces around `vertex` that face the contact normal.
+double tributaryArea(const Polyhedron& piece, const PieceTopology& topology,
+                     const std::vector<Plane>& planes, int vertex, const Vec3& normal) {
+  double area = 0.0;
+  for (int f : topology.vertex_faces[static_cast<std::size_t>(vertex)]) {
+    const Plane& plane = planes[static_cast<std::size_t>(f)];
+    if (plane.normal.dot(normal) < -kAreaCosine) {
+      area += plane.area / static_cast<double>(piece.faces[static_cast<std::size_t>(f)].size());
+    }
+  }
+  return area;
+}
+
+struct PieceView {
+  int block;
+  int piece;
+  const Polyhedron& shape;
+  const PieceTopology& topology;
+  std::vector<Plane> planes;
+  Box box;
+  Vec3 centroid;
+};
+
+PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
+  const BlockState& b = blocks[static_cast<std::size_t>(block)];
+  const Polyhedron& shape = b.pieces[static_cast<std::size_t>(piece)];
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& v : shape.vertices) centroid += v;
+  centroid /= static_cast<double>(shape.vertices.size());
+  return {block,
+          piece,
+          shape,
+          b.topology[static_cast<std::size_t>(piece)],
+          facePlanes(shape),
+          geometry::bounds(shape),
+          centroid};
+}
+
+/// Vertices of `a` against faces of `b`.
+void vertexToFace(const PieceView& a, const PieceView& b, double range, double tolerance,
+                  const PreviousFace& previous_face, std::vector<Contact>& out) {
+  const Box reach = b.box.enlarged(range);
+  for (std::size_t v = 0; v < a.shape.vertices.size(); ++v) {
+    const Vec3& p = a.shape.vertices[v];
+    if (!reach.contains(p)) continue;
+    double outside = -std::numeric_limits<double>::infinity();
+    for (const Plane& plane : b.planes)
+      outside = std::max(outside, plane.normal.dot(p) - plane.offset);
+    if (outside > range) continue;
+    const bool is_outside = outside > tolerance;
+    const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
+    int best = -1;
+    double best_gap = 0.0, best_alignment = 0.0;
+    for (std::size_t f = 0; f < b.planes.size(); ++f) {
+      const Plane& plane = b.planes[f];
+      const double gap = plane.normal.dot(p) - plane.offset;
+      if (gap < -range || (is_outside && gap <= tolerance)) continue;
+      const Vec3 foot = p - gap * plane.normal;
+      if (!insideFace(b.shape, b.shape.faces[f], plane.normal, foot, tolerance)) continue;
+      bool cone_ok = true;  // i's body near the vertex stays on the outer side of f
+      for (int w : a.topology.neighbours[v]) {
+        const Vec3 edge = a.shape.vertices[static_cast<std::size_t>(w)] - p;
+        if (plane.normal.dot(edge) < -kConeSlack * edge.norm()) cone_ok = false;
+      }
+      if (!cone_ok) continue;
+      if (static_cast<int>(f) == previous) {
+        best = previous;
+        break;
+      }
+      // Least penetration first (the face it most likely entered through); among equal gaps
+      // (a vertex on an edge or corner of b) the face that looks most towards the vertex.
+      const double alignment = plane.normal.dot((p - b.centroid).normalized());
+      if (best < 0 || gap > best_gap + tolerance ||
+          (gap > best_gap - tolerance && alignment > best_alignment)) {
+        best = static_cast<int>(f);
+        best_gap = gap;
+        best_alignment = alignment;
+      }
+    }
+    if (best < 0) continue;
+    const Plane& plane = b.planes[static_cast<std::size_t>(best)];
+    Contact c;
+    c.kind = ContactKind::VertexFace;
+    c.block_i = a.block;
+    c.piece_i = a.piece;
+    c.block_j = b.block;
+    c.piece_j = b.piece;
+    c.vertex = static_cast<int>(v);
+    c.face = best;
+    c.point = p;
+    c.normal = plane.normal;
+    c.gap0 = plane.normal.dot(p) - plane.offset;
+    c.foot = p - c.gap0 * plane.normal;
+    c.area = tributaryArea(a.shape, a.topology, a.planes, static_cast<int>(v), plane.normal);
+    out.push_back(c);
+  }
+}
+
+/// Crossing edges of `a` and `b`.
+void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tolerance,
+                std::vector<Contact>& out) {
+  const Box reach_b = b.box.enlarged(range);
+  for (std::size_t ea = 0; ea < a.topology.edges.size(); ++ea) {
+    const Vec3& a0 = a.shape.vertices[static_cast<std::size_t>(a.topology.edges[ea][0])];
+    const Vec3& a1 = a.shape.vertices[static_cast<std::size_t>(a.topology.edges[ea][1])];
+    const Box edge_box{a0.cwiseMin(a1), a0.cwiseMax(a1)};
+    if ((edge_box.min.array() > reach_b.max.array()).any() ||
+        (edge_box.max.array() < reach_b.min.array()).any()) {
+      continue;
+    }
+    const Vec3 u = a1 - a0;
+    for (std::size_t eb = 0; eb < b.topology.edges.size(); ++eb) {
+      const Vec3& b0 = b.shape.vertices[static_cast<std::size_t>(b.topology.edges[eb][0])];
+      const Vec3& b1 = b.shape.vertices[static_cast<std::size_t>(b.topology.edges[eb][1])];
+      const Vec3 w = b1 - b0;
+      const Vec3 cross = u.cross(w);
+      const double cross_norm = cross.norm();
+      if (cross_norm <= kParallelSine * u.norm() * w.norm()) continue;
+      const Vec3 r = a0 - b0;
+      const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w), ur = u.dot(r), wr = w.dot(r);
+      const double den = cross_norm * cross_norm;
+      const double s = (uw * wr - ww * ur) / den;
+      const double t = (uu * wr - uw * ur) / den;
+      if (s <= kEdgeEndMargin || s >= 1.0 - kEdgeEndMargin || t <= kEdgeEndMargin ||
+          t >= 1.0 - kEdgeEndMargin) {
+        continue;
+      }
+      const Vec3 pc = a0 + s * u;
+      const Vec3 qc = b0 + t * w;
+      if ((pc - qc).norm() > range) continue;
+      // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
+      // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
+      // edges penetrate.
+      Vec3 n = cross / cross_norm;
+      double low = std::numeric_limits<double>::infinity();
+      double high = -low;
+      for (const Vec3& v : b.shape.vertices) {
+        const double h = n.dot(v - qc);
+        low = std::min(low, h);
+        high = std::max(high, h);
+      }
+      if (high > tolerance) {
+        if (low < -tolerance) continue;
+        n = -n;
+      }
+      bool supports_a = true;
+      for (const Vec3& v : a.shape.vertices) {
+        if (n.dot(v - pc) < -tolerance) {
+          supports_a = false;
+          break;
+        }
+      }
+      if (!supports_a) continue;
+      Contact c;
+      c.kind = ContactKind::EdgeEdge;
+      c.block_i = a.block;
+      c.piece_i = a.piece;
+      c.block_j = b.block;
+      c.piece_j = b.piece;
+      c.edge_i = static_cast<int>(ea);
+      c.edge_j = static_cast<int>(eb);
+      c.point = pc;
+      c.normal = n;
+      c.gap0 = n.dot(pc - qc);
+      c.foot = pc - c.gap0 * n;
+      if (c.gap0 < -range) continue;
+      out.push_back(c);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks, double range) {
+  struct Entry {
+    Box box;
+    int block, piece;
+  };
+  std::vector<Entry> entries;
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 high = -low;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    for (std::size_t p = 0; p < blocks[b].pieces.size(); ++p) {
+      const Box box = geometry::bounds(blocks[b].pieces[p]).enlarged(0.5 * range);
+      entries.push_back({box, static_cast<int>(b), static_cast<int>(p)});
+      low = low.cwiseMin(box.center());
+      high = high.cwiseMax(box.center());
+    }
+  }
+  int axis = 0;
+  (high - low).maxCoeff(&axis);
+  std::sort(entries.begin(), entries.end(), [axis](const Entry& x, const Entry& y) {
+    if (x.box.min[axis] != y.box.min[axis]) return x.box.min[axis] < y.box.min[axis];
+    return std::tie(x.block, x.piece) < std::tie(y.block, y.piece);
+  });
+  std::vector<PiecePair> pairs;
+  std::vector<std::size_t> active;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const Entry& e = entries[k];
+    std::size_t kept = 0;
+    for (std::size_t a : active) {
+      const Entry& o = entries[a];
+      if (o.box.max[axis] < e.box.min[axis]) continue;  // left the sweep for good
+      active[kept++] = a;
+      if (o.block == e.block) continue;
+      if (blocks[static_cast<std::size_t>(o.block)].fixed &&
+          blocks[static_cast<std::size_t>(e.block)].fixed) {
+        continue;
+      }
+      if ((o.box.min.array() > e.box.max.array()).any() ||
+          (o.box.max.array() < e.box.min.array()).any()) {
+        continue;
+      }
+      PiecePair pair{o.block, o.piece, e.block, e.piece};
+      if (std::tie(pair.block_b, pair.piece_b) < std::tie(pair.block_a, pair.piece_a)) {
+        pair = {e.block, e.piece, o.block, o.piece};
+      }
+      pairs.push_back(pair);
+    }
+    active.resize(kept);
+    active.push_back(k);
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PiecePair& x, const PiecePair& y) {
+    return std::tie(x.block_a, x.piece_a, x.block_b, x.piece_b) <
+           std::tie(y.block_a, y.piece_a, y.block_b, y.piece_b);
+  });
+  return pairs;
+}
+
+void narrowPhase(const std::vector<BlockState>& blocks, const PiecePair& pair, double range,
+                 const PreviousFace& previous_face, std::vector<Contact>& out) {
+  const PieceView a = view(blocks, pair.block_a, pair.piece_a);
+  const PieceView b = view(blocks, pair.block_b, pair.piece_b);
+  const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
+  vertexToFace(a, b, range, tolerance, previous_face, out);
+  vertexToFace(b, a, range, tolerance, previous_face, out);
+  edgeToEdge(a, b, range, tolerance, out);
+}
+
+}  // namespace rockmass::dda3d

@@ -1,0 +1,727 @@
+#include "dda3d/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "dda3d/block_terms.h"
+#include "dda3d/contact_detection.h"
+
+namespace rockmass::dda3d {
+
+using geometry::Vec3;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Identity of a contact across steps: a vertex against a piece (its face may change), or
+/// an edge against an edge.
+struct ContactKey {
+  int kind, block_i, piece_i, a, block_j, piece_j, b;
+  bool operator==(const ContactKey&) const = default;
+};
+struct ContactKeyHash {
+  std::size_t operator()(const ContactKey& k) const {
+    std::size_t h = 1469598103934665603ull;
+    for (int v : {k.kind, k.block_i, k.piece_i, k.a, k.block_j, k.piece_j, k.b}) {
+      h = (h ^ static_cast<std::size_t>(static_cast<unsigned>(v))) * 1099511628211ull;
+    }
+    return h;
+  }
+};
+ContactKey keyOf(const Contact& c) {
+  if (c.kind == ContactKind::VertexFace) {
+    return {0, c.block_i, c.piece_i, c.vertex, c.block_j, c.piece_j, -1};
+  }
+  return {1, c.block_i, c.piece_i, c.edge_i, c.block_j, c.piece_j, c.edge_j};
+}
+
+/// Two unit tangents completing n to an orthonormal basis.
+void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  t1 = n.cross(helper).normalized();
+  t2 = n.cross(t1);
+}
+
+Vec3 tangential(const Vec3& v, const Vec3& n) {
+  return v - n * n.dot(v);
+}
+
+Eigen::Matrix3d voigtToTensor(const VoigtVector& v, double shear_scale) {
+  Eigen::Matrix3d t;
+  // clang-format off
+  t << v[0],               shear_scale * v[5], shear_scale * v[4],
+       shear_scale * v[5], v[1],               shear_scale * v[3],
+       shear_scale * v[4], shear_scale * v[3], v[2];
+  // clang-format on
+  return t;
+}
+VoigtVector tensorToVoigt(const Eigen::Matrix3d& t, double shear_scale) {
+  VoigtVector v;
+  v << t(0, 0), t(1, 1), t(2, 2), t(1, 2) / shear_scale, t(2, 0) / shear_scale,
+      t(0, 1) / shear_scale;
+  return v;
+}
+/// R s R^T for a stress (shear scale 1) or a strain with engineering shears (scale 1/2).
+VoigtVector rotateVoigt(const VoigtVector& v, const Eigen::Matrix3d& r, double shear_scale) {
+  return tensorToVoigt(r * voigtToTensor(v, shear_scale) * r.transpose(), shear_scale);
+}
+
+void checkBlockIndex(const DdaModel& model, int block, const std::string& what) {
+  if (block < 0 || block >= static_cast<int>(model.blocks.size())) {
+    throw std::invalid_argument(what + " refers to block " + std::to_string(block) +
+                                ", but the model has " + std::to_string(model.blocks.size()) +
+                                " blocks");
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> ActiveTerms::names() const {
+  std::vector<std::string> out;
+  const std::pair<bool, const char*> all[] = {{elastic, "elastic"},
+                                              {initial_stress, "initial_stress"},
+                                              {inertia, "inertia"},
+                                              {body_force, "body_force"},
+                                              {point_loads, "point_loads"},
+                                              {surface_pressure, "surface_pressure"},
+                                              {fixed_points, "fixed_points"},
+                                              {fixed_blocks, "fixed_blocks"},
+                                              {contact_normal, "contact_normal"},
+                                              {contact_shear, "contact_shear"},
+                                              {friction, "friction"},
+                                              {bolts, "bolts"}};
+  for (const auto& [on, name] : all) {
+    if (on) out.emplace_back(name);
+  }
+  return out;
+}
+
+ActiveTerms& ActiveTerms::operator|=(const ActiveTerms& o) {
+  elastic |= o.elastic;
+  initial_stress |= o.initial_stress;
+  inertia |= o.inertia;
+  body_force |= o.body_force;
+  point_loads |= o.point_loads;
+  surface_pressure |= o.surface_pressure;
+  fixed_points |= o.fixed_points;
+  fixed_blocks |= o.fixed_blocks;
+  contact_normal |= o.contact_normal;
+  contact_shear |= o.contact_shear;
+  friction |= o.friction;
+  bolts |= o.bolts;
+  return *this;
+}
+
+Simulation::Simulation(DdaModel model, DdaSettings settings)
+    : model_(std::move(model)), settings_(settings) {
+  if (model_.materials.empty()) throw std::invalid_argument("the DDA model has no material");
+  if (model_.joints.empty()) model_.joints.push_back(DdaJoint{});
+  if (model_.default_joint < 0 || model_.default_joint >= static_cast<int>(model_.joints.size())) {
+    throw std::invalid_argument("default_joint " + std::to_string(model_.default_joint) +
+                                " is not an index into the joints");
+  }
+  for (const auto& row : model_.joint_table) {
+    for (int j : row) {
+      if (j < 0 || j >= static_cast<int>(model_.joints.size())) {
+        throw std::invalid_argument("joint_table entry " + std::to_string(j) +
+                                    " is not an index into the joints");
+      }
+    }
+  }
+  if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time_step must be > 0 s");
+  if (!(settings_.max_displacement_ratio > 0.0)) {
+    throw std::invalid_argument("max_displacement_ratio must be > 0");
+  }
+  dofs_ = settings_.kinematics == Kinematics::Rigid ? 6 : kBlockDofs;
+  for (const DdaMaterial& m : model_.materials) {
+    elastic_.push_back(elasticMatrix(m.young, m.poisson));
+    if (!(m.density > 0.0)) throw std::invalid_argument("material density must be > 0 kg/m3");
+  }
+
+  geometry::Box all{Vec3::Constant(std::numeric_limits<double>::infinity()),
+                    Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  int movable = 0;
+  double total_volume = 0.0;
+  for (std::size_t b = 0; b < model_.blocks.size(); ++b) {
+    const DdaBlock& in = model_.blocks[b];
+    if (in.material < 0 || in.material >= static_cast<int>(model_.materials.size())) {
+      throw std::invalid_argument("block " + std::to_string(b) + " has material " +
+                                  std::to_string(in.material) + ", which does not exist");
+    }
+    if (in.pieces.empty())
+      throw std::invalid_argument("block " + std::to_string(b) + " has no piece");
+    BlockState s;
+    s.pieces = in.pieces;
+    for (const geometry::Polyhedron& p : s.pieces) {
+      if (p.vertices.size() < 4 || p.faces.size() < 4) {
+        throw std::invalid_argument("block " + std::to_string(b) +
+                                    " has a piece with fewer than 4 vertices or faces");
+      }
+      s.topology.push_back(pieceTopology(p));
+      const geometry::Box box = geometry::bounds(p);
+      all.min = all.min.cwiseMin(box.min);
+      all.max = all.max.cwiseMax(box.max);
+    }
+    s.material = in.material;
+    s.fixed = in.fixed;
+    s.updateMassProperties();
+    if (!(s.volume > 0.0)) {
+      throw std::invalid_argument("block " + std::to_string(b) +
+                                  " has a non-positive volume (faces must be CCW from outside)");
+    }
+    s.mass = model_.materials[static_cast<std::size_t>(in.material)].density * s.volume;
+    s.stress = in.initial_stress;
+    if (!s.fixed) {
+      s.dof_offset = movable++;
+      s.velocity.head<3>() = in.initial_velocity;
+      s.velocity.segment<3>(3) = in.initial_angular_velocity;
+    }
+    total_volume += s.volume;
+    blocks_.push_back(std::move(s));
+    initial_centroids_.push_back(blocks_.back().centroid);
+    active_.fixed_blocks |= in.fixed;
+  }
+  half_domain_ = settings_.half_domain_size > 0.0 ? settings_.half_domain_size
+                                                  : 0.5 * (all.max - all.min).maxCoeff();
+  double young_max = 0.0;
+  for (const DdaMaterial& m : model_.materials) young_max = std::max(young_max, m.young);
+  const double block_length =
+      blocks_.empty() ? 1.0 : std::cbrt(total_volume / static_cast<double>(blocks_.size()));
+  penalty_ = settings_.penalty > 0.0 ? settings_.penalty
+                                     : settings_.penalty_factor * young_max * block_length;
+  dt_ = settings_.time_step;
+
+  const auto attach = [&](int block, const Vec3& p, const std::string& what) {
+    checkBlockIndex(model_, block, what);
+    return MaterialPoint{block, p, p};
+  };
+  for (const DdaMonitor& m : model_.monitors)
+    monitor_points_.push_back(attach(m.block, m.point, "monitor " + m.name));
+  for (const DdaPointLoad& l : model_.point_loads)
+    load_points_.push_back(attach(l.block, l.point, "a point load"));
+  for (const DdaFixedPoint& f : model_.fixed_points)
+    fixed_points_.push_back(attach(f.block, f.point, "a fixed point"));
+  for (const DdaPressure& p : model_.pressures) {
+    checkBlockIndex(model_, p.block, "a pressure entry");
+    const DdaBlock& b = model_.blocks[static_cast<std::size_t>(p.block)];
+    if (p.piece < 0 || p.piece >= static_cast<int>(b.pieces.size()) || p.face < 0 ||
+        p.face >= static_cast<int>(b.pieces[static_cast<std::size_t>(p.piece)].faces.size())) {
+      throw std::invalid_argument("a pressure entry names a piece or face that does not exist");
+    }
+  }
+  for (const DdaBolt& bolt : model_.bolts) {
+    bolt_a_.push_back(attach(bolt.block_a, bolt.point_a, "a bolt"));
+    if (bolt.block_b >= 0) {
+      bolt_b_.push_back(attach(bolt.block_b, bolt.point_b, "a bolt"));
+    } else {
+      bolt_b_.push_back(MaterialPoint{-1, bolt.point_b, bolt.point_b});
+    }
+    if (!(bolt.stiffness > 0.0)) throw std::invalid_argument("bolt stiffness must be > 0 N/m");
+  }
+
+  system_ = std::make_unique<BlockSystem>(movable, dofs_);
+  SolverOptions solver_options = settings_.solver;
+  solver_options.block_size = dofs_;
+  solver_ = makeLinearSolver(solver_options);
+  base_k_.assign(static_cast<std::size_t>(movable), BlockMatrix::Zero());
+  base_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
+  load_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
+}
+
+Simulation::~Simulation() = default;
+
+std::string Simulation::solverName() const {
+  return solver_->name();
+}
+
+const DdaJoint& Simulation::jointOf(const Contact& c) const {
+  return model_.jointBetween(blocks_[static_cast<std::size_t>(c.block_i)].material,
+                             blocks_[static_cast<std::size_t>(c.block_j)].material);
+}
+
+void Simulation::detectContacts() {
+  std::unordered_map<ContactKey, int, ContactKeyHash> previous;
+  previous.reserve(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k)
+    previous.emplace(keyOf(contacts_[k]), static_cast<int>(k));
+  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
+    const auto found = previous.find(ContactKey{0, bi, pi, v, bj, pj, -1});
+    return found == previous.end() ? -1 : contacts_[static_cast<std::size_t>(found->second)].face;
+  };
+  const double range = 3.0 * settings_.max_displacement_ratio * half_domain_;
+  std::vector<Contact> detected;
+  for (const PiecePair& pair : broadPhase(blocks_, range)) {
+    narrowPhase(blocks_, pair, range, previous_face, detected);
+  }
+  std::vector<std::pair<int, int>> pairs;
+  for (Contact& c : detected) {
+    const auto found = previous.find(keyOf(c));
+    if (found != previous.end()) {
+      const Contact& old = contacts_[static_cast<std::size_t>(found->second)];
+      c.state = old.state;
+      c.bonded = old.bonded;
+      c.shear = tangential(old.shear, c.normal);
+      const Vec3 slide = tangential(old.slide_direction, c.normal);
+      c.slide_direction = slide.norm() > 0.0 ? Vec3(slide.normalized()) : Vec3(Vec3::Zero());
+      c.normal_force = old.normal_force;
+    } else {
+      // Touching within round-off counts as closed: an open contact only closes once it
+      // penetrates past the hysteresis threshold.
+      c.state = c.gap0 <= settings_.open_threshold_ratio * half_domain_ ? ContactState::Locked
+                                                                        : ContactState::Open;
+    }
+    c.gap = c.gap0;
+    c.flips = 0;
+    const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+    if (i >= 0 && j >= 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
+    const int i = bolt_a_[k].block >= 0 ? movableIndex(bolt_a_[k].block) : -1;
+    const int j = bolt_b_[k].block >= 0 ? movableIndex(bolt_b_[k].block) : -1;
+    if (i >= 0 && j >= 0 && i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  contacts_ = std::move(detected);
+  if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
+}
+
+void Simulation::assembleBlockTerms(double dt) {
+  ActiveTerms step;
+  step.inertia = true;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockState& block = blocks_[b];
+    if (block.fixed) continue;
+    const std::size_t m = static_cast<std::size_t>(block.dof_offset);
+    BlockMatrix& k = base_k_[m];
+    BlockVector& f = base_f_[m];
+    BlockVector& loads = load_f_[m];
+    k.setZero();
+    f.setZero();
+    loads.setZero();
+    if (settings_.kinematics == Kinematics::Deformable) {
+      k += elasticStiffness(block, elastic_[static_cast<std::size_t>(block.material)]);
+      step.elastic = true;
+      if (!block.stress.isZero(0.0)) {
+        f += initialStressLoad(block);
+        step.initial_stress = true;
+      }
+    }
+    inertiaTerms(massMatrix(block), block.velocity, dt, k, f);
+    if (!model_.gravity.isZero(0.0)) {
+      loads += bodyForceLoad(block, model_.gravity);
+      step.body_force = true;
+    }
+  }
+  for (std::size_t l = 0; l < load_points_.size(); ++l) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(load_points_[l].block)];
+    if (block.fixed) continue;
+    load_f_[static_cast<std::size_t>(block.dof_offset)] +=
+        pointLoad(block, load_points_[l].current, model_.point_loads[l].force);
+    step.point_loads = true;
+  }
+  for (const DdaPressure& p : model_.pressures) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+    if (block.fixed) continue;
+    load_f_[static_cast<std::size_t>(block.dof_offset)] += pressureLoad(
+        block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p.level, p.unit_weight);
+    step.surface_pressure = true;
+  }
+  const double fixed_k = settings_.fixed_point_penalty_ratio * penalty_;
+  for (const MaterialPoint& fp : fixed_points_) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(fp.block)];
+    if (block.fixed) continue;
+    const DisplacementMatrix t = displacementMatrix(fp.current, block.centroid);
+    const std::size_t m = static_cast<std::size_t>(block.dof_offset);
+    base_k_[m] += fixed_k * t.transpose() * t;
+    base_f_[m] -= fixed_k * t.transpose() * (fp.current - fp.initial);
+    step.fixed_points = true;
+  }
+  for (std::size_t m = 0; m < base_f_.size(); ++m) base_f_[m] += load_f_[m];
+  step.bolts = !model_.bolts.empty();
+  active_ |= step;
+}
+
+void Simulation::addContactTerms(const Contact& c) {
+  if (c.state == ContactState::Open) return;
+  const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+  const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
+  const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+  const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
+  const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
+  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0);
+  active_.contact_normal = true;
+  if (c.state == ContactState::Locked) {
+    const double ks = penalty_ / settings_.shear_penalty_ratio;
+    Vec3 t[2];
+    tangents(c.normal, t[0], t[1]);
+    for (const Vec3& tk : t) {
+      system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk));
+    }
+    active_.contact_shear = true;
+  } else {
+    const double friction = jointOf(c).friction * std::max(0.0, c.normal_force);
+    system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
+    system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
+    active_.friction = true;
+  }
+}
+
+BlockVector Simulation::unknownsOf(const Eigen::VectorXd& solution, int block) const {
+  const int m = movableIndex(block);
+  return m < 0 ? BlockVector::Zero() : system_->unknowns(solution, m);
+}
+
+Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
+                                      bool rigid_part) const {
+  const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
+  const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+  BlockVector di = unknownsOf(solution, c.block_i);
+  BlockVector dj = unknownsOf(solution, c.block_j);
+  if (rigid_part) {
+    di.tail<kVoigtSize>().setZero();
+    dj.tail<kVoigtSize>().setZero();
+  }
+  return displacementMatrix(c.point, bi.centroid) * di -
+         displacementMatrix(c.foot, bj.centroid) * dj;
+}
+
+bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
+  const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
+  const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  bool changed = false;
+  for (Contact& c : contacts_) {
+    const Vec3 relative = relativeDisplacement(c, solution);
+    const double d = c.gap0 + c.normal.dot(relative);
+    const Vec3 slip = tangential(relative, c.normal);
+    // The friction direction follows the rigid part of the motion: the strain part of a
+    // deformable block's corner motion is elastic vibration, and letting it steer friction
+    // tilts the friction forces sideways so that a block with phi > theta creeps.
+    const Vec3 rigid_slip = tangential(relativeDisplacement(c, solution, true), c.normal);
+    c.gap = d;
+    const DdaJoint& joint = jointOf(c);
+    const ContactState before = c.state;
+    if (c.state == ContactState::Open) {
+      c.normal_force = 0.0;
+      if (d < -close_tolerance) {
+        c.state = ContactState::Locked;
+        c.shear.setZero();
+      }
+    } else {
+      const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
+      c.normal_force = -penalty_ * d;
+      if (d > tension / penalty_ + open_tolerance) {
+        c.state = ContactState::Open;
+        c.bonded = false;
+        c.normal_force = 0.0;
+        c.shear.setZero();
+      } else {
+        const double limit = joint.friction * std::max(0.0, c.normal_force) +
+                             (c.bonded ? joint.cohesion * c.area : 0.0);
+        // A contact at its friction limit with no slip velocity can flip between locked
+        // and sliding forever; after two flips in a step it stays sliding (the friction
+        // force then holds it at the limit, which is what both states mean there).
+        const bool frozen = c.flips >= 2;
+        if (c.state == ContactState::Locked) {
+          const Vec3 shear = tangential(c.shear, c.normal) + slip;
+          if (ks * shear.norm() > limit) {
+            ++c.flips;
+            c.state = ContactState::Sliding;
+            c.bonded = false;
+            c.slide_direction = shear.normalized();
+          }
+        } else if (!frozen && rigid_slip.dot(c.slide_direction) < 0.0) {
+          // Friction alone would drive it back: it sticks, its spring carrying the friction.
+          ++c.flips;
+          c.state = ContactState::Locked;
+          c.shear = (joint.friction * std::max(0.0, c.normal_force) / ks) * c.slide_direction;
+        } else if (rigid_slip.norm() > 0.0) {
+          c.slide_direction = rigid_slip.normalized();
+        }
+      }
+    }
+    changed |= c.state != before;
+  }
+  return changed;
+}
+
+int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled) {
+  (void)dt;
+  settled = false;
+  const int movable = static_cast<int>(base_k_.size());
+  for (int iteration = 1; iteration <= settings_.max_open_close_iterations; ++iteration) {
+    Clock::time_point start = Clock::now();
+    system_->clear();
+    for (int m = 0; m < movable; ++m) {
+      system_->addDiagonal(m, base_k_[static_cast<std::size_t>(m)]);
+      system_->addForce(m, base_f_[static_cast<std::size_t>(m)]);
+    }
+    for (const Contact& c : contacts_) addContactTerms(c);
+    for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
+      const MaterialPoint& a = bolt_a_[k];
+      const MaterialPoint& b = bolt_b_[k];
+      const Vec3 axis = b.current - a.current;
+      const double length = axis.norm();
+      if (length <= 0.0) continue;
+      const Vec3 n = axis / length;
+      const DdaBolt& bolt = model_.bolts[k];
+      const double free_length =
+          (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
+      const int i = movableIndex(a.block);
+      const int j = b.block >= 0 ? movableIndex(b.block) : -1;
+      const BlockVector ea =
+          -displacementMatrix(a.current, blocks_[static_cast<std::size_t>(a.block)].centroid)
+               .transpose() *
+          n;
+      const BlockVector eb =
+          j >= 0 ? BlockVector(displacementMatrix(
+                                   b.current, blocks_[static_cast<std::size_t>(b.block)].centroid)
+                                   .transpose() *
+                               n)
+                 : BlockVector(BlockVector::Zero());
+      system_->addSpring(i, ea, j, eb, bolt.stiffness, length - free_length);
+    }
+    timings_.assemble_contacts += secondsSince(start);
+    if (movable == 0) {
+      solution.resize(0);
+      settled = true;
+      return iteration;
+    }
+    start = Clock::now();
+    const bool positive = solver_->factorize(system_->matrix());
+    if (solver_->stats().analyzed) ++pattern_changes_;
+    timings_.factorize += secondsSince(start);
+    if (!positive) return iteration;
+    start = Clock::now();
+    solution = solver_->solve(system_->rhs());
+    timings_.solve += secondsSince(start);
+    start = Clock::now();
+    const bool finite = solution.allFinite();
+    const bool changed = finite && updateContactStates(solution);
+    timings_.update_states += secondsSince(start);
+    if (!finite) return iteration;
+    if (!changed) {
+      settled = true;
+      return iteration;
+    }
+  }
+  return settings_.max_open_close_iterations;
+}
+
+double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution) const {
+  double largest = 0.0;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockState& block = blocks_[b];
+    if (block.fixed) continue;
+    const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    for (const geometry::Polyhedron& piece : block.pieces) {
+      for (const Vec3& v : piece.vertices) {
+        largest = std::max(largest, (movedPoint(v, block.centroid, d) - v).norm());
+      }
+    }
+  }
+  return largest / (settings_.max_displacement_ratio * half_domain_);
+}
+
+double Simulation::maxPenetration() const {
+  double deepest = 0.0;
+  for (const Contact& c : contacts_) deepest = std::max(deepest, -c.gap);
+  return deepest;
+}
+
+void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
+  for (Contact& c : contacts_) {
+    if (c.state == ContactState::Locked) {
+      c.shear = tangential(c.shear + relativeDisplacement(c, solution), c.normal);
+    } else {
+      c.shear.setZero();
+    }
+  }
+  const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
+  const auto move = [&](std::vector<MaterialPoint>& points) {
+    for (MaterialPoint& p : points) {
+      if (p.block < 0) continue;
+      const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+      if (block.fixed) continue;
+      p.current = movedPoint(p.current, block.centroid, unknownsOf(solution, p.block));
+    }
+  };
+  move(monitor_points_);
+  move(load_points_);
+  move(fixed_points_);
+  move(bolt_a_);
+  move(bolt_b_);
+  for (BlockState& block : blocks_) {
+    if (block.fixed) continue;
+    const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    work_of_loads_ += load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
+    for (geometry::Polyhedron& piece : block.pieces) {
+      for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
+    }
+    const Eigen::Matrix3d rotation = rotationMatrix(d.segment<3>(3));
+    if (settings_.kinematics == Kinematics::Deformable) {
+      const VoigtVector step_strain = d.tail<kVoigtSize>();
+      block.stress += elastic_[static_cast<std::size_t>(block.material)] * step_strain;
+      block.strain += step_strain;
+      block.stress = rotateVoigt(block.stress, rotation, 1.0);
+      block.strain = rotateVoigt(block.strain, rotation, 0.5);
+    }
+    block.velocity = ratio * ((2.0 / dt) * d - block.velocity);
+    block.last_displacement = d;
+    block.updateMassProperties();
+  }
+}
+
+StepReport Simulation::step() {
+  StepReport report;
+  Clock::time_point start = Clock::now();
+  const int patterns_before = pattern_changes_;
+  detectContacts();
+  timings_.detect_contacts += secondsSince(start);
+  const std::vector<Contact> at_start = contacts_;
+  const double allowed = settings_.allowed_penetration_ratio * half_domain_;
+  const double penalty_cap = 1e4 * (settings_.penalty > 0.0 ? settings_.penalty : penalty_);
+  double dt = dt_;
+  Eigen::VectorXd solution;
+  for (int attempt = 1;; ++attempt) {
+    report.attempts = attempt;
+    const bool last_chance = attempt >= settings_.max_step_attempts;
+    if (attempt > 1) contacts_ = at_start;
+    start = Clock::now();
+    assembleBlockTerms(dt);
+    timings_.assemble_block_terms += secondsSince(start);
+    bool settled = false;
+    report.iterations = openCloseIterate(dt, solution, settled);
+    const bool can_shrink = dt * settings_.iteration_time_step_factor >= settings_.min_time_step;
+    if (!settled && can_shrink && !last_chance) {
+      dt *= settings_.iteration_time_step_factor;
+      ++report.redo_iterations;
+      continue;
+    }
+    if (!solution.allFinite()) {
+      throw std::runtime_error(
+          "DDA step failed: the system is singular at t = " + std::to_string(time_) + " s");
+    }
+    start = Clock::now();
+    report.displacement_ratio = maxDisplacementRatio(solution);
+    report.max_penetration = maxPenetration();
+    timings_.update_states += secondsSince(start);
+    if (report.displacement_ratio > 1.5 && !last_chance && dt * 0.5 >= settings_.min_time_step) {
+      dt *= std::max(0.1, 0.9 / report.displacement_ratio);
+      ++report.redo_displacement;
+      continue;
+    }
+    if (report.max_penetration > allowed && penalty_ < penalty_cap && !last_chance) {
+      const double ratio = report.max_penetration / allowed;
+      penalty_ = std::min(penalty_cap, penalty_ * std::clamp(ratio * ratio, 2.0, 10.0));
+      ++report.redo_penetration;
+      continue;
+    }
+    report.forced = !settled || report.displacement_ratio > 1.5 || report.max_penetration > allowed;
+    break;
+  }
+  start = Clock::now();
+  updateBlocks(solution, dt);
+  timings_.update_blocks += secondsSince(start);
+  time_ += dt;
+  const double grow =
+      report.displacement_ratio > 0.0 ? 0.9 / std::sqrt(report.displacement_ratio) : 1.2;
+  dt_ = std::min(settings_.time_step, dt * std::clamp(grow, 0.5, 1.2));
+  report.time = time_;
+  report.time_step = dt;
+  report.penalty = penalty_;
+  report.pattern_changes = pattern_changes_ - patterns_before;
+  report.contacts = contactCounts();
+  return report;
+}
+
+StepReport Simulation::runUntil(double end_time) {
+  StepReport last;
+  while (time_ < end_time * (1.0 - 1e-12)) {
+    dt_ = std::min(dt_, end_time - time_);
+    last = step();
+  }
+  return last;
+}
+
+Vec3 Simulation::centroidDisplacement(int b) const {
+  return blocks_[static_cast<std::size_t>(b)].centroid -
+         initial_centroids_[static_cast<std::size_t>(b)];
+}
+
+ContactCounts Simulation::contactCounts() const {
+  ContactCounts counts;
+  for (const Contact& c : contacts_) {
+    ++counts.total;
+    counts.edge_edge += c.kind == ContactKind::EdgeEdge;
+    switch (c.state) {
+      case ContactState::Open:
+        ++counts.open;
+        break;
+      case ContactState::Sliding:
+        ++counts.sliding;
+        break;
+      case ContactState::Locked:
+        ++counts.locked;
+        break;
+    }
+  }
+  return counts;
+}
+
+std::vector<MonitorState> Simulation::monitors() const {
+  std::vector<MonitorState> out;
+  for (std::size_t k = 0; k < monitor_points_.size(); ++k) {
+    const MaterialPoint& p = monitor_points_[k];
+    const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+    MonitorState m;
+    m.name = model_.monitors[k].name;
+    m.position = p.current;
+    m.displacement = p.current - p.initial;
+    m.velocity = displacementMatrix(p.current, block.centroid) * block.velocity;
+    out.push_back(m);
+  }
+  return out;
+}
+
+EnergyAccount Simulation::energy() const {
+  EnergyAccount e;
+  for (const BlockState& block : blocks_) {
+    if (block.fixed) continue;
+    e.kinetic += 0.5 * block.velocity.dot(massMatrix(block) * block.velocity);
+    if (settings_.kinematics == Kinematics::Deformable) {
+      e.strain +=
+          0.5 * block.volume *
+          block.strain.dot(elastic_[static_cast<std::size_t>(block.material)] * block.strain);
+    }
+  }
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::Open) continue;
+    e.springs += 0.5 * penalty_ * c.gap * c.gap;
+    if (c.state == ContactState::Locked) e.springs += 0.5 * ks * c.shear.squaredNorm();
+  }
+  for (const MaterialPoint& fp : fixed_points_) {
+    e.springs += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ *
+                 (fp.current - fp.initial).squaredNorm();
+  }
+  for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
+    const DdaBolt& bolt = model_.bolts[k];
+    const double free_length =
+        (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
+    const double stretch = (bolt_b_[k].current - bolt_a_[k].current).norm() - free_length;
+    e.springs += 0.5 * bolt.stiffness * stretch * stretch;
+  }
+  e.work_of_loads = work_of_loads_;
+  return e;
+}
+
+}  // namespace rockmass::dda3d

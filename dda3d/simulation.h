@@ -1,0 +1,221 @@
+// The 3D DDA engine: one Simulation advances a DdaModel step by step (Shi's method in 3D,
+// formulation in docs dda3d-formulation.md). Each step runs a fixed sequence of named
+// phases: detectContacts, assembleBlockTerms, openCloseIterate (assemble contacts,
+// factorize, solve, update states), checkStep (redo with a smaller dt or a stiffer
+// penalty), updateBlocks (exact rotation, stresses, velocities, contact shear).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "dda3d/block_state.h"
+#include "dda3d/block_system.h"
+#include "dda3d/contact.h"
+#include "dda3d/linear_solver.h"
+#include "dda3d/model.h"
+
+namespace rockmass::dda3d {
+
+/// Dynamic (velocities carried between steps) or static (velocities reset every step).
+enum class AnalysisMode { Dynamic, Static };
+/// Deformable blocks (12 unknowns) or rigid blocks (6).
+enum class Kinematics { Deformable, Rigid };
+
+/// Settings of a run (scene: analysis.dda). Defaults follow the 2D reference lineage.
+struct DdaSettings {
+  AnalysisMode mode = AnalysisMode::Dynamic;
+  Kinematics kinematics = Kinematics::Deformable;
+  /// Share of the velocity carried to the next step in dynamic mode (1 fully dynamic).
+  double dynamic_ratio = 1.0;
+  double time_step = 1e-3;      ///< s, the largest step; shrunk and regrown automatically
+  double min_time_step = 1e-9;  ///< s, below this a step is accepted as it is (flagged)
+  /// g2: largest displacement of any vertex in a step as a share of half the domain size.
+  double max_displacement_ratio = 0.01;
+  /// g3: allowed penetration as a share of half the domain size.
+  double allowed_penetration_ratio = 4e-4;
+  /// Normal contact penalty (N/m); 0 = automatic: penalty_factor * E_max * block size.
+  double penalty = 0.0;
+  double penalty_factor = 40.0;      ///< - (automatic penalty)
+  double shear_penalty_ratio = 2.5;  ///< k_n / k_s
+  /// Fixed points' spring (N/m) as a multiple of the normal contact penalty.
+  double fixed_point_penalty_ratio = 10.0;
+  int max_open_close_iterations = 8;        ///< per attempt (the 2D reference allows 6 + 2)
+  double iteration_time_step_factor = 0.3;  ///< dt multiplier when the iteration fails
+  int max_step_attempts = 40;               ///< redo limit per step
+  /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a
+  /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
+  /// blocks; 1e-6 keeps the hysteresis and costs no accuracy.
+  double close_threshold_ratio = 1e-6;
+  /// A closed contact opens when d > T A / k_n + this * l0. The 2D reference's 2e-7 lets a
+  /// stiff penalty pull with k_n * 2e-7 l0 (~10^5 N here) before opening, which glues a
+  /// wedge to a plane it should leave; 1e-10 keeps only a round-off margin.
+  double open_threshold_ratio = 1e-10;
+  /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
+  double half_domain_size = 0.0;
+  SolverOptions solver{.kind = SolverKind::Eigen};
+};
+
+/// Which sub-matrices were assembled (cumulative over the run, or for one step).
+struct ActiveTerms {
+  bool elastic = false;
+  bool initial_stress = false;
+  bool inertia = false;
+  bool body_force = false;
+  bool point_loads = false;
+  bool surface_pressure = false;
+  bool fixed_points = false;
+  bool fixed_blocks = false;
+  bool contact_normal = false;
+  bool contact_shear = false;
+  bool friction = false;
+  bool bolts = false;
+  /// Names of the active terms, in the order above ("elastic", "inertia", ...).
+  std::vector<std::string> names() const;
+  ActiveTerms& operator|=(const ActiveTerms& other);
+};
+
+/// Seconds spent per phase (cumulative).
+struct PhaseTimings {
+  double detect_contacts = 0.0;
+  double assemble_block_terms = 0.0;
+  double assemble_contacts = 0.0;  ///< inside openCloseIterate
+  double factorize = 0.0;          ///< inside openCloseIterate
+  double solve = 0.0;              ///< inside openCloseIterate
+  double update_states = 0.0;      ///< contact state update and checks
+  double update_blocks = 0.0;
+  double total() const {
+    return detect_contacts + assemble_block_terms + assemble_contacts + factorize + solve +
+           update_states + update_blocks;
+  }
+};
+
+/// Contact counts by state.
+struct ContactCounts {
+  int total = 0;
+  int open = 0;
+  int sliding = 0;
+  int locked = 0;
+  int edge_edge = 0;  ///< of the total, the edge-to-edge entries
+};
+
+/// Account of one accepted step.
+struct StepReport {
+  double time = 0.0;                ///< s, simulated time at the end of the step
+  double time_step = 0.0;           ///< s, the accepted dt
+  int iterations = 0;               ///< open-close iterations of the accepted attempt
+  int attempts = 1;                 ///< 1 + redos
+  int redo_iterations = 0;          ///< redos because the open-close iteration did not settle
+  int redo_displacement = 0;        ///< redos because of the displacement ratio
+  int redo_penetration = 0;         ///< redos with a stiffer penalty
+  bool forced = false;              ///< accepted without meeting every check (dt at its minimum)
+  double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
+  double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)
+  double penalty = 0.0;             ///< N/m, normal penalty used
+  int pattern_changes = 0;          ///< symbolic analyses redone
+  ContactCounts contacts;
+};
+
+/// Energies (J), for checking that nothing grows beyond the work of the loads.
+struct EnergyAccount {
+  double kinetic = 0.0;        ///< 1/2 V^T M V
+  double strain = 0.0;         ///< 1/2 V eps^T E eps of the accumulated strain
+  double springs = 0.0;        ///< contact, fixed-point and bolt springs
+  double work_of_loads = 0.0;  ///< cumulative work of body forces, point loads, pressure
+  double stored() const { return kinetic + strain + springs; }
+};
+
+/// A monitored point: displacement since time 0 and current velocity.
+struct MonitorState {
+  std::string name;
+  geometry::Vec3 position = geometry::Vec3::Zero();      ///< m
+  geometry::Vec3 displacement = geometry::Vec3::Zero();  ///< m
+  geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< m/s
+};
+
+/// A DDA run.
+class Simulation {
+ public:
+  /// Validates the model (throws std::invalid_argument with what is wrong) and sets up.
+  Simulation(DdaModel model, DdaSettings settings);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// Advances by one accepted step.
+  StepReport step();
+  /// Steps until time() >= end_time (s); returns the last report.
+  StepReport runUntil(double end_time);
+
+  double time() const { return time_; }                   ///< s
+  double timeStep() const { return dt_; }                 ///< s, proposed for the next step
+  double penalty() const { return penalty_; }             ///< N/m, current normal penalty
+  double halfDomainSize() const { return half_domain_; }  ///< l0 (m)
+  int dofsPerBlock() const { return dofs_; }              ///< 12 or 6
+  const DdaModel& model() const { return model_; }
+  const DdaSettings& settings() const { return settings_; }
+
+  /// All blocks: current geometry, velocity (12, zero tail when rigid), last step's
+  /// displacement, stress, accumulated strain.
+  const std::vector<BlockState>& blocks() const { return blocks_; }
+  /// Displacement of block b's centroid since time 0 (m).
+  geometry::Vec3 centroidDisplacement(int b) const;
+  /// Contacts of the last accepted step, with states.
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  ContactCounts contactCounts() const;
+  std::vector<MonitorState> monitors() const;
+  /// Sub-matrices assembled so far.
+  const ActiveTerms& activeTerms() const { return active_; }
+  const PhaseTimings& timings() const { return timings_; }
+  EnergyAccount energy() const;
+  /// Name of the linear solver backend.
+  std::string solverName() const;
+
+ private:
+  struct MaterialPoint {
+    int block;
+    geometry::Vec3 initial;
+    geometry::Vec3 current;
+  };
+
+  void detectContacts();
+  void assembleBlockTerms(double dt);
+  int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
+  void addContactTerms(const Contact& c);
+  bool updateContactStates(const Eigen::VectorXd& solution);
+  double maxDisplacementRatio(const Eigen::VectorXd& solution) const;
+  double maxPenetration() const;
+  void updateBlocks(const Eigen::VectorXd& solution, double dt);
+  BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;
+  int movableIndex(int block) const { return blocks_[static_cast<std::size_t>(block)].dof_offset; }
+  const DdaJoint& jointOf(const Contact& c) const;
+  /// u_i(P) - u_j(P') for the solution; with `rigid_part`, of the first 6 unknowns only.
+  geometry::Vec3 relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
+                                      bool rigid_part = false) const;
+
+  DdaModel model_;
+  DdaSettings settings_;
+  int dofs_ = 12;
+  double half_domain_ = 1.0;
+  double penalty_ = 0.0;
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  double work_of_loads_ = 0.0;
+  std::vector<BlockState> blocks_;
+  std::vector<geometry::Vec3> initial_centroids_;
+  std::vector<ElasticMatrix> elastic_;
+  std::vector<MaterialPoint> monitor_points_, load_points_, fixed_points_;
+  std::vector<MaterialPoint> bolt_a_, bolt_b_;
+  std::vector<Contact> contacts_;
+  std::unique_ptr<BlockSystem> system_;
+  std::unique_ptr<LinearSolver> solver_;
+  std::vector<BlockMatrix> base_k_;  // block terms per movable block
+  std::vector<BlockVector> base_f_;
+  std::vector<BlockVector> load_f_;  // external loads per movable block (for the work)
+  ActiveTerms active_;
+  PhaseTimings timings_;
+  int pattern_changes_ = 0;
+};
+
+}  // namespace rockmass::dda3d
