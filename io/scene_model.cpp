@@ -131,6 +131,11 @@ std::vector<bool> blocksOnDomainFaces(const blocks::BlockModel& blocks,
 }
 
 dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks) {
+  if (!scene.loads.water.empty()) {
+    throw InputError(locate(scene.file, 0, 0,
+                            "loads.water: water pressure is not applied by the DDA of this "
+                            "version yet; remove the entry or run without `analysis.dda`"));
+  }
   if (scene.default_joint < 0) {
     throw InputError(locate(scene.file, 0, 0,
                             "analysis.dda needs the strength of the contacts between blocks: "
@@ -173,6 +178,18 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
                                   "structure"));
     }
     model.monitors.push_back({monitor.name, monitor.point, block});
+  }
+  for (std::size_t i = 0; i < scene.loads.point_loads.size(); ++i) {
+    const PointLoad& load = scene.loads.point_loads[i];
+    const int block = findContainingBlock(blocks, load.point);
+    if (block < 0) {
+      throw InputError(locate(scene.file, 0, 0,
+                              "loads.point_loads[" + std::to_string(i) + "] at " +
+                                  pointText(load.point) +
+                                  " lies in no block; a point load must act on the rock or a "
+                                  "structure"));
+    }
+    model.point_loads.push_back({block, load.point, load.force});
   }
   return model;
 }

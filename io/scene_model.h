@@ -24,9 +24,11 @@ constexpr double kSceneModelRelativeTolerance = 1e-6;
 ///   (the structure's joint, e.g. the dam-rock contact);
 /// - gravity: loads.gravity, or none at all (no body force term) when absent;
 /// - fixed: the blocks touching a face named in supports.fixed (blocksOnDomainFaces);
-/// - monitors: each attached to the block that contains its point (findContainingBlock).
-/// Throws InputError naming the scene file when a monitor lies in no block, a block has no
-/// material, or the scene gives no default_joint.
+/// - monitors: each attached to the block that contains its point (findContainingBlock);
+/// - point loads: each acting on the block that contains its point.
+/// Throws InputError naming the scene file when a monitor or point load lies in no block, a
+/// block has no material, the scene gives no default_joint, or it has water loads (not
+/// converted yet: refusing is better than silently leaving them out).
 dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks);
 
 /// Index into blocks.blocks of the block with a piece containing `point` (within

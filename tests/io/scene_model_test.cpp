@@ -178,6 +178,18 @@ TEST(SceneModel, MonitorsAttachToTheBlockThatContainsThem) {
   EXPECT_EQ(model.monitors[1].point, Vec3(0.1, 0.1, 0.1));
 }
 
+TEST(SceneModel, PointLoadsActOnTheBlockThatContainsThem) {
+  const dda3d::DdaModel model = buildDdaModel(
+      scene("loads:\n  point_loads:\n    - {point: [1.5, 0.5, 2], force: [0, 0, -1.0e6]}\n"
+            "    - {point: [0.5, 0.5, 0.5], force: [10, 0, 0]}\n"),
+      fourBlocks());
+  ASSERT_EQ(model.point_loads.size(), 2u);
+  EXPECT_EQ(model.point_loads[0].block, 3);  // on the top face of block 4
+  EXPECT_EQ(model.point_loads[0].force, Vec3(0, 0, -1.0e6));
+  EXPECT_EQ(model.point_loads[1].block, 0);
+  EXPECT_EQ(model.point_loads[1].point, Vec3(0.5, 0.5, 0.5));
+}
+
 /// The message of the InputError that buildDdaModel throws ("no error" otherwise).
 std::string errorOf(const Scene& s, const blocks::BlockModel& blocks) {
   try {
@@ -192,6 +204,14 @@ TEST(SceneModel, ErrorsNameWhatIsWrong) {
   EXPECT_EQ(errorOf(scene("monitors:\n  - {name: lost, point: [5, 0.5, 1]}\n"), fourBlocks()),
             "tiny.yaml: monitors: lost at (5, 0.5, 1) lies in no block; a monitor must be "
             "inside the rock or a structure");
+  EXPECT_EQ(errorOf(scene("loads: {point_loads: [{point: [0.5, 0.5, -3], force: [0, 0, 1]}]}\n"),
+                    fourBlocks()),
+            "tiny.yaml: loads.point_loads[0] at (0.5, 0.5, -3) lies in no block; a point load must "
+            "act on the rock or a structure");
+  EXPECT_EQ(
+      errorOf(scene("loads: {water: [{level: 1.5, on: {domain_top: true}}]}\n"), fourBlocks()),
+      "tiny.yaml: loads.water: water pressure is not applied by the DDA of this version "
+      "yet; remove the entry or run without `analysis.dda`");
   blocks::BlockModel no_material = fourBlocks();
   no_material.blocks[2].material = -1;
   EXPECT_EQ(errorOf(scene(""), no_material),
