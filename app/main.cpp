@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<rockmass::app::Command> commands = {
       rockmass::app::addDfnCommand(app),
+      rockmass::app::addBlocksCommand(app),
   };
 
   try {

@@ -74,7 +74,7 @@ std::string formatVtu(const VtuPiece& piece) {
   appendArray(out, makeVtuArray("connectivity", piece.connectivity));
   appendArray(out, makeVtuArray("offsets", piece.offsets));
   appendArray(out, makeVtuArray("types", piece.types));
-  if (!piece.faces.empty()) {
+  if (!piece.faceoffsets.empty()) {
     appendArray(out, makeVtuArray("faces", piece.faces));
     appendArray(out, makeVtuArray("faceoffsets", piece.faceoffsets));
   }

@@ -49,10 +49,10 @@ struct VtuPiece {
   std::vector<std::int64_t> offsets;       ///< end of each cell in connectivity
   std::vector<std::uint8_t> types;         ///< VTK cell type of each cell (7 = polygon,
                                            ///< 42 = polyhedron)
-  /// Polyhedron cells only (leave both empty otherwise): per cell, the face count, then per
-  /// face its point count and point indices (CCW seen from outside); faceoffsets holds the
-  /// end of each cell's entry in faces (-1 for a cell that is not a polyhedron).
+  /// Polyhedron cells only (both empty otherwise): per cell, the face stream
+  /// [face count, then per face its point count and point indices], cell after cell...
   std::vector<std::int64_t> faces;
+  /// ...and the end of each cell's stream in `faces` (-1 for a cell that is no polyhedron).
   std::vector<std::int64_t> faceoffsets;
   std::vector<VtuArray> cell_data;   ///< one value (tuple) per cell
   std::vector<VtuArray> point_data;  ///< one value (tuple) per point

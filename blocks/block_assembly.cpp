@@ -1,0 +1,308 @@
+#include "blocks/block_assembly.h"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <tuple>
+
+#include "blocks/convex_split.h"
+#include "blocks/piece_contacts.h"
+#include "geometry/disc.h"
+
+namespace rockmass::blocks {
+namespace {
+
+using geometry::Vec3;
+
+/// Union-find with path halving; the smallest index is the root (deterministic roots).
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+/// Marks Fictitious the faces of `pieces` wholly covered by faces of other pieces of the same
+/// solid (internal faces of a convex decomposition).
+void markInternalFaces(std::vector<Piece>& pieces, const CutTolerances& tolerances) {
+  if (pieces.size() < 2) return;
+  std::vector<std::vector<double>> covered(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    covered[i].assign(pieces[i].shape.faces.size(), 0);
+  for (const PieceContact& c : findPieceContacts(pieces, tolerances.distance, tolerances.area)) {
+    covered[c.piece_a][c.face_a] += c.area;
+    covered[c.piece_b][c.face_b] += c.area;
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+      std::vector<Vec3> points;
+      for (int v : pieces[i].shape.faces[f]) points.push_back(pieces[i].shape.vertices[v]);
+      const double area = geometry::polygonArea(points);
+      if (covered[i][f] >= area * (1.0 - 1e-9) - tolerances.area) {
+        pieces[i].face_sources[f] = {FaceKind::Fictitious, -1};
+      }
+    }
+  }
+}
+
+/// A convex region of a slab: the hull of one lower and one upper surface polygon.
+struct SlabRegion {
+  std::vector<Plane> planes;  ///< outward
+  int material = -1;
+
+  bool contains(const Vec3& p, double tolerance) const {
+    return std::all_of(planes.begin(), planes.end(),
+                       [&](const Plane& plane) { return plane.distance(p) <= tolerance; });
+  }
+};
+
+/// The convex hull of two corresponding polygons (same vertex count, vertex k of one facing
+/// vertex k of the other): its two caps and the side quadrilaterals.
+SlabRegion slabRegion(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper) {
+  Vec3 center = Vec3::Zero();
+  for (const Vec3& p : lower) center += p;
+  for (const Vec3& p : upper) center += p;
+  center /= static_cast<double>(lower.size() + upper.size());
+  SlabRegion region;
+  const auto add = [&](const std::vector<Vec3>& polygon) {
+    const Vec3 n = geometry::polygonNormal(polygon);
+    if (n.squaredNorm() == 0.0) return;
+    Plane plane = Plane::through(geometry::polygonCentroid(polygon), n);
+    if (plane.distance(center) > 0.0) plane = {-plane.normal, -plane.offset};
+    region.planes.push_back(plane);
+  };
+  add(lower);
+  add(upper);
+  const std::size_t n = lower.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    add({lower[k], lower[(k + 1) % n], upper[(k + 1) % n], upper[k]});
+  }
+  return region;
+}
+
+/// Regions of every slab of the network.
+std::vector<SlabRegion> slabRegions(const CutInput& input) {
+  std::vector<SlabRegion> regions;
+  if (input.network == nullptr) return regions;
+  const std::vector<geometry::Disc>& discs = input.network->discs;
+  for (const geometry::Slab& slab : input.network->slabs) {
+    const std::size_t pairs = std::min(slab.lower.size(), slab.upper.size());
+    for (std::size_t i = 0; i < pairs; ++i) {
+      const geometry::Disc& l = discs[static_cast<std::size_t>(slab.lower[i] - 1)];
+      const geometry::Disc& u = discs[static_cast<std::size_t>(slab.upper[i] - 1)];
+      // Surfaces of one segment of the slab face each other across about its thickness; a
+      // surface left out of the domain would pair the wrong ones, so skip such pairs.
+      if ((l.center - u.center).norm() > 4.0 * slab.thickness + 1e-9) continue;
+      const std::vector<Vec3> lo = l.outline(input.disc_segments);
+      const std::vector<Vec3> up = u.outline(input.disc_segments);
+      if (lo.size() != up.size()) continue;
+      SlabRegion region = slabRegion(lo, up);
+      region.material = slab.material;
+      regions.push_back(std::move(region));
+    }
+  }
+  return regions;
+}
+
+/// Adds the contacts of the structure pieces (all[rock_count..]) with each other and with
+/// the rock pieces whose bounding boxes come near a structure.
+void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
+                             const CutTolerances& tolerances, std::vector<PieceContact>& contacts) {
+  if (all.size() == rock_count) return;
+  std::vector<geometry::Box> structure_boxes;
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    structure_boxes.push_back(geometry::bounds(all[i].shape).enlarged(tolerances.distance));
+  }
+  std::vector<int> index;  // into `all`
+  for (std::size_t i = 0; i < rock_count; ++i) {
+    const geometry::Box b = geometry::bounds(all[i].shape);
+    const bool near =
+        std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const auto& s) {
+          return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
+        });
+    if (near) index.push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = rock_count; i < all.size(); ++i) index.push_back(static_cast<int>(i));
+  std::vector<Piece> subset;
+  for (int i : index) subset.push_back(all[i]);
+  for (PieceContact c : findPieceContacts(subset, tolerances.distance, tolerances.area)) {
+    c.piece_a = index[c.piece_a];
+    c.piece_b = index[c.piece_b];
+    if (c.piece_b < static_cast<int>(rock_count)) continue;  // rock-rock: given already
+    contacts.push_back(c);
+  }
+}
+
+}  // namespace
+
+CutTolerances cutTolerances(const geometry::Box& domain) {
+  const double diagonal = domain.diagonal();
+  CutTolerances t;
+  t.distance = 1e-11 * diagonal;
+  t.area = t.distance * diagonal;
+  return t;
+}
+
+std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances) {
+  std::vector<Piece> pieces;
+  int face_id = 0;
+  for (const geometry::Polyhedron& shape : input.domain_pieces) {
+    Piece piece;
+    piece.shape = shape;
+    for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+      piece.face_sources.push_back({FaceKind::Boundary, face_id++});
+    }
+    pieces.push_back(std::move(piece));
+  }
+  markInternalFaces(pieces, tolerances);
+  return pieces;
+}
+
+BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
+                          const std::vector<PieceContact>& rock_contacts, const CutInput& input,
+                          const CutTolerances& tolerances, AssemblyReport* report) {
+  std::vector<Piece> all = std::move(rock_pieces);
+  const std::size_t rock_count = all.size();
+  std::vector<int> structure_of(rock_count, -1);
+  for (std::size_t s = 0; s < input.structures.size(); ++s) {
+    std::vector<Piece> pieces;
+    for (const geometry::Polyhedron& shape : input.structures[s].pieces) {
+      Piece piece;
+      piece.shape = shape;
+      piece.face_sources.assign(shape.faces.size(), {FaceKind::Structure, static_cast<int>(s)});
+      pieces.push_back(std::move(piece));
+    }
+    markInternalFaces(pieces, tolerances);
+    for (Piece& p : pieces) {
+      all.push_back(std::move(p));
+      structure_of.push_back(static_cast<int>(s));
+    }
+  }
+
+  std::vector<PieceContact> contacts = rock_contacts;
+  appendStructureContacts(all, rock_count, tolerances, contacts);
+  UnionFind clusters(all.size());
+  AssemblyReport local_report;
+  const auto fictitious = [&](int piece, int face) {
+    return all[piece].face_sources[face].kind == FaceKind::Fictitious;
+  };
+  for (const PieceContact& c : contacts) {
+    const bool fa = fictitious(c.piece_a, c.face_a);
+    const bool fb = fictitious(c.piece_b, c.face_b);
+    if (fa && fb) {
+      clusters.unite(c.piece_a, c.piece_b);
+    } else if (fa != fb) {
+      ++local_report.inconsistent_contacts;
+    }
+  }
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    for (std::size_t j = rock_count; j < i; ++j) {
+      if (structure_of[i] == structure_of[j]) {
+        clusters.unite(static_cast<int>(i), static_cast<int>(j));
+        break;
+      }
+    }
+  }
+
+  // Material of each rock piece: the first slab region holding its centroid.
+  const std::vector<SlabRegion> regions = slabRegions(input);
+  std::map<int, std::vector<int>> members;  // root -> pieces, ascending
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    members[clusters.find(static_cast<int>(i))].push_back(static_cast<int>(i));
+  }
+  struct Pending {
+    Block block;
+    std::vector<int> pieces;
+  };
+  std::vector<Pending> pending;
+  for (const auto& [root, list] : members) {
+    Pending p;
+    p.pieces = list;
+    Block& b = p.block;
+    b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    b.bounds.max = -b.bounds.min;
+    std::map<int, double> material_volume;
+    for (int i : list) {
+      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      b.mass += m;
+      const geometry::Box box = geometry::bounds(all[i].shape);
+      b.bounds.min = b.bounds.min.cwiseMin(box.min);
+      b.bounds.max = b.bounds.max.cwiseMax(box.max);
+      int material = input.rock_material;
+      if (structure_of[i] >= 0) {
+        material = input.structures[structure_of[i]].material;
+      } else {
+        const Vec3 c = m.centroid();
+        for (const SlabRegion& r : regions) {
+          if (r.contains(c, tolerances.distance)) {
+            material = r.material;
+            break;
+          }
+        }
+      }
+      material_volume[material] += m.volume;
+    }
+    b.material = std::max_element(material_volume.begin(), material_volume.end(),
+                                  [](const auto& x, const auto& y) { return x.second < y.second; })
+                     ->first;
+    pending.push_back(std::move(p));
+  }
+  std::sort(pending.begin(), pending.end(), [](const Pending& x, const Pending& y) {
+    const Vec3 cx = x.block.mass.centroid(), cy = y.block.mass.centroid();
+    return std::tie(cx.x(), cx.y(), cx.z(), x.block.mass.volume, x.pieces.front()) <
+           std::tie(cy.x(), cy.y(), cy.z(), y.block.mass.volume, y.pieces.front());
+  });
+
+  BlockModel model;
+  model.domain = input.domain_box;
+  for (const geometry::Polyhedron& p : input.domain_pieces) {
+    model.domain_volume += geometry::massProperties(p).volume;
+  }
+  std::vector<int> block_of(all.size());
+  std::vector<std::vector<FaceSource>> face_sources(all.size());
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    Block& b = pending[k].block;
+    b.id = static_cast<int>(k) + 1;
+    for (int i : pending[k].pieces) {
+      block_of[i] = b.id;
+      face_sources[i] = all[i].face_sources;
+      b.pieces.push_back(std::move(all[i]));
+    }
+    model.blocks.push_back(std::move(b));
+  }
+
+  // Adjacency: real contacts between different blocks. The source is the structure when
+  // one side is a structure, else the face of the block with the smaller id.
+  std::map<std::tuple<int, int, int, int>, double> areas;
+  for (const PieceContact& c : contacts) {
+    int a = block_of[c.piece_a], b = block_of[c.piece_b];
+    if (a == b) continue;
+    const FaceSource source_a = face_sources[c.piece_a][c.face_a];
+    const FaceSource source_b = face_sources[c.piece_b][c.face_b];
+    if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
+    FaceSource source = a < b ? source_a : source_b;
+    if (source_b.kind == FaceKind::Structure) source = source_b;
+    if (source_a.kind == FaceKind::Structure) source = source_a;
+    if (a > b) std::swap(a, b);
+    areas[{a, b, static_cast<int>(source.kind), source.id}] += c.area;
+  }
+  for (const auto& [key, area] : areas) {
+    const auto& [a, b, kind, id] = key;
+    model.adjacency.push_back({a, b, area, {static_cast<FaceKind>(kind), id}});
+  }
+  if (report) *report = local_report;
+  return model;
+}
+
+}  // namespace rockmass::blocks

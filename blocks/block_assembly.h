@@ -1,0 +1,48 @@
+// From convex pieces to blocks: what both cutters share once the rock is cut. Face labels
+// of the input solids, tolerances, gluing across fictitious faces, materials (slabs),
+// deterministic block order and the adjacency between blocks.
+#pragma once
+
+#include <vector>
+
+#include "blocks/block_model.h"
+#include "blocks/cutter.h"
+#include "blocks/piece_contacts.h"
+
+namespace rockmass::blocks {
+
+/// Geometric tolerances of the cutters, relative to the domain size.
+struct CutTolerances {
+  double distance = 0.0;  ///< m: a point this close to a plane lies on it
+  double area = 0.0;      ///< m2: an overlap or section this small is a mere touch
+};
+
+/// distance = 1e-11 x the domain diagonal (100x above the round-off of coordinates built by
+/// a few hundred successive cuts, 1e-4x below the thinnest feature the tests resolve: two
+/// discs 1e-9 m apart in a 10 m domain); area = distance x diagonal.
+CutTolerances cutTolerances(const geometry::Box& domain);
+
+/// The domain's convex pieces with face provenance: Boundary (id = running face index over
+/// the pieces, so a box domain's faces are 0..5 in boxPolyhedron order), or Fictitious for a
+/// face wholly covered by a face of another domain piece (an internal face of the convex
+/// decomposition of a mesh domain).
+std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances);
+
+/// What the assembly noticed.
+struct AssemblyReport {
+  int inconsistent_contacts = 0;  ///< contacts fictitious on one side only (treated as real)
+};
+
+/// Glues the rock pieces into blocks across `rock_contacts` (their contacts among
+/// themselves, as findPieceContacts gives them) that are fictitious on both sides (one
+/// union-find), adds each structure as one block, assigns materials (a rock block takes the
+/// material of the slab that holds most of its volume, judged at piece centroids, else
+/// input.rock_material), orders the blocks by centroid (x, then y, then z) and numbers them
+/// 1..N, and lists the adjacency: one entry per (block_a, block_b, source) with the summed
+/// contact area, sorted. Pieces keep their face provenance.
+/// Contacts between structures and rock are found here.
+BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
+                          const std::vector<PieceContact>& rock_contacts, const CutInput& input,
+                          const CutTolerances& tolerances, AssemblyReport* report = nullptr);
+
+}  // namespace rockmass::blocks

@@ -1,0 +1,232 @@
+#include "blocks/piece_contacts.h"
+
+#include <CGAL/box_intersection_d.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "blocks/convex_split.h"
+#include "geometry/disc.h"
+
+namespace rockmass::blocks {
+namespace {
+
+using geometry::Vec3;
+using BoxWithIndex = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+/// Plane and vertices of one face, computed once.
+struct FaceData {
+  Vec3 normal;
+  double offset = 0.0;
+  std::vector<Vec3> points;
+  geometry::Box box;  ///< bounding box of the points
+};
+
+/// True when the boxes overlap once grown by `tolerance`.
+bool boxesMeet(const geometry::Box& a, const geometry::Box& b, double tolerance) {
+  return (a.min.array() <= b.max.array() + tolerance).all() &&
+         (b.min.array() <= a.max.array() + tolerance).all();
+}
+
+std::vector<FaceData> faceData(const Piece& piece) {
+  std::vector<FaceData> out;
+  out.reserve(piece.shape.faces.size());
+  for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+    FaceData d;
+    d.normal = geometry::faceNormal(piece.shape, static_cast<int>(f));
+    Vec3 mean = Vec3::Zero();
+    d.box = {piece.shape.vertices[piece.shape.faces[f][0]],
+             piece.shape.vertices[piece.shape.faces[f][0]]};
+    for (int v : piece.shape.faces[f]) {
+      const Vec3& p = piece.shape.vertices[v];
+      d.points.push_back(p);
+      mean += p;
+      d.box.min = d.box.min.cwiseMin(p);
+      d.box.max = d.box.max.cwiseMax(p);
+    }
+    d.offset = d.normal.dot(mean / static_cast<double>(d.points.size()));
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+/// True when every point of `b` lies within `tolerance` of the plane of `a`.
+bool inPlane(const FaceData& a, const FaceData& b, double tolerance) {
+  return std::all_of(b.points.begin(), b.points.end(), [&](const Vec3& p) {
+    return std::abs(a.normal.dot(p) - a.offset) <= tolerance;
+  });
+}
+
+}  // namespace
+
+double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+  // Two buffers swapped between clips: no allocation once they have grown.
+  thread_local std::vector<Vec3> clipped, next;
+  clipped.assign(a.begin(), a.end());
+  // b runs clockwise about `normal`: walking it backwards, its inside is on the left.
+  const std::size_t n = b.size();
+  for (std::size_t k = 0; k < n && clipped.size() >= 3; ++k) {
+    const Vec3& p = b[(k + 1) % n];
+    const Vec3& q = b[k];
+    const Vec3 inward = normal.cross(q - p);
+    const double length = inward.norm();
+    if (length == 0.0) continue;
+    clipPolygon(clipped, Plane::through(p, inward / length), next);
+    std::swap(clipped, next);
+  }
+  return clipped.size() >= 3 ? geometry::polygonArea(clipped) : 0.0;
+}
+
+std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, double tolerance,
+                                            double min_area) {
+  std::vector<BoxWithIndex> boxes;
+  std::vector<geometry::Box> piece_boxes(pieces.size());
+  boxes.reserve(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const geometry::Box b = geometry::bounds(pieces[i].shape).enlarged(tolerance);
+    piece_boxes[i] = b;
+    boxes.emplace_back(
+        CGAL::Bbox_3(b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()),
+        static_cast<int>(i));
+  }
+  std::vector<std::pair<int, int>> pairs;
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(), [&](const BoxWithIndex& a, const BoxWithIndex& b) {
+        pairs.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
+      });
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::vector<FaceData>> faces(pieces.size());
+  tbb::parallel_for(std::size_t{0}, pieces.size(),
+                    [&](std::size_t i) { faces[i] = faceData(pieces[i]); });
+
+  // Narrow phase in parallel chunks, concatenated in chunk order (deterministic).
+  constexpr std::size_t kChunk = 4096;
+  std::vector<std::vector<PieceContact>> found((pairs.size() + kChunk - 1) / kChunk);
+  tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
+    const std::size_t end = std::min(pairs.size(), (chunk + 1) * kChunk);
+    std::vector<int> near_a, near_b;
+    for (std::size_t k = chunk * kChunk; k < end; ++k) {
+      const auto [i, j] = pairs[k];
+      // Only faces that reach into the overlap of the two pieces' boxes can touch.
+      const geometry::Box overlap{piece_boxes[i].min.cwiseMax(piece_boxes[j].min),
+                                  piece_boxes[i].max.cwiseMin(piece_boxes[j].max)};
+      near_a.clear();
+      near_b.clear();
+      for (std::size_t f = 0; f < faces[i].size(); ++f) {
+        if (boxesMeet(faces[i][f].box, overlap, tolerance)) near_a.push_back(static_cast<int>(f));
+      }
+      if (near_a.empty()) continue;
+      for (std::size_t f = 0; f < faces[j].size(); ++f) {
+        if (boxesMeet(faces[j][f].box, overlap, tolerance)) near_b.push_back(static_cast<int>(f));
+      }
+      for (int fa : near_a) {
+        const FaceData& a = faces[i][fa];
+        for (int fb : near_b) {
+          const FaceData& b = faces[j][fb];
+          // Opposite normals (within ~2.6 degrees; the plane test below decides).
+          if (a.normal.dot(b.normal) > -0.999) continue;
+          if (!boxesMeet(a.box, b.box, tolerance)) continue;
+          if (!inPlane(a, b, tolerance) || !inPlane(b, a, tolerance)) continue;
+          const double area = faceOverlapArea(a.points, b.points, a.normal);
+          if (area > min_area) found[chunk].push_back({i, fa, j, fb, area});
+        }
+      }
+    }
+  });
+  std::vector<PieceContact> contacts;
+  for (const std::vector<PieceContact>& list : found) {
+    contacts.insert(contacts.end(), list.begin(), list.end());
+  }
+  return contacts;
+}
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area) {
+  struct Ref {
+    int plane, piece, face;
+    bool operator<(const Ref& o) const {
+      return std::tie(plane, piece, face) < std::tie(o.plane, o.piece, o.face);
+    }
+  };
+  std::vector<Ref> refs;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t f = 0; f < planes[i].size(); ++f) {
+      refs.push_back({planes[i][f], static_cast<int>(i), static_cast<int>(f)});
+    }
+  }
+  std::sort(refs.begin(), refs.end());
+  std::vector<std::pair<std::size_t, std::size_t>> groups;  // [begin, end) in refs
+  for (std::size_t b = 0; b < refs.size();) {
+    std::size_t e = b + 1;
+    while (e < refs.size() && refs[e].plane == refs[b].plane) ++e;
+    if (e - b >= 2) groups.emplace_back(b, e);
+    b = e;
+  }
+  std::vector<std::vector<PieceContact>> found(groups.size());
+  tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+    const auto [begin, end] = groups[g];
+    std::vector<FaceData> data;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Piece& piece = pieces[refs[k].piece];
+      FaceData d;
+      d.normal = geometry::faceNormal(piece.shape, refs[k].face);
+      const std::vector<int>& face = piece.shape.faces[refs[k].face];
+      d.box = {piece.shape.vertices[face[0]], piece.shape.vertices[face[0]]};
+      Vec3 mean = Vec3::Zero();
+      for (int v : face) {
+        d.points.push_back(piece.shape.vertices[v]);
+        mean += d.points.back();
+        d.box.min = d.box.min.cwiseMin(d.points.back());
+        d.box.max = d.box.max.cwiseMax(d.points.back());
+      }
+      d.offset = d.normal.dot(mean / static_cast<double>(d.points.size()));
+      data.push_back(std::move(d));
+    }
+    const Vec3 reference = data.front().normal;
+    std::vector<BoxWithIndex> front, back;  // faces along and against the reference normal
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      const geometry::Box b = data[k].box.enlarged(tolerance);
+      const BoxWithIndex box(
+          CGAL::Bbox_3(b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()),
+          static_cast<int>(k));
+      (data[k].normal.dot(reference) > 0.0 ? front : back).push_back(box);
+    }
+    if (front.empty() || back.empty()) return;
+    std::vector<std::pair<int, int>> candidates;
+    CGAL::box_intersection_d(front.begin(), front.end(), back.begin(), back.end(),
+                             [&](const BoxWithIndex& a, const BoxWithIndex& b) {
+                               candidates.emplace_back(a.info(), b.info());
+                             });
+    for (const auto& [ka, kb] : candidates) {
+      const Ref& ra = refs[begin + ka];
+      const Ref& rb = refs[begin + kb];
+      if (ra.piece == rb.piece) continue;
+      if (data[ka].normal.dot(data[kb].normal) > -0.999) continue;
+      if (!inPlane(data[ka], data[kb], tolerance) || !inPlane(data[kb], data[ka], tolerance)) {
+        continue;
+      }
+      const double area = faceOverlapArea(data[ka].points, data[kb].points, data[ka].normal);
+      if (area <= min_area) continue;
+      if (ra.piece < rb.piece) {
+        found[g].push_back({ra.piece, ra.face, rb.piece, rb.face, area});
+      } else {
+        found[g].push_back({rb.piece, rb.face, ra.piece, ra.face, area});
+      }
+    }
+  });
+  std::vector<PieceContact> contacts;
+  for (const std::vector<PieceContact>& list : found) {
+    contacts.insert(contacts.end(), list.begin(), list.end());
+  }
+  std::sort(contacts.begin(), contacts.end(), [](const PieceContact& x, const PieceContact& y) {
+    return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
+           std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
+  });
+  return contacts;
+}
+
+}  // namespace rockmass::blocks

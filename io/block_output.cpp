@@ -1,0 +1,130 @@
+#include "io/block_output.h"
+
+#include <map>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "blocks/volume_statistics.h"
+#include "io/atomic_file.h"
+#include "io/vtu.h"
+
+namespace rockmass::io {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// The material's name, or "none" for -1.
+std::string materialName(int material, const std::vector<Material>& materials) {
+  if (material < 0 || material >= static_cast<int>(materials.size())) return "none";
+  return materials[static_cast<std::size_t>(material)].name;
+}
+
+}  // namespace
+
+std::string formatBlocksCsv(const blocks::BlockModel& model,
+                            const std::vector<Material>& materials) {
+  std::string out = "id,volume,cx,cy,cz,material,pieces,xmin,ymin,zmin,xmax,ymax,zmax\n";
+  for (const blocks::Block& b : model.blocks) {
+    const geometry::Vec3 c = b.mass.centroid();
+    out += std::to_string(b.id) + ',' + formatDouble(b.mass.volume);
+    for (int a = 0; a < 3; ++a) out += ',' + formatDouble(c[a]);
+    out += ',' + materialName(b.material, materials) + ',' + std::to_string(b.pieces.size());
+    for (int a = 0; a < 3; ++a) out += ',' + formatDouble(b.bounds.min[a]);
+    for (int a = 0; a < 3; ++a) out += ',' + formatDouble(b.bounds.max[a]);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string formatBlocksVtu(const blocks::BlockModel& model) {
+  VtuPiece vtu;
+  std::vector<std::int32_t> id, material;
+  std::vector<double> volume, piece_volume;
+  for (const blocks::Block& b : model.blocks) {
+    for (const blocks::Piece& p : b.pieces) {
+      const std::int64_t base = static_cast<std::int64_t>(vtu.points.size() / 3);
+      for (const geometry::Vec3& v : p.shape.vertices) {
+        vtu.points.insert(vtu.points.end(), {v.x(), v.y(), v.z()});
+        vtu.connectivity.push_back(base + static_cast<std::int64_t>(&v - p.shape.vertices.data()));
+      }
+      vtu.offsets.push_back(static_cast<std::int64_t>(vtu.connectivity.size()));
+      vtu.types.push_back(42);
+      vtu.faces.push_back(static_cast<std::int64_t>(p.shape.faces.size()));
+      for (const std::vector<int>& face : p.shape.faces) {
+        vtu.faces.push_back(static_cast<std::int64_t>(face.size()));
+        for (int v : face) vtu.faces.push_back(base + v);
+      }
+      vtu.faceoffsets.push_back(static_cast<std::int64_t>(vtu.faces.size()));
+      id.push_back(b.id);
+      material.push_back(b.material);
+      volume.push_back(b.mass.volume);
+      piece_volume.push_back(geometry::massProperties(p.shape).volume);
+    }
+  }
+  vtu.cell_data.push_back(makeVtuArray("id", id));
+  vtu.cell_data.push_back(makeVtuArray("material", material));
+  vtu.cell_data.push_back(makeVtuArray("volume", volume));
+  vtu.cell_data.push_back(makeVtuArray("piece_volume", piece_volume));
+  return formatVtu(vtu);
+}
+
+std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetwork& network,
+                                const blocks::BlockModel& model, const CutInfo& cut,
+                                const std::vector<Material>& materials) {
+  Json j;
+  j["rockmass_version"] = version();
+  j["command"] = run.command;
+  j["scene"] = run.scene;
+  j["name"] = run.name;
+  j["seed"] = run.seed;
+  j["stages"] = run.stages;
+  j["effects"] = run.effects;
+  std::int64_t cutting = 0;
+  for (const geometry::Disc& d : network.discs) cutting += d.cuts;
+  j["discs"] = network.discs.size();
+  j["cutting_discs"] = cutting;
+  j["cutter"] = cut.cutter;
+  j["disc_segments"] = cut.disc_segments;
+  j["blocks"] = model.blocks.size();
+  j["pieces"] = cut.pieces;
+  std::vector<double> volumes;
+  for (const blocks::Block& b : model.blocks) volumes.push_back(b.mass.volume);
+  double total = 0.0;
+  for (double v : volumes) total += v;
+  j["total_volume"] = total;
+  j["domain_volume"] = model.domain_volume;
+  j["volume_error"] =
+      model.domain_volume > 0 ? (total - model.domain_volume) / model.domain_volume : 0.0;
+  if (!volumes.empty()) {
+    const blocks::VolumeStatistics s = blocks::volumeStatistics(volumes);
+    j["volume_stats"] = {{"min", s.min}, {"max", s.max}, {"mean", s.mean}};
+  } else {
+    j["volume_stats"] = nullptr;
+  }
+  try {
+    const blocks::WeibullFit fit = blocks::fitWeibull(volumes);
+    j["weibull"] = {{"shape", fit.shape}, {"scale", fit.scale}};
+  } catch (const std::invalid_argument&) {
+    j["weibull"] = nullptr;  // fewer than 2 blocks, or all of one size
+  }
+  j["adjacencies"] = model.adjacency.size();
+  j["inconsistent_contacts"] = cut.inconsistent_contacts;
+  std::map<int, std::pair<std::int64_t, double>> per_material;
+  for (const blocks::Block& b : model.blocks) {
+    per_material[b.material].first += 1;
+    per_material[b.material].second += b.mass.volume;
+  }
+  Json mats = Json::array();
+  for (const auto& [m, cv] : per_material) {
+    mats.push_back(
+        {{"material", materialName(m, materials)}, {"blocks", cv.first}, {"volume", cv.second}});
+  }
+  j["materials"] = mats;
+  Json t = Json::object();
+  for (const auto& [stage, seconds] : run.timings) t[stage] = seconds;
+  j["timings"] = t;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rockmass::io
