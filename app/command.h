@@ -50,5 +50,6 @@ geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::str
 // One function per sub-command (each in <name>_command.cpp).
 Command addDfnCommand(CLI::App& app);
 Command addBlocksCommand(CLI::App& app);
+Command addDdaCommand(CLI::App& app);
 
 }  // namespace rockmass::app

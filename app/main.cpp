@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   const std::vector<rockmass::app::Command> commands = {
       rockmass::app::addDfnCommand(app),
       rockmass::app::addBlocksCommand(app),
+      rockmass::app::addDdaCommand(app),
   };
 
   try {
