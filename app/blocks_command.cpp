@@ -6,8 +6,7 @@
 #include <vector>
 
 #include "app/command.h"
-#include "blocks/fast_cutter.h"
-#include "blocks/prism.h"
+#include "app/scene_blocks.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
 #include "io/input_error.h"
@@ -19,10 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// THE place that says whether the exact (CGAL Nef) cutter is linked in. Until it is,
-/// `--cutter exact` (and a scene that asks for it without --cutter) stops with exit code 2.
-constexpr bool kExactCutterBuilt = false;
-
 /// Options of `rockmass blocks` beyond the common ones.
 struct BlocksOptions {
   CommonOptions common;
@@ -30,50 +25,9 @@ struct BlocksOptions {
   std::string mesh_format;  ///< "", obj, ply, stl or glb
 };
 
-/// The cut input of a scene: its box domain, its network and its structures as convex
-/// prism pieces.
-blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwork& network,
-                          const std::string& scene_path) {
-  if (!scene.domain_mesh.empty()) {
-    throw io::InputError(scene_path + ": domain: mesh domains are cut by the exact cutter's " +
-                         "mesh import, which is not built yet; use a box domain");
-  }
-  blocks::CutInput input;
-  input.domain_box = scene.dfn.domain;
-  input.domain_pieces = {geometry::boxPolyhedron(scene.dfn.domain)};
-  input.network = &network;
-  input.disc_segments = scene.analysis.blocks ? scene.analysis.blocks->disc_segments : 24;
-  input.rock_material = scene.rock_material;
-  for (const io::StructureSpec& s : scene.structures) {
-    if (!s.mesh.empty()) {
-      throw io::InputError(scene_path + ": structures: " + s.name +
-                           ": mesh structures need the mesh import, which is not built yet; " +
-                           "give a prism");
-    }
-    blocks::StructureSolid solid;
-    solid.material = s.material;
-    try {
-      solid.pieces = blocks::prismPieces(s.prism_profile, s.prism_sweep, s.prism_from, s.prism_to);
-    } catch (const std::invalid_argument& e) {
-      throw io::InputError(scene_path + ": structures: " + s.name + ": prism: " + e.what());
-    }
-    input.structures.push_back(std::move(solid));
-  }
-  return input;
-}
-
 int runBlocks(const BlocksOptions& options) {
   const io::Scene scene = loadScene(options.common);
-  const std::string cutter =
-      !options.cutter.empty() ? options.cutter
-      : (scene.analysis.blocks && scene.analysis.blocks->cutter == io::BlocksAnalysis::Cutter::Fast)
-          ? "fast"
-          : "exact";
-  if (cutter == "exact" && !kExactCutterBuilt) {
-    throw io::InputError(options.common.scene +
-                         ": the exact cutter (analysis.blocks.cutter: exact, the default) is " +
-                         "not built yet; run with --cutter fast");
-  }
+  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
   if (!options.mesh_format.empty()) {
     throw io::InputError("--mesh-format: block meshes through assimp are not built yet");
   }
@@ -84,14 +38,9 @@ int runBlocks(const BlocksOptions& options) {
   const double dfn_seconds = secondsSince(start);
 
   start = Clock::now();
-  const blocks::CutInput input = cutInput(scene, network, options.common.scene);
-  blocks::FastCutReport report;
-  blocks::BlockModel model;
-  try {
-    model = blocks::cutFast(input, &report);
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError(options.common.scene + ": " + e.what());
-  }
+  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
+  const blocks::BlockModel& model = cut.model;
+  const blocks::FastCutReport& report = cut.report;
   const double cut_seconds = secondsSince(start);
   std::fprintf(stderr, "blocks: %zu blocks (%d pieces) from %d cutting polygons (%.2f s)\n",
                model.blocks.size(), report.pieces, report.cutting_polygons, cut_seconds);
@@ -107,7 +56,7 @@ int runBlocks(const BlocksOptions& options) {
   run.stages = {"dfn", "cut"};
   io::CutInfo info;
   info.cutter = cutter;
-  info.disc_segments = input.disc_segments;
+  info.disc_segments = cut.input.disc_segments;
   info.pieces = report.pieces;
   info.inconsistent_contacts = report.inconsistent_contacts;
   run.timings = {{"dfn", dfn_seconds},
@@ -127,9 +76,7 @@ Command addBlocksCommand(CLI::App& app) {
   auto options = std::make_shared<BlocksOptions>();
   CLI::App* cli = app.add_subcommand("blocks", "Cut the rock of a scene into blocks");
   addCommonOptions(*cli, options->common);
-  cli->add_option("--cutter", options->cutter,
-                  "exact (CGAL Nef) or fast (convex splitting); overrides analysis.blocks.cutter")
-      ->check(CLI::IsMember({"exact", "fast"}));
+  addCutterOption(*cli, options->cutter);
   cli->add_option("--mesh-format", options->mesh_format, "block meshes: obj, ply, stl or glb")
       ->check(CLI::IsMember({"obj", "ply", "stl", "glb"}));
   return {cli, [options] { return runBlocks(*options); }};

@@ -51,5 +51,6 @@ geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::str
 Command addDfnCommand(CLI::App& app);
 Command addRqdCommand(CLI::App& app);
 Command addBlocksCommand(CLI::App& app);
+Command addDdaCommand(CLI::App& app);
 
 }  // namespace rockmass::app

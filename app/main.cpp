@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
       rockmass::app::addDfnCommand(app),
       rockmass::app::addBlocksCommand(app),
       rockmass::app::addRqdCommand(app),
+      rockmass::app::addDdaCommand(app),
   };
 
   try {

@@ -171,6 +171,11 @@ class Simulation {
   EnergyAccount energy() const;
   /// Name of the linear solver backend.
   std::string solverName() const;
+  /// K of the last solve (the accepted attempt's last open-close iteration), for the debug
+  /// dump. Only valid after a step.
+  const SparseMatrix& lastMatrix() { return system_->matrix(); }
+  /// F of the last solve, for the debug dump. Only valid after a step.
+  Eigen::VectorXd lastRhs() const { return system_->rhs(); }
 
  private:
   struct MaterialPoint {

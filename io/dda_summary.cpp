@@ -73,7 +73,6 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
       {"locked", perStep(s, [](const DdaStepRecord& r) { return r.locked; })},
       {"iterations", perStep(s, [](const DdaStepRecord& r) { return r.open_close_iterations; })},
       {"retries", perStep(s, [](const DdaStepRecord& r) { return r.retries; })},
-      {"solver_iterations", perStep(s, [](const DdaStepRecord& r) { return r.solver_iterations; })},
       {"max_displacement", perStep(s, [](const DdaStepRecord& r) { return r.max_displacement; })},
       {"max_penetration", perStep(s, [](const DdaStepRecord& r) { return r.max_penetration; })},
   };

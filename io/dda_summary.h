@@ -23,7 +23,6 @@ struct DdaStepRecord {
   int locked = 0;                 ///< locked contacts
   int open_close_iterations = 0;  ///< solves of the accepted attempt
   int retries = 0;                ///< attempts redone (smaller Δt or larger penalty)
-  int solver_iterations = 0;      ///< PCG iterations summed over the step (0 for direct)
   double max_displacement = 0.0;  ///< largest vertex displacement of the step (m)
   double max_penetration = 0.0;   ///< deepest penetration after the step (m, >= 0)
   /// Wall-clock seconds per phase (detect, assemble, solve, update, ...), in phase order.
@@ -58,7 +57,7 @@ struct DdaRunSummary {
 /// summary.json of a dda run: keys command, ..., effects, blocks, fixed_blocks, pieces,
 /// unknowns, mode, kinematics, solver, steps_requested, steps_taken, time_step, duration,
 /// penalty, monitors[], steps{time, time_step, contacts, open, sliding, locked, iterations,
-/// retries, solver_iterations, max_displacement, max_penetration} (one array entry per
+/// retries, max_displacement, max_penetration} (one array entry per
 /// step), then timings (run.timings plus dda_phases: totals per phase, and dda_steps: per
 /// phase, one entry per step).
 std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda);

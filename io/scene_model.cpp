@@ -1,5 +1,6 @@
 #include "io/scene_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -97,6 +98,81 @@ std::vector<std::vector<int>> jointTable(const Scene& scene) {
   return table;
 }
 
+/// Mean of the face's vertices (m).
+geometry::Vec3 faceCenter(const geometry::Polyhedron& shape, int f) {
+  geometry::Vec3 sum = geometry::Vec3::Zero();
+  const std::vector<int>& face = shape.faces[static_cast<std::size_t>(f)];
+  for (int v : face) sum += shape.vertices[static_cast<std::size_t>(v)];
+  return sum / static_cast<double>(face.size());
+}
+
+/// True when face `f` of piece `p` is glued to another piece of the same block (its centre
+/// lies on that piece): an internal face, never wet.
+bool internalFace(const blocks::Block& block, std::size_t p, int f, double tol) {
+  const geometry::Vec3 center = faceCenter(block.pieces[p].shape, f);
+  for (std::size_t other = 0; other < block.pieces.size(); ++other) {
+    if (other != p && geometry::convexPlaneDistance(block.pieces[other].shape, center) <= tol) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// True when the point's plan position lies in the region (open bounds ignored).
+bool inRegion(const Region& region, const geometry::Vec3& p) {
+  return (!region.x_min || p.x() >= *region.x_min) && (!region.x_max || p.x() <= *region.x_max) &&
+         (!region.y_min || p.y() >= *region.y_min) && (!region.y_max || p.y() <= *region.y_max);
+}
+
+/// Index of the structure named `name` (the scene reader has checked that it exists).
+int structureIndex(const Scene& scene, const std::string& name) {
+  for (std::size_t s = 0; s < scene.structures.size(); ++s) {
+    if (scene.structures[s].name == name) return static_cast<int>(s);
+  }
+  throw std::invalid_argument("unknown structure '" + name + "'");
+}
+
+/// Pressure entries of one water load: every outer piece face it wets (see buildDdaModel).
+void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::BlockModel& blocks,
+                  dda3d::DdaModel& model) {
+  if (water.uplift) {
+    throw InputError(locate(scene.file, 0, 0,
+                            "loads.water: uplift under a structure is not applied by the DDA "
+                            "of this version yet; remove `uplift: true`"));
+  }
+  const double tol = tolerance(blocks);
+  const bool box_domain = scene.domain_mesh.empty();
+  const DomainFace top = domainFace("top");
+  const int structure = water.domain_top ? -1 : structureIndex(scene, water.structure);
+  for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+    const blocks::Block& block = blocks.blocks[b];
+    for (std::size_t p = 0; p < block.pieces.size(); ++p) {
+      const blocks::Piece& piece = block.pieces[p];
+      for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+        const int face = static_cast<int>(f);
+        const blocks::FaceSource source =
+            f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
+        bool wet = false;
+        if (water.domain_top) {
+          wet = (box_domain && source.kind == blocks::FaceKind::Boundary && source.id == 5) ||
+                liesOnDomainFace(piece, face, top, blocks.domain, tol);
+        } else {
+          wet = source.kind == blocks::FaceKind::Structure && source.id == structure &&
+                water.facing && geometry::faceNormal(piece.shape, face).dot(*water.facing) > 0.0;
+        }
+        if (!wet || !inRegion(water.region, faceCenter(piece.shape, face))) continue;
+        double lowest = std::numeric_limits<double>::infinity();
+        for (int v : piece.shape.faces[f]) {
+          lowest = std::min(lowest, piece.shape.vertices[static_cast<std::size_t>(v)].z());
+        }
+        if (lowest >= water.level || internalFace(block, p, face, tol)) continue;
+        model.pressures.push_back(
+            {static_cast<int>(b), static_cast<int>(p), face, water.level, water.unit_weight});
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int findContainingBlock(const blocks::BlockModel& blocks, const geometry::Vec3& point) {
@@ -174,6 +250,19 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
     }
     model.monitors.push_back({monitor.name, monitor.point, block});
   }
+  for (std::size_t i = 0; i < scene.loads.point_loads.size(); ++i) {
+    const PointLoad& load = scene.loads.point_loads[i];
+    const int block = findContainingBlock(blocks, load.point);
+    if (block < 0) {
+      throw InputError(locate(scene.file, 0, 0,
+                              "loads.point_loads[" + std::to_string(i) + "] at " +
+                                  pointText(load.point) +
+                                  " lies in no block; a point load must act on the rock or a "
+                                  "structure"));
+    }
+    model.point_loads.push_back({block, load.point, load.force});
+  }
+  for (const WaterLoad& water : scene.loads.water) addWaterLoad(scene, water, blocks, model);
   return model;
 }
 

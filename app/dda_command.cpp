@@ -1,0 +1,263 @@
+// rockmass dda: cut the scene into blocks exactly as `rockmass blocks` does, run the 3D DDA
+// of analysis.dda on them, and write history.csv, dda.pvd + frames and summary.json.
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/command.h"
+#include "app/scene_blocks.h"
+#include "dda3d/simulation.h"
+#include "io/atomic_file.h"
+#include "io/dda_output.h"
+#include "io/dda_summary.h"
+#include "io/input_error.h"
+#include "io/scene_model.h"
+
+namespace rockmass::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Options of `rockmass dda` beyond the common ones.
+struct DdaOptions {
+  CommonOptions common;
+  std::string cutter;              ///< "", "exact" or "fast" ("": the scene's choice)
+  std::string solver = "cholmod";  ///< cholmod | eigen | pcg
+  double pcg_tolerance = 1e-10;    ///< relative residual of the pcg solver
+  int frame_every = 0;             ///< steps between VTU frames (0: about 50 frames per run)
+  std::optional<int> debug_step;   ///< dump K, F and the contacts of this step (1-based)
+};
+
+/// Engine settings from analysis.dda and the command line.
+dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOptions& options) {
+  dda3d::DdaSettings settings;
+  settings.mode = dda.dynamic ? dda3d::AnalysisMode::Dynamic : dda3d::AnalysisMode::Static;
+  settings.kinematics = dda.deformable ? dda3d::Kinematics::Deformable : dda3d::Kinematics::Rigid;
+  settings.time_step = dda.time_step;
+  settings.max_displacement_ratio = dda.max_displacement_ratio;
+  settings.penalty = dda.penalty.value_or(0.0);
+  settings.solver.kind = options.solver == "pcg"     ? dda3d::SolverKind::Pcg
+                         : options.solver == "eigen" ? dda3d::SolverKind::Eigen
+                                                     : dda3d::SolverKind::Cholmod;
+  settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
+  settings.solver.tolerance = options.pcg_tolerance;
+  return settings;
+}
+
+/// The frame of the simulation's current state.
+io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blocks, int step) {
+  io::DdaFrame frame;
+  frame.step = step;
+  frame.time = sim.time();
+  for (std::size_t b = 0; b < sim.blocks().size(); ++b) {
+    const dda3d::BlockState& state = sim.blocks()[b];
+    io::DdaBlockState out;
+    out.id = blocks.blocks[b].id;
+    out.material = state.material;
+    out.pieces = state.pieces;
+    out.displacement = sim.centroidDisplacement(static_cast<int>(b));
+    out.velocity = state.velocity.head<3>();  // T(centroid) picks the translation rates
+    for (int k = 0; k < 6; ++k) out.stress[static_cast<std::size_t>(k)] = state.stress[k];
+    frame.blocks.push_back(std::move(out));
+  }
+  return frame;
+}
+
+/// One history row per monitor at the simulation's current time.
+void recordMonitors(const dda3d::Simulation& sim, std::vector<io::MonitorSample>& samples) {
+  const std::vector<dda3d::MonitorState> monitors = sim.monitors();
+  for (std::size_t m = 0; m < monitors.size(); ++m) {
+    samples.push_back(
+        {sim.time(), static_cast<int>(m), monitors[m].displacement, monitors[m].velocity});
+  }
+}
+
+/// Seconds per phase spent between two cumulative readings.
+std::vector<std::pair<std::string, double>> phaseSeconds(const dda3d::PhaseTimings& before,
+                                                         const dda3d::PhaseTimings& after) {
+  return {{"detect_contacts", after.detect_contacts - before.detect_contacts},
+          {"assemble_block_terms", after.assemble_block_terms - before.assemble_block_terms},
+          {"assemble_contacts", after.assemble_contacts - before.assemble_contacts},
+          {"factorize", after.factorize - before.factorize},
+          {"solve", after.solve - before.solve},
+          {"update_states", after.update_states - before.update_states},
+          {"update_blocks", after.update_blocks - before.update_blocks}};
+}
+
+/// The summary's record of one step.
+io::DdaStepRecord stepRecord(int step, const dda3d::StepReport& report,
+                             const dda3d::Simulation& sim,
+                             std::vector<std::pair<std::string, double>> phases) {
+  io::DdaStepRecord r;
+  r.step = step;
+  r.time = report.time;
+  r.time_step = report.time_step;
+  r.contacts = report.contacts.total;
+  r.open = report.contacts.open;
+  r.sliding = report.contacts.sliding;
+  r.locked = report.contacts.locked;
+  r.open_close_iterations = report.iterations;
+  r.retries = report.attempts - 1;
+  r.max_displacement =
+      report.displacement_ratio * sim.settings().max_displacement_ratio * sim.halfDomainSize();
+  r.max_penetration = report.max_penetration;
+  r.phase_seconds = std::move(phases);
+  return r;
+}
+
+/// The contacts of the last step as debug records (block ids, not indices).
+std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
+                                                 const blocks::BlockModel& blocks) {
+  std::vector<io::DdaContactRecord> out;
+  for (const dda3d::Contact& c : sim.contacts()) {
+    io::DdaContactRecord r;
+    r.kind = c.kind == dda3d::ContactKind::VertexFace ? io::ContactKind::VertexFace
+                                                      : io::ContactKind::EdgeEdge;
+    r.state = c.state == dda3d::ContactState::Open      ? io::ContactState::Open
+              : c.state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
+                                                        : io::ContactState::Locked;
+    r.block_i = blocks.blocks[static_cast<std::size_t>(c.block_i)].id;
+    r.piece_i = c.piece_i;
+    r.block_j = blocks.blocks[static_cast<std::size_t>(c.block_j)].id;
+    r.piece_j = c.piece_j;
+    r.face_j = c.face;
+    r.point = c.point;
+    r.normal = c.normal;
+    r.gap = c.gap;
+    r.normal_force = c.normal_force;
+    r.shear_displacement = c.shear.norm();
+    out.push_back(r);
+  }
+  return out;
+}
+
+int runDda(const DdaOptions& options) {
+  const io::Scene scene = loadScene(options.common);
+  if (!scene.analysis.dda) {
+    throw io::InputError(options.common.scene +
+                         ": analysis.dda: required by `rockmass dda` (steps, time_step, ...)");
+  }
+  const io::DdaAnalysis& dda = *scene.analysis.dda;
+  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+  const fs::path out = prepareOutput(options.common.output);
+  io::RunInfo run;
+  run.command = "dda";
+  run.scene = options.common.scene;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  run.stages = {"dfn", "cut", "dda"};
+
+  auto start = Clock::now();
+  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
+  run.timings.emplace_back("dfn", secondsSince(start));
+
+  start = Clock::now();
+  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
+  const blocks::BlockModel& blocks = cut.model;
+  run.timings.emplace_back("cut", secondsSince(start));
+  std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)\n", blocks.blocks.size(),
+               cutter.c_str(), run.timings.back().second);
+
+  start = Clock::now();
+  dda3d::DdaModel model = io::buildDdaModel(scene, blocks);
+  int fixed_blocks = 0, pieces = 0;
+  for (const dda3d::DdaBlock& b : model.blocks) {
+    fixed_blocks += b.fixed;
+    pieces += static_cast<int>(b.pieces.size());
+  }
+  std::vector<std::string> monitor_names;
+  for (const dda3d::DdaMonitor& m : model.monitors) monitor_names.push_back(m.name);
+  dda3d::Simulation sim(std::move(model), settingsOf(dda, options));
+
+  const int frame_every =
+      options.frame_every > 0 ? options.frame_every : std::max(1, dda.steps / 50);
+  io::DdaFrameWriter frames(out, frame_every);
+  std::vector<io::MonitorSample> samples;
+  recordMonitors(sim, samples);
+  frames.write(frameOf(sim, blocks, 0));
+
+  io::DdaRunSummary summary;
+  const double duration = dda.steps * dda.time_step;
+  // The last step may land a round-off short of the duration: no sliver step for it.
+  const double end = duration * (1.0 - 1e-9);
+  int step = 0;
+  int next_report = 1;
+  while (sim.time() < end) {
+    const dda3d::PhaseTimings before = sim.timings();
+    const dda3d::StepReport report = sim.step();
+    ++step;
+    summary.steps.push_back(stepRecord(step, report, sim, phaseSeconds(before, sim.timings())));
+    recordMonitors(sim, samples);
+    if (frames.due(step)) frames.write(frameOf(sim, blocks, step));
+    if (options.debug_step && *options.debug_step == step) {
+      io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
+                            contactRecords(sim, blocks));
+    }
+    if (sim.time() >= next_report * 0.1 * duration) {
+      std::fprintf(stderr,
+                   "dda: %3d%%  step %d  t = %.4g s  dt = %.3g s  contacts %d (%d open)  "
+                   "iterations %d\n",
+                   static_cast<int>(100.0 * sim.time() / duration + 0.5), step, sim.time(),
+                   report.time_step, report.contacts.total, report.contacts.open,
+                   report.iterations);
+      while (sim.time() >= next_report * 0.1 * duration) ++next_report;
+    }
+  }
+  frames.write(frameOf(sim, blocks, step));
+  run.timings.emplace_back("dda", secondsSince(start));
+
+  start = Clock::now();
+  io::writeFileAtomically(out / "history.csv", io::formatHistoryCsv(monitor_names, samples));
+  run.effects = sim.activeTerms().names();
+  summary.blocks = static_cast<int>(blocks.blocks.size());
+  summary.fixed_blocks = fixed_blocks;
+  summary.pieces = pieces;
+  summary.unknowns = (summary.blocks - fixed_blocks) * sim.dofsPerBlock();
+  summary.dynamic = dda.dynamic;
+  summary.deformable = dda.deformable;
+  summary.solver = sim.solverName();
+  summary.steps_requested = dda.steps;
+  summary.time_step = dda.time_step;
+  summary.duration = sim.time();
+  summary.penalty = sim.penalty();
+  for (const dda3d::MonitorState& m : sim.monitors()) {
+    const std::size_t k = summary.monitors.size();
+    summary.monitors.push_back(
+        {m.name, blocks.blocks[static_cast<std::size_t>(sim.model().monitors[k].block)].id,
+         m.displacement});
+  }
+  run.timings.emplace_back("write", secondsSince(start));
+  io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, summary));
+  std::fprintf(stderr, "dda: %d steps to t = %.4g s; wrote %s\n", step, sim.time(),
+               out.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command addDdaCommand(CLI::App& app) {
+  auto options = std::make_shared<DdaOptions>();
+  CLI::App* cli = app.add_subcommand(
+      "dda", "Cut the scene into blocks and run the 3D DDA of its analysis.dda section");
+  addCommonOptions(*cli, options->common);
+  addCutterOption(*cli, options->cutter);
+  cli->add_option("--solver", options->solver, "Linear solver: cholmod (default), eigen, pcg")
+      ->check(CLI::IsMember({"cholmod", "eigen", "pcg"}));
+  cli->add_option("--pcg-tolerance", options->pcg_tolerance,
+                  "Relative residual of the pcg solver (default 1e-10)")
+      ->check(CLI::PositiveNumber);
+  cli->add_option("--frame-every", options->frame_every,
+                  "Steps between VTU frames (default: steps / 50)")
+      ->check(CLI::PositiveNumber);
+  cli->add_option("--debug-step", options->debug_step,
+                  "Dump K, F (Matrix Market) and the contacts (CSV) of step N: debug_step<N>_*")
+      ->check(CLI::PositiveNumber);
+  return {cli, [options] { return runDda(*options); }};
+}
+
+}  // namespace rockmass::app

@@ -1,0 +1,42 @@
+// Cutting a scene into blocks, shared by every sub-command that needs blocks (`blocks`,
+// `dda`): the cutter choice, the cut input (box domain, network, prism structures) and the
+// cut itself, so that `dda` cuts exactly as `blocks` does.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "blocks/fast_cutter.h"
+#include "geometry/fracture_network.h"
+#include "io/scene.h"
+
+namespace rockmass::app {
+
+/// The blocks of a scene and how they were cut.
+struct SceneBlocks {
+  blocks::BlockModel model;      ///< the blocks
+  blocks::CutInput input;        ///< what was cut (its network pointer is the caller's)
+  blocks::FastCutReport report;  ///< the fast cutter's counters and timings
+};
+
+/// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
+void addCutterOption(CLI::App& command, std::string& cutter);
+
+/// The cutter to use: `option` when given, else the scene's analysis.blocks.cutter (exact
+/// by default). Throws io::InputError when that cutter is not built, before any work.
+std::string chooseCutter(const io::Scene& scene, const std::string& option,
+                         const std::string& scene_path);
+
+/// The cut input of a scene: its box domain, `network` (kept by pointer) and its structures
+/// as convex prism pieces. Throws io::InputError for what cannot be cut yet (mesh domains
+/// and structures) or a bad prism.
+blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwork& network,
+                          const std::string& scene_path);
+
+/// Cuts the scene with `cutter` (from chooseCutter). Throws io::InputError naming the scene
+/// for an input the cutter rejects.
+SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwork& network,
+                           const std::string& cutter, const std::string& scene_path);
+
+}  // namespace rockmass::app

@@ -1,0 +1,25 @@
+#pragma once
+/// Running the rockmass binary from the CLI tests (ROCKMASS_BINARY is set by
+/// rockmass_add_test_program).
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace rockmass::test {
+
+/// Runs `rockmass <arguments>`; returns its exit code (-1 when it did not exit normally) and,
+/// when `output` is given, stores its stdout and stderr there.
+inline int runRockmass(const std::string& arguments, std::string* output = nullptr) {
+  const std::string command = std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  std::string text;
+  while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  const int status = pclose(pipe);
+  if (output) *output = text;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace rockmass::test
