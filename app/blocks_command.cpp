@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "blocks/prism.h"
 #include "io/atomic_file.h"
@@ -18,10 +19,6 @@ namespace rockmass::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// THE place that says whether the exact (CGAL Nef) cutter is linked in. Until it is,
-/// `--cutter exact` (and a scene that asks for it without --cutter) stops with exit code 2.
-constexpr bool kExactCutterBuilt = false;
 
 /// Options of `rockmass blocks` beyond the common ones.
 struct BlocksOptions {
@@ -62,6 +59,36 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
   return input;
 }
 
+/// What either cutter gives the command.
+struct CutRun {
+  blocks::BlockModel model;
+  int pieces = 0;                 ///< convex pieces of the rock
+  int inconsistent_contacts = 0;  ///< fast cutter only (0 in a sound cut)
+  double split_seconds = 0.0;     ///< splitting (exact: summed over regions, i.e. CPU time)
+  double assemble_seconds = 0.0;  ///< gluing, materials, adjacency
+};
+
+CutRun runFast(const blocks::CutInput& input) {
+  blocks::FastCutReport report;
+  CutRun run;
+  run.model = blocks::cutFast(input, &report);
+  run.pieces = report.pieces;
+  run.inconsistent_contacts = report.inconsistent_contacts;
+  run.split_seconds = report.cut_seconds;
+  run.assemble_seconds = report.assemble_seconds;
+  return run;
+}
+
+CutRun runExact(const blocks::CutInput& input) {
+  blocks::ExactCutReport report;
+  CutRun run;
+  run.model = blocks::cutExact(input, {}, &report);
+  run.pieces = report.pieces;
+  run.split_seconds = report.split_seconds + report.extract_seconds;
+  run.assemble_seconds = report.glue_seconds;
+  return run;
+}
+
 int runBlocks(const BlocksOptions& options) {
   const io::Scene scene = loadScene(options.common);
   const std::string cutter =
@@ -69,11 +96,6 @@ int runBlocks(const BlocksOptions& options) {
       : (scene.analysis.blocks && scene.analysis.blocks->cutter == io::BlocksAnalysis::Cutter::Fast)
           ? "fast"
           : "exact";
-  if (cutter == "exact" && !kExactCutterBuilt) {
-    throw io::InputError(options.common.scene +
-                         ": the exact cutter (analysis.blocks.cutter: exact, the default) is " +
-                         "not built yet; run with --cutter fast");
-  }
   if (!options.mesh_format.empty()) {
     throw io::InputError("--mesh-format: block meshes through assimp are not built yet");
   }
@@ -85,16 +107,16 @@ int runBlocks(const BlocksOptions& options) {
 
   start = Clock::now();
   const blocks::CutInput input = cutInput(scene, network, options.common.scene);
-  blocks::FastCutReport report;
-  blocks::BlockModel model;
+  CutRun cut;
   try {
-    model = blocks::cutFast(input, &report);
+    cut = cutter == "exact" ? runExact(input) : runFast(input);
   } catch (const std::invalid_argument& e) {
     throw io::InputError(options.common.scene + ": " + e.what());
   }
+  const blocks::BlockModel& model = cut.model;
   const double cut_seconds = secondsSince(start);
-  std::fprintf(stderr, "blocks: %zu blocks (%d pieces) from %d cutting polygons (%.2f s)\n",
-               model.blocks.size(), report.pieces, report.cutting_polygons, cut_seconds);
+  std::fprintf(stderr, "blocks: %zu blocks (%d pieces), %s cutter (%.2f s)\n", model.blocks.size(),
+               cut.pieces, cutter.c_str(), cut_seconds);
 
   start = Clock::now();
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
@@ -108,12 +130,12 @@ int runBlocks(const BlocksOptions& options) {
   io::CutInfo info;
   info.cutter = cutter;
   info.disc_segments = input.disc_segments;
-  info.pieces = report.pieces;
-  info.inconsistent_contacts = report.inconsistent_contacts;
+  info.pieces = cut.pieces;
+  info.inconsistent_contacts = cut.inconsistent_contacts;
   run.timings = {{"dfn", dfn_seconds},
                  {"cut", cut_seconds},
-                 {"cut_split", report.cut_seconds},
-                 {"cut_assemble", report.assemble_seconds},
+                 {"cut_split", cut.split_seconds},
+                 {"cut_assemble", cut.assemble_seconds},
                  {"write", secondsSince(start)}};
   io::writeFileAtomically(out / "summary.json",
                           io::formatBlocksSummary(run, network, model, info, scene.materials));
@@ -128,7 +150,8 @@ Command addBlocksCommand(CLI::App& app) {
   CLI::App* cli = app.add_subcommand("blocks", "Cut the rock of a scene into blocks");
   addCommonOptions(*cli, options->common);
   cli->add_option("--cutter", options->cutter,
-                  "exact (CGAL Nef) or fast (convex splitting); overrides analysis.blocks.cutter")
+                  "exact (exact-kernel splitting) or fast (floating-point convex splitting); "
+                  "overrides analysis.blocks.cutter")
       ->check(CLI::IsMember({"exact", "fast"}));
   cli->add_option("--mesh-format", options->mesh_format, "block meshes: obj, ply, stl or glb")
       ->check(CLI::IsMember({"obj", "ply", "stl", "glb"}));
