@@ -40,10 +40,9 @@ int runBlocks(const BlocksOptions& options) {
   start = Clock::now();
   const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
   const blocks::BlockModel& model = cut.model;
-  const blocks::FastCutReport& report = cut.report;
   const double cut_seconds = secondsSince(start);
-  std::fprintf(stderr, "blocks: %zu blocks (%d pieces) from %d cutting polygons (%.2f s)\n",
-               model.blocks.size(), report.pieces, report.cutting_polygons, cut_seconds);
+  std::fprintf(stderr, "blocks: %zu blocks (%d pieces), %s cutter (%.2f s)\n", model.blocks.size(),
+               cut.pieces, cutter.c_str(), cut_seconds);
 
   start = Clock::now();
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
@@ -57,12 +56,12 @@ int runBlocks(const BlocksOptions& options) {
   io::CutInfo info;
   info.cutter = cutter;
   info.disc_segments = cut.input.disc_segments;
-  info.pieces = report.pieces;
-  info.inconsistent_contacts = report.inconsistent_contacts;
+  info.pieces = cut.pieces;
+  info.inconsistent_contacts = cut.inconsistent_contacts;
   run.timings = {{"dfn", dfn_seconds},
                  {"cut", cut_seconds},
-                 {"cut_split", report.cut_seconds},
-                 {"cut_assemble", report.assemble_seconds},
+                 {"cut_split", cut.split_seconds},
+                 {"cut_assemble", cut.assemble_seconds},
                  {"write", secondsSince(start)}};
   io::writeFileAtomically(out / "summary.json",
                           io::formatBlocksSummary(run, network, model, info, scene.materials));

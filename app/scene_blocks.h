@@ -13,18 +13,22 @@
 
 namespace rockmass::app {
 
-/// The blocks of a scene and how they were cut.
+/// The blocks of a scene and how they were cut (by either cutter).
 struct SceneBlocks {
-  blocks::BlockModel model;      ///< the blocks
-  blocks::CutInput input;        ///< what was cut (its network pointer is the caller's)
-  blocks::FastCutReport report;  ///< the fast cutter's counters and timings
+  blocks::BlockModel model;       ///< the blocks
+  blocks::CutInput input;         ///< what was cut (its network pointer is the caller's)
+  int pieces = 0;                 ///< convex pieces of the rock
+  int inconsistent_contacts = 0;  ///< fast cutter only (0 in a sound cut)
+  double split_seconds = 0.0;     ///< splitting (exact: summed over regions, i.e. CPU time)
+  double assemble_seconds = 0.0;  ///< gluing, materials, adjacency
 };
 
 /// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
 void addCutterOption(CLI::App& command, std::string& cutter);
 
 /// The cutter to use: `option` when given, else the scene's analysis.blocks.cutter (exact
-/// by default). Throws io::InputError when that cutter is not built, before any work.
+/// by default). Throws io::InputError, before any work, when the scene needs what that
+/// cutter cannot do yet (the exact cutter and structures).
 std::string chooseCutter(const io::Scene& scene, const std::string& option,
                          const std::string& scene_path);
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "blocks/disc_scenes.h"
+#include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 
 namespace {
@@ -48,6 +49,54 @@ void BM_FastSize(benchmark::State& state) {
   fastCut(state, sizeSeriesScene(static_cast<int>(state.range(0))), 24);
 }
 BENCHMARK(BM_FastSize)->Arg(100)->Arg(300)->Arg(1000)->Arg(3000)->Unit(benchmark::kMillisecond);
+
+/// Cuts `spec` with the exact cutter (default options: kd regions of at most 30 discs, all
+/// cores, no referee), reporting blocks, pieces and regions. One iteration: a cut takes
+/// seconds.
+void exactCut(benchmark::State& state, const DiscSceneSpec& spec, int segments) {
+  const rockmass::geometry::FractureNetwork network = randomDiscNetwork(spec);
+  const CutInput input = boxCutInput(network, segments);
+  ExactCutReport report;
+  std::size_t blocks = 0;
+  for (auto _ : state) {
+    const BlockModel model = cutExact(input, {}, &report);
+    blocks = model.blocks.size();
+    benchmark::DoNotOptimize(model.blocks.data());
+  }
+  state.counters["discs"] = spec.discs;
+  state.counters["blocks"] = static_cast<double>(blocks);
+  state.counters["pieces"] = report.pieces;
+  state.counters["regions"] = report.regions;
+  state.counters["split_cpu_s"] = report.split_seconds;
+  state.counters["extract_cpu_s"] = report.extract_seconds;
+  state.counters["glue_s"] = report.glue_seconds;
+}
+
+void BM_ExactDensity(benchmark::State& state) {
+  DiscSceneSpec spec;
+  spec.discs = static_cast<int>(state.range(0));
+  exactCut(state, spec, 24);
+}
+BENCHMARK(BM_ExactDensity)
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(200)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ExactSize(benchmark::State& state) {
+  exactCut(state, sizeSeriesScene(static_cast<int>(state.range(0))), 24);
+}
+BENCHMARK(BM_ExactSize)
+    ->Arg(100)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Arg(3000)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// disc_segments column at 100 discs in the 10 m cube: time, and the volume error against
 /// 96 segments: the L1 distance between the sorted block volumes (shorter list padded with
@@ -97,13 +146,34 @@ int main(int argc, char** argv) {
   RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto& t = reporter.times;
+  // Registered names carry the run options (".../iterations:1/real_time"): look up by prefix.
+  const auto find = [&](const std::string& prefix) -> const double* {
+    for (const auto& [name, time] : t) {
+      if (name == prefix || name.rfind(prefix + "/", 0) == 0) return &time;
+    }
+    return nullptr;
+  };
   std::printf("\nSize series, time growth over linear (same run; 1.0 = linear):\n");
-  const std::string base = "BM_FastSize/100";
-  for (int n : {300, 1000, 3000}) {
-    const std::string name = "BM_FastSize/" + std::to_string(n);
-    if (t.count(base) && t.count(name)) {
-      std::printf("  %-22s t/t(100) = %7.2f  n/100 = %5.1f  growth/linear = %.2f\n", name.c_str(),
-                  t.at(name) / t.at(base), n / 100.0, t.at(name) / t.at(base) / (n / 100.0));
+  for (const std::string cutter : {"Fast", "Exact"}) {
+    const double* base = find("BM_" + cutter + "Size/100");
+    for (int n : {300, 1000, 3000}) {
+      const std::string name = "BM_" + cutter + "Size/" + std::to_string(n);
+      const double* time = find(name);
+      if (base && time) {
+        std::printf("  %-22s t/t(100) = %7.2f  n/100 = %5.1f  growth/linear = %.2f\n", name.c_str(),
+                    *time / *base, n / 100.0, *time / *base / (n / 100.0));
+      }
+    }
+  }
+  std::printf("Exact over fast, same scene (same run; target >= 50 at 100 discs):\n");
+  for (const std::string series : {"Density", "Size"}) {
+    for (int n : {10, 30, 100, 200, 300, 1000, 3000}) {
+      const double* exact = find("BM_Exact" + series + "/" + std::to_string(n));
+      const double* fast = find("BM_Fast" + series + "/" + std::to_string(n));
+      if (exact && fast) {
+        std::printf("  %-8s %5d discs: exact %9.1f ms  fast %8.1f ms  exact/fast = %6.1f\n",
+                    series.c_str(), n, *exact, *fast, *exact / *fast);
+      }
     }
   }
   std::printf("Segments, time against 24 segments:\n");

@@ -1,6 +1,7 @@
 #include "blocks/block_assembly.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -8,6 +9,7 @@
 
 #include "blocks/convex_split.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/slab_material.h"
 #include "geometry/disc.h"
 
 namespace rockmass::blocks {
@@ -56,65 +58,6 @@ void markInternalFaces(std::vector<Piece>& pieces, const CutTolerances& toleranc
   }
 }
 
-/// A convex region of a slab: the hull of one lower and one upper surface polygon.
-struct SlabRegion {
-  std::vector<Plane> planes;  ///< outward
-  int material = -1;
-
-  bool contains(const Vec3& p, double tolerance) const {
-    return std::all_of(planes.begin(), planes.end(),
-                       [&](const Plane& plane) { return plane.distance(p) <= tolerance; });
-  }
-};
-
-/// The convex hull of two corresponding polygons (same vertex count, vertex k of one facing
-/// vertex k of the other): its two caps and the side quadrilaterals.
-SlabRegion slabRegion(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper) {
-  Vec3 center = Vec3::Zero();
-  for (const Vec3& p : lower) center += p;
-  for (const Vec3& p : upper) center += p;
-  center /= static_cast<double>(lower.size() + upper.size());
-  SlabRegion region;
-  const auto add = [&](const std::vector<Vec3>& polygon) {
-    const Vec3 n = geometry::polygonNormal(polygon);
-    if (n.squaredNorm() == 0.0) return;
-    Plane plane = Plane::through(geometry::polygonCentroid(polygon), n);
-    if (plane.distance(center) > 0.0) plane = {-plane.normal, -plane.offset};
-    region.planes.push_back(plane);
-  };
-  add(lower);
-  add(upper);
-  const std::size_t n = lower.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    add({lower[k], lower[(k + 1) % n], upper[(k + 1) % n], upper[k]});
-  }
-  return region;
-}
-
-/// Regions of every slab of the network.
-std::vector<SlabRegion> slabRegions(const CutInput& input) {
-  std::vector<SlabRegion> regions;
-  if (input.network == nullptr) return regions;
-  const std::vector<geometry::Disc>& discs = input.network->discs;
-  for (const geometry::Slab& slab : input.network->slabs) {
-    const std::size_t pairs = std::min(slab.lower.size(), slab.upper.size());
-    for (std::size_t i = 0; i < pairs; ++i) {
-      const geometry::Disc& l = discs[static_cast<std::size_t>(slab.lower[i] - 1)];
-      const geometry::Disc& u = discs[static_cast<std::size_t>(slab.upper[i] - 1)];
-      // Surfaces of one segment of the slab face each other across about its thickness; a
-      // surface left out of the domain would pair the wrong ones, so skip such pairs.
-      if ((l.center - u.center).norm() > 4.0 * slab.thickness + 1e-9) continue;
-      const std::vector<Vec3> lo = l.outline(input.disc_segments);
-      const std::vector<Vec3> up = u.outline(input.disc_segments);
-      if (lo.size() != up.size()) continue;
-      SlabRegion region = slabRegion(lo, up);
-      region.material = slab.material;
-      regions.push_back(std::move(region));
-    }
-  }
-  return regions;
-}
-
 /// Adds the contacts of the structure pieces (all[rock_count..]) with each other and with
 /// the rock pieces whose bounding boxes come near a structure.
 void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
@@ -152,6 +95,23 @@ CutTolerances cutTolerances(const geometry::Box& domain) {
   t.distance = 1e-11 * diagonal;
   t.area = t.distance * diagonal;
   return t;
+}
+
+std::vector<int> blockOrder(const std::vector<Block>& blocks, const geometry::Box& domain) {
+  const double length = std::max(domain.diagonal(), 1e-300) * 1e-9;
+  const double volume = std::max(domain.volume(), 1e-300) * 1e-12;
+  using Key = std::tuple<long long, long long, long long, long long, std::size_t>;
+  std::vector<Key> keys;
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    const Vec3 c = blocks[k].mass.centroid();
+    keys.emplace_back(std::llround(c.x() / length), std::llround(c.y() / length),
+                      std::llround(c.z() / length), std::llround(blocks[k].mass.volume / volume),
+                      k);
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> order;
+  for (const Key& key : keys) order.push_back(static_cast<int>(std::get<4>(key)));
+  return order;
 }
 
 std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances) {
@@ -215,54 +175,42 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
   }
 
-  // Material of each rock piece: the first slab region holding its centroid.
-  const std::vector<SlabRegion> regions = slabRegions(input);
+  const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
+                            tolerances.distance);
   std::map<int, std::vector<int>> members;  // root -> pieces, ascending
   for (std::size_t i = 0; i < all.size(); ++i) {
     members[clusters.find(static_cast<int>(i))].push_back(static_cast<int>(i));
   }
+  std::vector<Block> unordered;
+  std::vector<std::vector<int>> unordered_pieces;
+  for (const auto& [root, list] : members) {
+    Block b;
+    b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    b.bounds.max = -b.bounds.min;
+    std::vector<const geometry::Polyhedron*> rock;
+    for (int i : list) {
+      b.mass += geometry::massProperties(all[i].shape);
+      const geometry::Box box = geometry::bounds(all[i].shape);
+      b.bounds.min = b.bounds.min.cwiseMin(box.min);
+      b.bounds.max = b.bounds.max.cwiseMax(box.max);
+    }
+    const int structure = structure_of[list.front()];
+    if (structure >= 0) {
+      b.material = input.structures[structure].material;
+    } else {
+      for (int i : list) rock.push_back(&all[i].shape);
+      b.material = slabs.ofBlock(rock);
+    }
+    unordered.push_back(std::move(b));
+    unordered_pieces.push_back(list);
+  }
+  const std::vector<int> order = blockOrder(unordered, input.domain_box);
   struct Pending {
     Block block;
     std::vector<int> pieces;
   };
   std::vector<Pending> pending;
-  for (const auto& [root, list] : members) {
-    Pending p;
-    p.pieces = list;
-    Block& b = p.block;
-    b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-    b.bounds.max = -b.bounds.min;
-    std::map<int, double> material_volume;
-    for (int i : list) {
-      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
-      b.mass += m;
-      const geometry::Box box = geometry::bounds(all[i].shape);
-      b.bounds.min = b.bounds.min.cwiseMin(box.min);
-      b.bounds.max = b.bounds.max.cwiseMax(box.max);
-      int material = input.rock_material;
-      if (structure_of[i] >= 0) {
-        material = input.structures[structure_of[i]].material;
-      } else {
-        const Vec3 c = m.centroid();
-        for (const SlabRegion& r : regions) {
-          if (r.contains(c, tolerances.distance)) {
-            material = r.material;
-            break;
-          }
-        }
-      }
-      material_volume[material] += m.volume;
-    }
-    b.material = std::max_element(material_volume.begin(), material_volume.end(),
-                                  [](const auto& x, const auto& y) { return x.second < y.second; })
-                     ->first;
-    pending.push_back(std::move(p));
-  }
-  std::sort(pending.begin(), pending.end(), [](const Pending& x, const Pending& y) {
-    const Vec3 cx = x.block.mass.centroid(), cy = y.block.mass.centroid();
-    return std::tie(cx.x(), cx.y(), cx.z(), x.block.mass.volume, x.pieces.front()) <
-           std::tie(cy.x(), cy.y(), cy.z(), y.block.mass.volume, y.pieces.front());
-  });
+  for (const int k : order) pending.push_back({std::move(unordered[k]), unordered_pieces[k]});
 
   BlockModel model;
   model.domain = input.domain_box;

@@ -28,6 +28,14 @@ CutTolerances cutTolerances(const geometry::Box& domain);
 /// decomposition of a mesh domain).
 std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances);
 
+/// The order in which both cutters number their blocks 1..N: by centroid x, then y, then z,
+/// each rounded to 1e-9 of the domain diagonal, then by volume rounded to 1e-12 of the
+/// domain volume (a ring block and the core it surrounds share a centroid), then by the
+/// cutter's own order. Rounding makes the two cutters' round-off irrelevant: blocks whose
+/// centroids differ by less than the rounding step are ordered by their volumes.
+/// Returns the indices of `blocks` in id order.
+std::vector<int> blockOrder(const std::vector<Block>& blocks, const geometry::Box& domain);
+
 /// What the assembly noticed.
 struct AssemblyReport {
   int inconsistent_contacts = 0;  ///< contacts fictitious on one side only (treated as real)
@@ -35,12 +43,10 @@ struct AssemblyReport {
 
 /// Glues the rock pieces into blocks across `rock_contacts` (their contacts among
 /// themselves, as findPieceContacts gives them) that are fictitious on both sides (one
-/// union-find), adds each structure as one block, assigns materials (a rock block takes the
-/// material of the slab that holds most of its volume, judged at piece centroids, else
-/// input.rock_material), orders the blocks by centroid (x, then y, then z) and numbers them
-/// 1..N, and lists the adjacency: one entry per (block_a, block_b, source) with the summed
-/// contact area, sorted. Pieces keep their face provenance.
-/// Contacts between structures and rock are found here.
+/// union-find), adds each structure as one block, assigns materials (structures: their own;
+/// rock blocks: SlabMaterials::ofBlock), numbers the blocks 1..N in blockOrder, and lists the
+/// adjacency: one entry per (block_a, block_b, source) with the summed contact area, sorted. Pieces
+/// keep their face provenance. Contacts between structures and rock are found here.
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report = nullptr);

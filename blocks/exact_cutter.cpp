@@ -21,6 +21,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "blocks/block_assembly.h"
 #include "blocks/slab_material.h"
 
 namespace rockmass::blocks {
@@ -967,12 +968,13 @@ class DisjointSets {
   std::vector<int> parent_;
 };
 
-/// Whether two counter-clockwise convex polygons share an area > 0 (separating axis test on
-/// the edges of both, exact).
-bool overlapWithArea(const std::vector<Point2>& p, const std::vector<Point2>& q) {
-  // Double separating-axis test first: certain when every margin is clear.
-  const std::vector<Eigen::Vector2d> pd = toDouble(p);
-  const std::vector<Eigen::Vector2d> qd = toDouble(q);
+/// What the double separating-axis filter says about two convex polygons.
+enum class Overlap { No, Yes, Unsure };
+
+/// Double separating-axis test of two counter-clockwise convex polygons: No or Yes when
+/// every margin is clear of round-off, else Unsure (touching faces: shared edges).
+Overlap overlapFilter(const std::vector<Eigen::Vector2d>& pd,
+                      const std::vector<Eigen::Vector2d>& qd) {
   bool certain = true;
   const auto clearlySeparates = [&](const std::vector<Eigen::Vector2d>& a,
                                     const std::vector<Eigen::Vector2d>& b) {
@@ -989,8 +991,13 @@ bool overlapWithArea(const std::vector<Point2>& p, const std::vector<Point2>& q)
     }
     return false;
   };
-  if (clearlySeparates(pd, qd) || clearlySeparates(qd, pd)) return false;
-  if (certain) return true;
+  if (clearlySeparates(pd, qd) || clearlySeparates(qd, pd)) return Overlap::No;
+  return certain ? Overlap::Yes : Overlap::Unsure;
+}
+
+/// Whether two counter-clockwise convex polygons share an area > 0 (separating axis test on
+/// the edges of both, exact).
+bool overlapExact(const std::vector<Point2>& p, const std::vector<Point2>& q) {
   const auto separates = [](const std::vector<Point2>& a, const std::vector<Point2>& b) {
     for (std::size_t i = 0; i < a.size(); ++i) {
       const Point2& s = a[i];
@@ -1045,49 +1052,75 @@ struct CrackContact {
 /// Matches faces in the same plane on opposite sides: pieces glue where the shared part is
 /// not wholly covered by discs (region faces are never covered); covered shared parts
 /// between pieces are crack contacts.
+///
+/// Candidate pairs come from a sweep over the faces' u-ranges in each plane. A pair whose
+/// pieces are already glued is skipped: gluing them again changes nothing, and a crack
+/// between two pieces of one block is no adjacency. So pairs the double filter decides run
+/// first, and the pairs it cannot decide (faces that share an edge, where the exact test is
+/// expensive) only afterwards, when most of them already lie in one block.
 std::vector<CrackContact> matchFaces(const Context& context, const std::vector<FaceRecord>& records,
                                      DisjointSets& sets, bool discs) {
   std::map<std::tuple<int, int, double>, std::vector<const FaceRecord*>> by_plane;
-  for (const FaceRecord& r : records) by_plane[r.plane_key].push_back(&r);
+  for (const FaceRecord& r : records) {
+    if (!discs && std::get<0>(r.plane_key) == 1) continue;
+    by_plane[r.plane_key].push_back(&r);
+  }
   std::vector<CrackContact> cracks;
-  for (const auto& [key, faces] : by_plane) {
-    if (!discs && std::get<0>(key) == 1) continue;
-    for (const FaceRecord* a : faces) {
-      if (a->above) continue;
-      for (const FaceRecord* b : faces) {
-        if (!b->above) continue;
-        if (a->bounds[1] < b->bounds[0] || b->bounds[1] < a->bounds[0] ||
-            a->bounds[3] < b->bounds[2] || b->bounds[3] < a->bounds[2]) {
+  // Decides one pair that overlaps with area: glue, or record the crack.
+  const auto settle = [&](const FaceRecord* a, const FaceRecord* b) {
+    if (std::get<0>(a->plane_key) == 0) {
+      sets.unite(a->piece, b->piece);
+      return;
+    }
+    const int group = std::get<1>(a->plane_key);
+    const bool covered =
+        a->source.kind == FaceKind::Disc || b->source.kind == FaceKind::Disc || [&] {
+          std::vector<Point2> shared = a->polygon;
+          for (std::size_t i = 0; i < b->polygon.size() && shared.size() >= 3; ++i) {
+            shared = clipHalfPlane(shared, b->polygon[i], b->polygon[(i + 1) % b->polygon.size()],
+                                   /*left=*/true);
+          }
+          return coveredByGroup(context, group, shared, a->drop_axis);
+        }();
+    if (!covered) {
+      sets.unite(a->piece, b->piece);
+    } else {
+      const ExactDisc& disc =
+          context.discs[static_cast<std::size_t>(context.groups[group].front())];
+      const double scale = 1.0 / std::abs(disc.plane.normal[disc.drop_axis]);
+      const FaceSource source = a->source.kind == FaceKind::Disc ? a->source : b->source;
+      cracks.push_back({a->piece, b->piece, source, overlapArea(a->polygon, b->polygon, scale)});
+    }
+  };
+  std::vector<std::pair<const FaceRecord*, const FaceRecord*>> unsure;
+  for (auto& [key, faces] : by_plane) {
+    std::vector<const FaceRecord*> below;
+    std::vector<const FaceRecord*> above;
+    for (const FaceRecord* r : faces) (r->above ? above : below).push_back(r);
+    const auto by_u_min = [](const FaceRecord* x, const FaceRecord* y) {
+      return x->bounds[0] < y->bounds[0];
+    };
+    std::sort(above.begin(), above.end(), by_u_min);
+    std::vector<std::vector<Eigen::Vector2d>> above_double;
+    for (const FaceRecord* b : above) above_double.push_back(toDouble(b->polygon));
+    for (const FaceRecord* a : below) {
+      const std::vector<Eigen::Vector2d> a_double = toDouble(a->polygon);
+      for (std::size_t j = 0; j < above.size() && above[j]->bounds[0] <= a->bounds[1]; ++j) {
+        const FaceRecord* b = above[j];
+        if (b->bounds[1] < a->bounds[0] || a->bounds[3] < b->bounds[2] ||
+            b->bounds[3] < a->bounds[2]) {
           continue;
         }
-        if (!overlapWithArea(a->polygon, b->polygon)) continue;
-        if (std::get<0>(key) == 0) {
-          sets.unite(a->piece, b->piece);
-          continue;
-        }
-        const int group = std::get<1>(key);
-        const bool covered =
-            a->source.kind == FaceKind::Disc || b->source.kind == FaceKind::Disc || [&] {
-              std::vector<Point2> shared = a->polygon;
-              for (std::size_t i = 0; i < b->polygon.size() && shared.size() >= 3; ++i) {
-                shared =
-                    clipHalfPlane(shared, b->polygon[i], b->polygon[(i + 1) % b->polygon.size()],
-                                  /*left=*/true);
-              }
-              return coveredByGroup(context, group, shared, a->drop_axis);
-            }();
-        if (!covered) {
-          sets.unite(a->piece, b->piece);
-        } else {
-          const ExactDisc& disc =
-              context.discs[static_cast<std::size_t>(context.groups[group].front())];
-          const double scale = 1.0 / std::abs(disc.plane.normal[disc.drop_axis]);
-          const FaceSource source = a->source.kind == FaceKind::Disc ? a->source : b->source;
-          cracks.push_back(
-              {a->piece, b->piece, source, overlapArea(a->polygon, b->polygon, scale)});
-        }
+        if (sets.find(a->piece) == sets.find(b->piece)) continue;
+        const Overlap overlap = overlapFilter(a_double, above_double[j]);
+        if (overlap == Overlap::Yes) settle(a, b);
+        if (overlap == Overlap::Unsure) unsure.emplace_back(a, b);
       }
     }
+  }
+  for (const auto& [a, b] : unsure) {
+    if (sets.find(a->piece) == sets.find(b->piece)) continue;
+    if (overlapExact(a->polygon, b->polygon)) settle(a, b);
   }
   return cracks;
 }
@@ -1290,23 +1323,13 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
     members[it->second].push_back(static_cast<int>(i));
     block_of_piece[i] = it->second;
   }
+  const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
+                            cutTolerances(input.domain_box).distance);
   std::vector<Block> blocks;
   for (const std::vector<int>& group : members) {
     std::vector<Piece> block_pieces;
     for (const int i : group) block_pieces.push_back(pieces[i]);
-    // Material at the centroid of the largest piece (an interior point of the block).
-    Vec3 probe = Vec3::Zero();
-    double largest = -1.0;
-    for (const Piece& p : block_pieces) {
-      const geometry::MassProperties m = geometry::massProperties(p.shape);
-      if (m.volume > largest) {
-        largest = m.volume;
-        probe = m.centroid();
-      }
-    }
-    const int material = input.network != nullptr
-                             ? materialAt(*input.network, probe, input.rock_material)
-                             : input.rock_material;
+    const int material = slabs.ofBlock(block_pieces);
     blocks.push_back(makeBlock(std::move(block_pieces), material));
   }
   const int rock_blocks = static_cast<int>(blocks.size());
@@ -1321,15 +1344,8 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
     blocks.push_back(makeBlock(std::move(structure_pieces), input.structures[s].material));
   }
 
-  // Deterministic ids: by the lower corner of the bounds (z, y, x), then volume.
-  std::vector<int> order(blocks.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const Block& p = blocks[a];
-    const Block& q = blocks[b];
-    return std::make_tuple(p.bounds.min.z(), p.bounds.min.y(), p.bounds.min.x(), p.mass.volume) <
-           std::make_tuple(q.bounds.min.z(), q.bounds.min.y(), q.bounds.min.x(), q.mass.volume);
-  });
+  // Deterministic ids: the order both cutters share.
+  const std::vector<int> order = blockOrder(blocks, input.domain_box);
   std::vector<int> id_of(blocks.size());
   for (std::size_t rank = 0; rank < order.size(); ++rank) {
     id_of[order[rank]] = static_cast<int>(rank) + 1;

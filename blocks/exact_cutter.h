@@ -71,9 +71,9 @@ struct ExactCutReport {
 /// The domain is input.domain_surface when it is not empty, else the union of
 /// input.domain_pieces. Face provenance: Disc (disc id), Boundary (box face 0..5 for a box
 /// domain, else the index of the first domain face in that plane), Structure (structure
-/// index) or Fictitious (between pieces of one block). Block ids are 1..N ordered by the
-/// lower corner of the block's bounding box (z, then y, then x). Throws std::invalid_argument
-/// when the input has no domain or fewer than 3 disc segments.
+/// index) or Fictitious (between pieces of one block). Block ids are 1..N in blockOrder
+/// (block_assembly.h), the order the fast cutter uses too; materials by SlabMaterials. Throws
+/// std::invalid_argument when the input has no domain or fewer than 3 disc segments.
 BlockModel cutExact(const CutInput& input, const ExactCutOptions& options = {},
                     ExactCutReport* report = nullptr);
 

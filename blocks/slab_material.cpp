@@ -1,50 +1,103 @@
 #include "blocks/slab_material.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
-#include <vector>
+#include <map>
+
+#include "geometry/disc.h"
 
 namespace rockmass::blocks {
 namespace {
 
-/// Nearest crossing of the line point + t dir with the discs `ids`, on the side where
-/// t >= 0 (ahead) or t <= 0 (behind); +infinity when there is none.
-double nearestCrossing(const geometry::FractureNetwork& network,
-                       const std::vector<std::int64_t>& ids, const geometry::Vec3& point,
-                       const geometry::Vec3& dir, bool ahead) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const std::int64_t id : ids) {
-    if (id < 1 || id > static_cast<std::int64_t>(network.discs.size())) continue;
-    const auto t = network.discs[static_cast<std::size_t>(id - 1)].intersectLine(point, dir);
-    if (!t) continue;
-    const double distance = ahead ? *t : -*t;
-    if (distance >= 0.0 && distance < best) best = distance;
+/// The planes (outward) of the convex hull of two corresponding polygons: vertex k of one
+/// faces vertex k of the other (same vertex count, same orientation).
+std::vector<Plane> hullPlanes(const std::vector<Vec3>& lower, const std::vector<Vec3>& upper) {
+  Vec3 center = Vec3::Zero();
+  for (const Vec3& p : lower) center += p;
+  for (const Vec3& p : upper) center += p;
+  center /= static_cast<double>(lower.size() + upper.size());
+  std::vector<Plane> planes;
+  const auto add = [&](const std::vector<Vec3>& polygon) {
+    const Vec3 n = geometry::polygonNormal(polygon);
+    if (n.squaredNorm() == 0.0) return;
+    Plane plane = Plane::through(geometry::polygonCentroid(polygon), n);
+    if (plane.distance(center) > 0.0) plane = {-plane.normal, -plane.offset};
+    planes.push_back(plane);
+  };
+  add(lower);
+  add(upper);
+  const std::size_t n = lower.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    add({lower[k], lower[(k + 1) % n], upper[(k + 1) % n], upper[k]});
   }
-  return best;
+  return planes;
 }
 
 }  // namespace
 
-int materialAt(const geometry::FractureNetwork& network, const geometry::Vec3& point,
-               int rock_material) {
-  for (const geometry::Slab& slab : network.slabs) {
-    if (slab.lower.empty() || slab.upper.empty()) continue;
-    const geometry::Vec3 dir = network.sets[static_cast<std::size_t>(slab.set)].mean_normal;
-    const double lower_ahead = nearestCrossing(network, slab.lower, point, dir, true);
-    const double lower_behind = nearestCrossing(network, slab.lower, point, dir, false);
-    const double upper_ahead = nearestCrossing(network, slab.upper, point, dir, true);
-    const double upper_behind = nearestCrossing(network, slab.upper, point, dir, false);
-    const bool lower_first_ahead = lower_ahead < upper_ahead;
-    const bool lower_first_behind = lower_behind < upper_behind;
-    const bool ahead_found =
-        std::min(lower_ahead, upper_ahead) < std::numeric_limits<double>::infinity();
-    const bool behind_found =
-        std::min(lower_behind, upper_behind) < std::numeric_limits<double>::infinity();
-    if (ahead_found && behind_found && lower_first_ahead != lower_first_behind) {
-      return slab.material;
+SlabMaterials::SlabMaterials(const geometry::FractureNetwork* network, int disc_segments,
+                             int rock_material, double tolerance)
+    : rock_material_(rock_material), tolerance_(tolerance) {
+  if (network == nullptr) return;
+  const std::vector<geometry::Disc>& discs = network->discs;
+  const auto disc = [&](std::int64_t id) -> const geometry::Disc* {
+    if (id < 1 || id > static_cast<std::int64_t>(discs.size())) return nullptr;
+    return &discs[static_cast<std::size_t>(id - 1)];
+  };
+  for (const geometry::Slab& slab : network->slabs) {
+    for (const std::int64_t lower_id : slab.lower) {
+      const geometry::Disc* lower = disc(lower_id);
+      if (lower == nullptr) continue;
+      const geometry::Disc* upper = nullptr;
+      double best = 4.0 * slab.thickness + 1e-9;
+      for (const std::int64_t upper_id : slab.upper) {
+        const geometry::Disc* candidate = disc(upper_id);
+        if (candidate == nullptr) continue;
+        const double d = (candidate->center - lower->center).norm();
+        if (d <= best) {
+          best = d;
+          upper = candidate;
+        }
+      }
+      if (upper == nullptr) continue;
+      const std::vector<Vec3> lo = lower->outline(disc_segments);
+      // The two surfaces of a slab are made alike (a fault's: the same disc shifted; an
+      // interlayer's: the same quadrilateral offset), so outline vertex k of one faces
+      // vertex k of the other.
+      const std::vector<Vec3> up = upper->outline(disc_segments);
+      if (lo.size() != up.size()) continue;
+      regions_.push_back({hullPlanes(lo, up), slab.material});
     }
   }
-  return rock_material;
+}
+
+int SlabMaterials::at(const Vec3& point) const {
+  for (const Region& region : regions_) {
+    const bool inside =
+        std::all_of(region.planes.begin(), region.planes.end(),
+                    [&](const Plane& p) { return p.distance(point) <= tolerance_; });
+    if (inside) return region.material;
+  }
+  return rock_material_;
+}
+
+int SlabMaterials::ofBlock(const std::vector<Piece>& pieces) const {
+  std::vector<const geometry::Polyhedron*> shapes;
+  for (const Piece& piece : pieces) shapes.push_back(&piece.shape);
+  return ofBlock(shapes);
+}
+
+int SlabMaterials::ofBlock(const std::vector<const geometry::Polyhedron*>& shapes) const {
+  std::map<int, double> volume;
+  for (const geometry::Polyhedron* shape : shapes) {
+    const geometry::MassProperties m = geometry::massProperties(*shape);
+    volume[m.volume > 0.0 ? at(m.centroid()) : rock_material_] += m.volume;
+  }
+  if (volume.empty()) return rock_material_;
+  return std::max_element(volume.begin(), volume.end(),
+                          [](const auto& x, const auto& y) { return x.second < y.second; })
+      ->first;
 }
 
 }  // namespace rockmass::blocks

@@ -1,18 +1,48 @@
-// Which material a point of the rock has: the material of the slab (thick fault or
-// interlayer) it lies in, or the rock material. Shared by both cutters.
+// Which material a block of rock has: the material of the slab (thick fault or interlayer)
+// that holds most of its volume, or the rock material. ONE rule, shared by both cutters.
 #pragma once
 
+#include <vector>
+
+#include "blocks/block_model.h"
+#include "blocks/convex_split.h"
 #include "geometry/fracture_network.h"
 
 namespace rockmass::blocks {
 
-/// Material at `point` (m): the slab's material when the point lies between the lower and
-/// upper surfaces of a slab of `network`, else `rock_material`. "Between" means that along
-/// the line through the point in the direction of the slab set's mean normal, the nearest
-/// slab surface on one side is a lower surface and the nearest on the other side an upper
-/// surface. Use a point strictly inside a block (its pieces' centroids): a point exactly on a
-/// slab surface is ambiguous. The first slab that contains the point wins.
-int materialAt(const geometry::FractureNetwork& network, const geometry::Vec3& point,
-               int rock_material);
+/// The slabs of a network as convex regions, for point tests.
+///
+/// A slab is bounded by its lower and upper surface discs. Each lower surface is paired with
+/// the upper surface whose centre is nearest (within 4 thicknesses: a surface whose partner
+/// lies outside the domain has none), and the pair's region is the convex hull of their
+/// `disc_segments`-gons (Disc::outline, the very polygons the cutters cut with): two caps and
+/// the side quadrilaterals. The union of a slab's regions is the slab.
+class SlabMaterials {
+ public:
+  /// `network` may be null (no slabs). `tolerance` (m): a point this close outside a region
+  /// is in it.
+  SlabMaterials(const geometry::FractureNetwork* network, int disc_segments, int rock_material,
+                double tolerance);
+
+  /// Material at `point` (m): the material of the first slab region holding it, else the
+  /// rock material. A point exactly on a slab surface is ambiguous: use interior points.
+  int at(const Vec3& point) const;
+
+  /// Material of a rock block made of `pieces`: each convex piece counts with its volume for
+  /// the material at its centroid (an interior point; pieces never straddle a slab surface
+  /// that cuts them); the material with the largest volume wins (ties: the smaller index).
+  int ofBlock(const std::vector<Piece>& pieces) const;
+  /// The same for a block given by the shapes of its convex pieces.
+  int ofBlock(const std::vector<const geometry::Polyhedron*>& shapes) const;
+
+ private:
+  struct Region {
+    std::vector<Plane> planes;  ///< outward
+    int material = -1;
+  };
+  std::vector<Region> regions_;
+  int rock_material_ = -1;
+  double tolerance_ = 0.0;
+};
 
 }  // namespace rockmass::blocks
