@@ -26,11 +26,11 @@ namespace fs = std::filesystem;
 /// Options of `rockmass dda` beyond the common ones.
 struct DdaOptions {
   CommonOptions common;
-  std::string cutter;              ///< "", "exact" or "fast" ("": the scene's choice)
-  std::string solver = "cholmod";  ///< cholmod | eigen | pcg
-  double pcg_tolerance = 1e-10;    ///< relative residual of the pcg solver
-  int frame_every = 0;             ///< steps between VTU frames (0: about 50 frames per run)
-  std::optional<int> debug_step;   ///< dump K, F and the contacts of this step (1-based)
+  std::string cutter;             ///< "", "exact" or "fast" ("": the scene's choice)
+  std::string solver = "auto";    ///< auto | cholmod | eigen | pcg
+  double pcg_tolerance = 1e-10;   ///< relative residual of the pcg solver
+  int frame_every = 0;            ///< steps between VTU frames (0: about 50 frames per run)
+  std::optional<int> debug_step;  ///< dump K, F and the contacts of this step (1-based)
 };
 
 /// Engine settings from analysis.dda and the command line.
@@ -41,9 +41,10 @@ dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOptions& opti
   settings.time_step = dda.time_step;
   settings.max_displacement_ratio = dda.max_displacement_ratio;
   settings.penalty = dda.penalty.value_or(0.0);
-  settings.solver.kind = options.solver == "pcg"     ? dda3d::SolverKind::Pcg
-                         : options.solver == "eigen" ? dda3d::SolverKind::Eigen
-                                                     : dda3d::SolverKind::Cholmod;
+  settings.solver.kind = options.solver == "pcg"       ? dda3d::SolverKind::Pcg
+                         : options.solver == "eigen"   ? dda3d::SolverKind::Eigen
+                         : options.solver == "cholmod" ? dda3d::SolverKind::Cholmod
+                                                       : dda3d::SolverKind::Auto;
   settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
   settings.solver.tolerance = options.pcg_tolerance;
   return settings;
@@ -246,8 +247,10 @@ Command addDdaCommand(CLI::App& app) {
       "dda", "Cut the scene into blocks and run the 3D DDA of its analysis.dda section");
   addCommonOptions(*cli, options->common);
   addCutterOption(*cli, options->cutter);
-  cli->add_option("--solver", options->solver, "Linear solver: cholmod (default), eigen, pcg")
-      ->check(CLI::IsMember({"cholmod", "eigen", "pcg"}));
+  cli->add_option("--solver", options->solver,
+                  "Linear solver: auto (default: cholmod below 500 movable blocks, else pcg "
+                  "warm-started), cholmod, eigen, pcg")
+      ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));
   cli->add_option("--pcg-tolerance", options->pcg_tolerance,
                   "Relative residual of the pcg solver (default 1e-10)")
       ->check(CLI::PositiveNumber);

@@ -1,11 +1,20 @@
 // DDA engine speed and accuracy against time.
-// BM_Pile/N: N rigid cubes dropped into a fixed box; block-steps per second and the share of
-// each phase (counters). BM_SlidingAccuracy: error of the sliding-block displacement at
-// 0.3 s against 1/2 g (sin theta - cos theta tan phi) t^2, for a time step and a penalty
-// factor; the solver is the third argument (0 Eigen LDLT, 1 CHOLMOD, 2 PCG when built).
+// BM_Pile/SOLVER/N: N rigid cubes dropped on a fixed slab, for each solver of
+// --dda_solvers=LIST (cholmod, eigen, pcg = the Auto tolerance, pcg:TOL; default
+// "pcg,cholmod"; direct solvers up to 1000 blocks); block-steps per second, the share of each
+// phase (counters) and, after the run, the fitted growth exponent of the time per step.
+// BM_SlidingAccuracy: error of the sliding-block displacement at 0.3 s against 1/2 g (sin theta -
+// cos theta tan phi) t^2, for a time step and a penalty factor; the solver is the third argument (0
+// Eigen LDLT, 1 CHOLMOD, 2 PCG when built).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "../tests/dda3d/dda_scenes.h"
 #include "dda3d/simulation.h"
@@ -32,21 +41,58 @@ DdaModel pile(int blocks) {
   return model;
 }
 
-void BM_Pile(benchmark::State& state) {
-  const int blocks = static_cast<int>(state.range(0));
+/// A solver given on the command line: "cholmod", "eigen", "pcg" (the Auto tolerance,
+/// autoPcgTolerance()) or "pcg:TOL".
+struct SolverSpec {
+  std::string label;
+  SolverOptions options;
+  int max_blocks = 5000;  ///< direct solvers stop at 1000 blocks (fill-in)
+};
+
+SolverSpec parseSolver(const std::string& text, const DdaSettings& defaults) {
+  SolverSpec spec{text, {}, 5000};
+  if (text == "cholmod" || text == "eigen") {
+    spec.options.kind = text == "cholmod" ? SolverKind::Cholmod : SolverKind::Eigen;
+    spec.max_blocks = 1000;
+  } else if (text.rfind("pcg", 0) == 0) {
+    spec.options.kind = SolverKind::Pcg;
+    spec.options.tolerance =
+        text.size() > 4 ? std::stod(text.substr(4)) : autoPcgTolerance(defaults);
+    char label[32];
+    std::snprintf(label, sizeof label, "pcg:%g", spec.options.tolerance);
+    spec.label = label;
+  } else {
+    throw std::invalid_argument("unknown solver '" + text + "' (cholmod, eigen, pcg[:TOL])");
+  }
+  return spec;
+}
+
+constexpr int kWarmUpSteps = 60;  ///< 0.12 s: the bottom layer lands, the rest falls onto it
+constexpr int kTimedSteps = 10;   ///< impacts and settling: contacts open, close, slide
+
+DdaSettings pileSettings() {
   DdaSettings settings;
   settings.kinematics = Kinematics::Rigid;
   settings.time_step = 2e-3;
-  int steps = 0;
+  return settings;
+}
+
+/// One pile run: kWarmUpSteps untimed, then kTimedSteps timed. Counters: block-steps/s,
+/// steps/s, the share of each phase of the engine's own timers, contacts, open-close
+/// iterations per step.
+void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
+  DdaSettings settings = pileSettings();
+  settings.solver = solver;
+  int steps = 0, iterations = 0;
   PhaseTimings timings;
   for (auto _ : state) {
     state.PauseTiming();
     Simulation sim(pile(blocks), settings);
-    for (int k = 0; k < 100; ++k) sim.step();  // falling and first impacts
+    for (int k = 0; k < kWarmUpSteps; ++k) sim.step();
     const PhaseTimings before = sim.timings();
     state.ResumeTiming();
-    for (int k = 0; k < 20; ++k) sim.step();
-    steps += 20;
+    for (int k = 0; k < kTimedSteps; ++k) iterations += sim.step().iterations;
+    steps += kTimedSteps;
     const PhaseTimings& t = sim.timings();
     timings.detect_contacts += t.detect_contacts - before.detect_contacts;
     timings.assemble_block_terms += t.assemble_block_terms - before.assemble_block_terms;
@@ -62,15 +108,14 @@ void BM_Pile(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(blocks) * steps, benchmark::Counter::kIsRate);
   state.counters["steps_per_s"] =
       benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["iter_per_step"] = static_cast<double>(iterations) / steps;
   state.counters["detect"] = timings.detect_contacts / total;
   state.counters["assemble"] = (timings.assemble_block_terms + timings.assemble_contacts) / total;
   state.counters["factorize"] = timings.factorize / total;
   state.counters["solve"] = timings.solve / total;
   state.counters["states_update"] = (timings.update_states + timings.update_blocks) / total;
+  state.counters["steps"] = steps;
 }
-// 5000 blocks: add ->Arg(5000) once the CHOLMOD backend is in (Eigen LDLT fill-in makes
-// it take minutes per step).
-BENCHMARK(BM_Pile)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_SlidingAccuracy(benchmark::State& state) {
   const double dt = 1e-3 * static_cast<double>(state.range(0)) / 4.0;
@@ -102,6 +147,126 @@ BENCHMARK(BM_SlidingAccuracy)
     ->ArgsProduct({{1, 4, 16}, {10, 40, 160}, {0}})
     ->Unit(benchmark::kMillisecond);
 
+/// Console output plus each run's CPU time and counters, for the tables after the run.
+class RecordingReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& run : runs) {
+      // "BM_Pile/pcg:4e-07/100/iterations:1" -> "BM_Pile/pcg:4e-07/100"
+      const std::string name = run.benchmark_name();
+      Record& r = records[name.substr(0, name.find("/iterations:"))];
+      r.cpu_seconds = run.GetAdjustedCPUTime() / 1e3;  // the runs are in milliseconds
+      for (const auto& [name, counter] : run.counters) r.counters[name] = counter.value;
+    }
+  }
+  struct Record {
+    double cpu_seconds = 0.0;  ///< per iteration
+    std::map<std::string, double> counters;
+  };
+  std::map<std::string, Record> records;
+};
+
+/// Least-squares slope of log y against log x.
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += std::log(x[i]), my += std::log(y[i]);
+  mx /= static_cast<double>(x.size()), my /= static_cast<double>(x.size());
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);
+    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
+  }
+  return sxy / sxx;
+}
+
+/// Removes --dda_solvers=LIST from argv; returns LIST (default "pcg,cholmod").
+std::string takeSolverFlag(int& argc, char** argv) {
+  std::string list = "pcg,cholmod";
+  const std::string flag = "--dda_solvers=";
+  int out = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind(flag, 0) == 0) {
+      list = arg.substr(flag.size());
+    } else {
+      argv[out++] = argv[i];
+    }
+  }
+  argc = out;
+  return list;
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  std::vector<SolverSpec> solvers;
+  std::stringstream list(takeSolverFlag(argc, argv));
+  for (std::string item; std::getline(list, item, ',');) {
+    solvers.push_back(parseSolver(item, pileSettings()));
+  }
+  const std::vector<int> sizes{100, 1000, 5000};
+  for (const SolverSpec& spec : solvers) {
+    for (int blocks : sizes) {
+      if (blocks > spec.max_blocks) continue;
+      const SolverOptions options = spec.options;
+      benchmark::RegisterBenchmark(
+          ("BM_Pile/" + spec.label + "/" + std::to_string(blocks)).c_str(),
+          [options, blocks](benchmark::State& state) { pileRun(state, options, blocks); })
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+    }
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  RecordingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+
+  std::printf(
+      "\nPiles (rigid cubes, %d timed steps after %d untimed; CPU time; phase shares from the\n"
+      "engine's timers):\n",
+      kTimedSteps, kWarmUpSteps);
+  std::printf("  %-12s %6s %10s %9s %8s %7s %7s %7s %7s %7s %7s\n", "solver", "blocks", "blk-st/s",
+              "steps/s", "contacts", "it/st", "detect", "assem", "factor", "solve", "update");
+  for (const SolverSpec& spec : solvers) {
+    std::vector<double> n, seconds_per_step;
+    for (int blocks : sizes) {
+      const auto it = reporter.records.find("BM_Pile/" + spec.label + "/" + std::to_string(blocks));
+      if (it == reporter.records.end()) continue;
+      const auto& c = it->second.counters;
+      std::printf("  %-12s %6d %10.0f %9.2f %8.0f %7.2f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
+                  spec.label.c_str(), blocks, c.at("block_steps_per_s"), c.at("steps_per_s"),
+                  c.at("contacts"), c.at("iter_per_step"), c.at("detect"), c.at("assemble"),
+                  c.at("factorize"), c.at("solve"), c.at("states_update"));
+      n.push_back(blocks);
+      seconds_per_step.push_back(it->second.cpu_seconds / c.at("steps"));
+    }
+    if (n.size() >= 2) {
+      std::printf("  %-12s growth exponent of the time per step: fit %.2f", spec.label.c_str(),
+                  logLogSlope(n, seconds_per_step));
+      for (std::size_t i = 1; i < n.size(); ++i) {
+        std::printf(
+            ", %g->%g %.2f", n[i - 1], n[i],
+            std::log(seconds_per_step[i] / seconds_per_step[i - 1]) / std::log(n[i] / n[i - 1]));
+      }
+      std::printf("\n");
+    }
+  }
+  if (solvers.size() >= 2) {
+    std::printf("\nTime per step relative to %s (same run):\n", solvers[0].label.c_str());
+    for (int blocks : sizes) {
+      const auto base =
+          reporter.records.find("BM_Pile/" + solvers[0].label + "/" + std::to_string(blocks));
+      if (base == reporter.records.end()) continue;
+      for (std::size_t s = 1; s < solvers.size(); ++s) {
+        const auto other =
+            reporter.records.find("BM_Pile/" + solvers[s].label + "/" + std::to_string(blocks));
+        if (other == reporter.records.end()) continue;
+        std::printf("  %6d blocks: %s / %s = %.2f\n", blocks, solvers[s].label.c_str(),
+                    solvers[0].label.c_str(), other->second.cpu_seconds / base->second.cpu_seconds);
+      }
+    }
+  }
+  benchmark::Shutdown();
+  return 0;
+}

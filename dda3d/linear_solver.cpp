@@ -20,6 +20,8 @@ std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options) {
       return makeEigenLdltSolver();
     case SolverKind::Pcg:
       return makePcgSolver(options);
+    case SolverKind::Auto:
+      throw std::invalid_argument("makeLinearSolver: resolve SolverKind::Auto first");
   }
   throw std::invalid_argument("makeLinearSolver: unknown solver kind");
 }

@@ -18,6 +18,9 @@ enum class SolverKind {
   Cholmod,  ///< CHOLMOD supernodal Cholesky (SuiteSparse)
   Eigen,    ///< Eigen::SimplicialLDLT
   Pcg,      ///< conjugate gradients with a block-Jacobi (12x12 or 6x6) preconditioner
+  /// Resolved by the Simulation from the number of movable blocks: Cholmod below
+  /// SolverOptions::auto_pcg_blocks, Pcg (warm-started) from there on.
+  Auto,
 };
 
 /// Settings of a backend.
@@ -27,6 +30,10 @@ struct SolverOptions {
                               ///< block-Jacobi preconditioner
   double tolerance = 1e-10;   ///< Pcg: relative residual |K d - F| / |F|
   int max_iterations = 5000;  ///< Pcg
+  /// Auto: movable blocks from which Pcg replaces Cholmod. Measured in bench/dda_bench.cpp:
+  /// at 1000 rigid blocks PCG is already the faster one, and CHOLMOD's fill-in grows
+  /// superlinearly with a 3D pile's size (docs/performance.md, DDA).
+  int auto_pcg_blocks = 500;
 };
 
 /// One solve's account, for the step statistics.
@@ -46,13 +53,20 @@ class LinearSolver {
   virtual bool factorize(const SparseMatrix& k) = 0;
   /// Solves with the last factorized K.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& f) = 0;
+  /// Solves with the last factorized K, starting from `guess` (same size as f). Iterative
+  /// backends start there (fewer iterations when the guess is close); direct backends
+  /// ignore it, so the result is that of solve(f).
+  virtual Eigen::VectorXd solveWithGuess(const Eigen::VectorXd& f, const Eigen::VectorXd& guess) {
+    (void)guess;
+    return solve(f);
+  }
   /// Statistics of the last factorize + solve.
   virtual SolveStats stats() const = 0;
   /// "cholmod", "eigen-ldlt" or "pcg".
   virtual std::string name() const = 0;
 };
 
-/// A backend of the requested kind.
+/// A backend of the requested kind (Auto must have been resolved: std::invalid_argument).
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options);
 
 }  // namespace rockmass::dda3d

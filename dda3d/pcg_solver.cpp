@@ -30,17 +30,27 @@ class PcgSolver final : public LinearSolver {
     return stats_.converged;
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& f) override {
-    Eigen::VectorXd x = cg_.solve(f);
-    stats_.converged = cg_.info() == Eigen::Success;
-    stats_.iterations = conjugateGradientSteps(f);
-    // The true residual, not CG's recurrence (which drifts from it by round-off).
-    stats_.residual = relativeResidual(k_, x, f);
-    return x;
+    return finish(f, cg_.solve(f), false);
+  }
+  Eigen::VectorXd solveWithGuess(const Eigen::VectorXd& f, const Eigen::VectorXd& guess) override {
+    if (guess.size() != f.size()) return solve(f);
+    // Eigen reports 0 iterations both when the guess already met the tolerance and when one
+    // step did: tell them apart by the guess's own residual.
+    const bool guess_enough = relativeResidual(k_, guess, f) < cg_.tolerance();
+    return finish(f, cg_.solveWithGuess(f, guess), guess_enough);
   }
   SolveStats stats() const override { return stats_; }
   std::string name() const override { return "pcg"; }
 
  private:
+  /// Records the statistics of a solve that produced x.
+  Eigen::VectorXd finish(const Eigen::VectorXd& f, Eigen::VectorXd x, bool guess_enough) {
+    stats_.converged = cg_.info() == Eigen::Success;
+    stats_.iterations = guess_enough ? 0 : conjugateGradientSteps(f);
+    // The true residual, not CG's recurrence (which drifts from it by round-off).
+    stats_.residual = relativeResidual(k_, x, f);
+    return x;
+  }
   /// CG steps taken (matrix-vector products). Eigen's count omits the step that converged:
   /// starting from d = 0, no step is needed only when F = 0 or the tolerance is >= 1.
   int conjugateGradientSteps(const Eigen::VectorXd& f) const {

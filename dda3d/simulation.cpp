@@ -229,15 +229,31 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
   }
 
   system_ = std::make_unique<BlockSystem>(movable, dofs_);
-  SolverOptions solver_options = settings_.solver;
-  solver_options.block_size = dofs_;
-  solver_ = makeLinearSolver(solver_options);
+  solver_ = makeLinearSolver(resolvedSolverOptions(settings_, movable));
   base_k_.assign(static_cast<std::size_t>(movable), BlockMatrix::Zero());
   base_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
   load_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
 }
 
 Simulation::~Simulation() = default;
+
+double autoPcgTolerance(const DdaSettings& settings) {
+  return 1e-2 * settings.allowed_penetration_ratio / settings.max_displacement_ratio * 1e-3;
+}
+
+SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable) {
+  SolverOptions options = settings.solver;
+  options.block_size = settings.kinematics == Kinematics::Rigid ? 6 : kBlockDofs;
+  if (options.kind == SolverKind::Auto) {
+    if (movable < options.auto_pcg_blocks) {
+      options.kind = SolverKind::Cholmod;
+    } else {
+      options.kind = SolverKind::Pcg;
+      options.tolerance = autoPcgTolerance(settings);
+    }
+  }
+  return options;
+}
 
 std::string Simulation::solverName() const {
   return solver_->name();
@@ -454,7 +470,6 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
 }
 
 int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled) {
-  (void)dt;
   settled = false;
   const int movable = static_cast<int>(base_k_.size());
   for (int iteration = 1; iteration <= settings_.max_open_close_iterations; ++iteration) {
@@ -501,7 +516,17 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     timings_.factorize += secondsSince(start);
     if (!positive) return iteration;
     start = Clock::now();
-    solution = solver_->solve(system_->rhs());
+    // First guess (used by iterative backends): the previous iteration's solution, or for
+    // the first iteration the last step's scaled to this dt.
+    Eigen::VectorXd guess;
+    if (iteration > 1) {
+      guess = solution;
+    } else if (last_solution_.size() == system_->rhs().size() && last_dt_ > 0.0) {
+      guess = (dt / last_dt_) * last_solution_;
+    }
+    solution = guess.size() == system_->rhs().size()
+                   ? solver_->solveWithGuess(system_->rhs(), guess)
+                   : solver_->solve(system_->rhs());
     timings_.solve += secondsSince(start);
     start = Clock::now();
     const bool finite = solution.allFinite();
@@ -630,6 +655,8 @@ StepReport Simulation::step() {
   }
   start = Clock::now();
   updateBlocks(solution, dt);
+  last_solution_ = solution;
+  last_dt_ = dt;
   timings_.update_blocks += secondsSince(start);
   time_ += dt;
   const double grow =

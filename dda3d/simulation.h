@@ -54,8 +54,20 @@ struct DdaSettings {
   double open_threshold_ratio = 1e-10;
   /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
   double half_domain_size = 0.0;
-  SolverOptions solver{.kind = SolverKind::Eigen};
+  /// Auto: CHOLMOD below solver.auto_pcg_blocks movable blocks, above it PCG warm-started
+  /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
+  SolverOptions solver{.kind = SolverKind::Auto};
 };
+
+/// The relative residual |K d - F| / |F| that SolverKind::Auto gives PCG. The displacement
+/// error it leaves must be a small share of the allowed penetration g3 l0 while a step moves
+/// vertices by up to g2 l0: a relative error of 1e-2 g3 / g2 in d, divided by 1e3 for the
+/// condition number of the block-Jacobi preconditioned K (the residual bounds the error only
+/// up to it). 4e-7 with the default g2 = 0.01, g3 = 4e-4.
+double autoPcgTolerance(const DdaSettings& settings);
+/// The solver options a run with these settings and `movable` movable blocks uses (Auto
+/// resolved; block size set from the kinematics).
+SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable);
 
 /// Which sub-matrices were assembled (cumulative over the run, or for one step).
 struct ActiveTerms {
@@ -221,6 +233,10 @@ class Simulation {
   ActiveTerms active_;
   PhaseTimings timings_;
   int pattern_changes_ = 0;
+  /// The last accepted step's solution and dt: scaled by dt / last_dt_, the first guess of
+  /// an iterative solve (the dynamic predictor d ~ v dt).
+  Eigen::VectorXd last_solution_;
+  double last_dt_ = 0.0;
 };
 
 }  // namespace rockmass::dda3d

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
+#include <string>
 
 #include "dda3d/simulation.h"
 #include "dda_scenes.h"
@@ -55,8 +57,25 @@ TEST_P(FreeFall, MatchesHalfGTSquared) {
           : std::vector<std::string>{"inertia", "body_force"};
   EXPECT_EQ(sim.activeTerms().names(), expected_terms);
 }
+/// "Rigid" or "Deformable", for readable test names.
+std::string kinematicsName(Kinematics k) {
+  return k == Kinematics::Rigid ? "Rigid" : "Deformable";
+}
+
+}  // namespace
+
+/// Prints a Kinematics readably in test listings (found by ADL, so in its namespace).
+void PrintTo(Kinematics k, std::ostream* out) {
+  *out << (k == Kinematics::Rigid ? "Rigid" : "Deformable");
+}
+
+namespace {
+
 INSTANTIATE_TEST_SUITE_P(Kinematics, FreeFall,
-                         ::testing::Values(Kinematics::Rigid, Kinematics::Deformable));
+                         ::testing::Values(Kinematics::Rigid, Kinematics::Deformable),
+                         [](const ::testing::TestParamInfo<Kinematics>& info) {
+                           return kinematicsName(info.param);
+                         });
 
 /// A 1 m cube on a fixed 6 x 3 x 1 m base, gravity tilted by theta about y (the slope
 /// falls towards +x), the whole scene turned into an oblique frame.
@@ -81,6 +100,22 @@ struct SlideCase {
   Kinematics kinematics;
   double dynamic_ratio = 1.0;
 };
+/// e.g. "Theta30Phi20Rigid", "Theta30Phi31DeformableDamped95" (dynamic ratio 0.95).
+std::string slideCaseName(const ::testing::TestParamInfo<SlideCase>& info) {
+  const SlideCase& c = info.param;
+  std::string name = "Theta" + std::to_string(static_cast<int>(c.theta)) + "Phi" +
+                     std::to_string(static_cast<int>(c.phi)) + kinematicsName(c.kinematics);
+  if (c.dynamic_ratio < 1.0)
+    name += "Damped" + std::to_string(static_cast<int>(std::lround(c.dynamic_ratio * 100)));
+  return name;
+}
+
+/// theta, phi, kinematics and dynamic ratio, for test listings.
+void PrintTo(const SlideCase& c, std::ostream* out) {
+  *out << "theta " << c.theta << " deg, phi " << c.phi << " deg, " << kinematicsName(c.kinematics)
+       << ", dynamic ratio " << c.dynamic_ratio;
+}
+
 class InclineSliding : public ::testing::TestWithParam<SlideCase> {};
 
 TEST_P(InclineSliding, FollowsTheFrictionalAcceleration) {
@@ -104,7 +139,8 @@ INSTANTIATE_TEST_SUITE_P(Cases, InclineSliding,
                                            SlideCase{30, 20, Kinematics::Deformable},
                                            SlideCase{45, 30, Kinematics::Rigid},
                                            SlideCase{20, 10, Kinematics::Deformable},
-                                           SlideCase{40, 0, Kinematics::Rigid}));
+                                           SlideCase{40, 0, Kinematics::Rigid}),
+                         slideCaseName);
 
 class InclineStable : public ::testing::TestWithParam<SlideCase> {};
 
@@ -129,7 +165,8 @@ INSTANTIATE_TEST_SUITE_P(Cases, InclineStable,
                          // sawtooth can start a marginal block sliding (docs/dda3d.md).
                          ::testing::Values(SlideCase{20, 25, Kinematics::Rigid, 1.0},
                                            SlideCase{30, 40, Kinematics::Deformable, 1.0},
-                                           SlideCase{30, 31, Kinematics::Deformable, 0.95}));
+                                           SlideCase{30, 31, Kinematics::Deformable, 0.95}),
+                         slideCaseName);
 
 TEST(ElasticColumn, MeanStrainIsRhoGHOverTwoE) {
   // nu = 0: uniaxial stress; the mean vertical strain of a column of height h on a rigid

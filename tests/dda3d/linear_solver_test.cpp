@@ -5,7 +5,10 @@
 // approximate solution |x - x*| / |x*| <= kappa(K) |K x - F| / |F|.
 #include "dda3d/linear_solver.h"
 
+#include <cmath>
 #include <limits>
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -76,6 +79,11 @@ struct AgreementCase {
   bool dynamic;
 };
 
+/// Contrast and dynamic/static, for test listings.
+void PrintTo(const AgreementCase& c, std::ostream* out) {
+  *out << "contrast " << c.contrast << (c.dynamic ? ", dynamic" : ", static");
+}
+
 class BackendsAgree : public ::testing::TestWithParam<AgreementCase> {};
 
 TEST_P(BackendsAgree, OnDdaShapedSystems) {
@@ -121,7 +129,42 @@ TEST_P(BackendsAgree, OnDdaShapedSystems) {
 
 INSTANTIATE_TEST_SUITE_P(StiffnessContrasts, BackendsAgree,
                          ::testing::Values(AgreementCase{1e3, true}, AgreementCase{1e6, true},
-                                           AgreementCase{1e3, false}, AgreementCase{1e6, false}));
+                                           AgreementCase{1e3, false}, AgreementCase{1e6, false}),
+                         [](const ::testing::TestParamInfo<AgreementCase>& info) {
+                           // e.g. "Contrast1e3Dynamic", "Contrast1e6Static"
+                           return "Contrast1e" +
+                                  std::to_string(static_cast<int>(
+                                      std::lround(std::log10(info.param.contrast)))) +
+                                  (info.param.dynamic ? "Dynamic" : "Static");
+                         });
+
+TEST(LinearSolver, PcgStartsFromAGuessDirectSolversIgnoreIt) {
+  const test::DdaSystemSpec spec{.contrast = 1e3};
+  const SparseMatrix k = test::ddaSystemMatrix(spec);
+  const Eigen::VectorXd expected = test::ddaSolution(static_cast<int>(k.rows()));
+  const Eigen::VectorXd f = k * expected;
+  const double tolerance = 1e-8;
+  const std::unique_ptr<LinearSolver> pcg =
+      makeLinearSolver({.kind = SolverKind::Pcg, .tolerance = tolerance});
+  ASSERT_TRUE(pcg->factorize(k));
+  pcg->solve(f);
+  const int cold = pcg->stats().iterations;
+  // The exact solution already meets the tolerance: no CG step.
+  Eigen::VectorXd x = pcg->solveWithGuess(f, expected);
+  EXPECT_EQ(pcg->stats().iterations, 0);
+  EXPECT_LT(relativeError(x, expected), 1e-14);  // returned unchanged (round-off only)
+  // A guess 1% off (what the previous step's solution typically is) needs fewer steps than
+  // a start from zero, and still ends within the tolerance.
+  x = pcg->solveWithGuess(f, 1.01 * expected);
+  EXPECT_LT(pcg->stats().iterations, cold);
+  EXPECT_LE(pcg->stats().residual, tolerance);
+  // Direct backends: the guess changes nothing, the result is solve(f) bit for bit.
+  const std::unique_ptr<LinearSolver> cholmod = makeLinearSolver({.kind = SolverKind::Cholmod});
+  ASSERT_TRUE(cholmod->factorize(k));
+  EXPECT_EQ(cholmod->solveWithGuess(f, 2.0 * expected), cholmod->solve(f));
+  // Auto is the Simulation's to resolve.
+  EXPECT_THROW(makeLinearSolver({.kind = SolverKind::Auto}), std::invalid_argument);
+}
 
 TEST(LinearSolver, CholmodKeepsItsAnalysisWhileThePatternHolds) {
   const std::unique_ptr<LinearSolver> solver = makeLinearSolver({.kind = SolverKind::Cholmod});

@@ -1,0 +1,91 @@
+// The solver a DDA run uses: SolverKind::Auto (CHOLMOD for small systems, warm-started PCG
+// above DdaSettings::solver.auto_pcg_blocks), and a PCG run reproducing the CHOLMOD
+// trajectory of a settling pile within what the PCG tolerance allows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "dda3d/simulation.h"
+#include "dda_scenes.h"
+
+namespace rockmass::dda3d {
+namespace {
+
+using geometry::Vec3;
+
+TEST(SolverChoice, AutoIsCholmodForSmallAndPcgForLargeSystems) {
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  EXPECT_EQ(settings.solver.kind, SolverKind::Auto);
+  const SolverOptions small = resolvedSolverOptions(settings, settings.solver.auto_pcg_blocks - 1);
+  EXPECT_EQ(small.kind, SolverKind::Cholmod);
+  EXPECT_EQ(small.block_size, 6);
+  const SolverOptions large = resolvedSolverOptions(settings, settings.solver.auto_pcg_blocks);
+  EXPECT_EQ(large.kind, SolverKind::Pcg);
+  // 1e-2 g3 / g2 / 1e3 with the defaults g2 = 0.01, g3 = 4e-4 (simulation.h).
+  EXPECT_DOUBLE_EQ(large.tolerance, 1e-2 * 4e-4 / 0.01 * 1e-3);
+  // An explicit choice is kept.
+  settings.solver.kind = SolverKind::Eigen;
+  EXPECT_EQ(resolvedSolverOptions(settings, 100000).kind, SolverKind::Eigen);
+}
+
+/// 18 rigid cubes (3 x 3 x 2, staggered layers, 5 cm gaps) dropped on a fixed slab.
+DdaModel smallPile() {
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-1, -1, -1}, {5, 5, 0}, 0, true));
+  for (int k = 0; k < 18; ++k) {
+    const int layer = k / 9, row = (k / 3) % 3, column = k % 3;
+    const double shift = layer % 2 == 0 ? 0.0 : 0.3;
+    const Vec3 low(0.1 + 1.2 * column + shift, 0.1 + 1.2 * row, 0.05 + 1.2 * layer);
+    model.blocks.push_back(scenes::boxBlock(low, low + Vec3(1, 1, 1), 0, false));
+  }
+  model.gravity = Vec3(0, 0, -9.81);
+  return model;
+}
+
+TEST(SolverChoice, WarmStartedPcgFollowsTheCholmodTrajectoryOfAPile) {
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 2e-3;
+  settings.solver.kind = SolverKind::Cholmod;
+  Simulation direct(smallPile(), settings);
+  settings.solver.kind = SolverKind::Pcg;
+  settings.solver.tolerance = autoPcgTolerance(settings);
+  Simulation iterative(smallPile(), settings);
+  ASSERT_EQ(direct.solverName(), "cholmod");
+  ASSERT_EQ(iterative.solverName(), "pcg");
+  // A solve stopped at relative residual tol errs by at most kappa * tol relative to the
+  // step's displacement; autoPcgTolerance() assumes kappa <= 1e3 for the block-Jacobi
+  // preconditioned K. Errors of successive steps add up at worst, so the trajectories differ
+  // by at most 1e3 * tol * (the path the blocks travelled: the sum over steps of the largest
+  // centroid move), plus round-off. (Measured: ~0.2 tol * path, as kappa is small while
+  // inertia dominates K.) Both runs must also see the same contacts and dt decisions.
+  constexpr int kSteps = 150;  // 0.3 s: the layers fall 5 cm, land and settle on each other
+  const double tolerance = settings.solver.tolerance;
+  double path = 0.0;
+  std::vector<Vec3> previous(19, Vec3::Zero());
+  for (int k = 1; k <= kSteps; ++k) {
+    const StepReport a = direct.step();
+    const StepReport b = iterative.step();
+    ASSERT_DOUBLE_EQ(a.time, b.time) << "step " << k;
+    ASSERT_EQ(a.contacts.total, b.contacts.total) << "step " << k;
+    double largest = 0.0, moved = 0.0;
+    for (int block = 1; block <= 18; ++block) {
+      const Vec3 u = direct.centroidDisplacement(block);
+      moved = std::max(moved, (u - previous[static_cast<std::size_t>(block)]).norm());
+      previous[static_cast<std::size_t>(block)] = u;
+      largest = std::max(largest, (u - iterative.centroidDisplacement(block)).norm());
+    }
+    path += moved;
+    ASSERT_LE(largest, 1e3 * tolerance * path + 1e-12) << "step " << k;
+  }
+  // The pile really landed: the bottom layer rests on the slab (fell its 5 cm gap).
+  EXPECT_NEAR(direct.centroidDisplacement(1).z(), -0.05, 0.01);
+  EXPECT_GT(direct.contactCounts().total, 0);
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
