@@ -1,5 +1,5 @@
-// rockmass rqd: RQD balls, virtual boreholes and the calibration of the fracture intensity
-// against measured logs, from the scene's analysis.rqd section.
+// rockmass rqd: RQD balls, virtual boreholes, the calibration of the fracture intensity
+// against measured logs and the RQD/P32 volume (rqd.vdb), from the scene's analysis.rqd section.
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -14,12 +14,14 @@
 #include "io/borehole_file.h"
 #include "io/input_error.h"
 #include "io/rqd_output.h"
+#include "io/rqd_vdb.h"
 #include "io/summary.h"
 #include "rqd/ball_mesh.h"
 #include "rqd/borehole.h"
 #include "rqd/calibration.h"
 #include "rqd/embree_scene.h"
 #include "rqd/rqd_ball.h"
+#include "rqd/rqd_volume.h"
 
 namespace rockmass::app {
 
@@ -36,6 +38,8 @@ struct RqdOptions {
   int segments = 24;                              ///< fan segments per disc (triangulated)
   std::optional<double> radius;                   ///< surface radius of every ball (m)
   std::optional<double> merge_distance;           ///< m
+  std::optional<double> grid_spacing;             ///< RQD/P32 volume cell size (m)
+  bool no_grid = false;                           ///< skip the volume even if the scene has one
 };
 
 /// Reports progress of a long evaluation on stderr, at most once a second.
@@ -98,10 +102,60 @@ io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOptions& options) {
                            "' must lie strictly inside the domain box");
     }
   }
-  if (rqd.balls.empty() && rqd.boreholes_file.empty()) {
-    throw io::InputError(file + ": analysis.rqd: nothing to compute; give balls or boreholes");
+  if (options.no_grid) {
+    rqd.grid_spacing.reset();
+  } else if (options.grid_spacing) {
+    if (!(*options.grid_spacing > 0.0)) {
+      throw io::InputError("--grid-spacing: expected a number > 0 (m), got " +
+                           io::formatDouble(*options.grid_spacing));
+    }
+    rqd.grid_spacing = options.grid_spacing;
+  }
+  if (rqd.balls.empty() && rqd.boreholes_file.empty() && !rqd.grid_spacing) {
+    throw io::InputError(file +
+                         ": analysis.rqd: nothing to compute; give balls, boreholes or a grid");
   }
   return rqd;
+}
+
+/// The RQD/P32 volume asked for by `settings` (which must have a grid spacing).
+rqd::VolumeSpec volumeSpec(const io::Scene& scene, const io::RqdAnalysis& settings) {
+  rqd::VolumeSpec spec;
+  spec.region = settings.grid_region.value_or(scene.dfn.domain);
+  spec.cell_size = *settings.grid_spacing;
+  spec.scanline_length = settings.grid_length.value_or(2.0 * settings.thresholds.back());
+  spec.direction_count = settings.grid_direction_count;
+  spec.thresholds = settings.thresholds;
+  spec.merge_distance = settings.merge_distance;
+  return spec;
+}
+
+/// A volume spec the library rejects, as bad input in the scene's analysis.rqd.grid.
+io::InputError gridError(const std::string& scene_path, const std::invalid_argument& error) {
+  return io::InputError(scene_path + ": analysis.rqd.grid: " + error.what());
+}
+
+/// Computes the RQD/P32 volume, reporting progress on stderr at most once a second.
+rqd::RqdVolume computeGrid(const rqd::ScanlineScene& ray_scene,
+                           const geometry::FractureNetwork& network, const rqd::VolumeSpec& spec,
+                           const std::string& scene_path) {
+  const auto start = Clock::now();
+  auto last = start;
+  const auto progress = [&](double fraction) {
+    if (secondsSince(last) < 1.0) return;
+    last = Clock::now();
+    std::fprintf(stderr, "rqd: grid: %.0f%% of the cells\n", 100.0 * fraction);
+  };
+  try {
+    rqd::RqdVolume volume = rqd::computeRqdVolume(ray_scene, network, spec, progress);
+    std::fprintf(stderr,
+                 "rqd: grid: %lld cells of %g m x %d directions x %zu thresholds (%.2f s)\n",
+                 static_cast<long long>(volume.grid.cellCount()), spec.cell_size,
+                 spec.direction_count, spec.thresholds.size(), secondsSince(start));
+    return volume;
+  } catch (const std::invalid_argument& error) {
+    throw gridError(scene_path, error);
+  }
 }
 
 /// Evaluates every ball of the scene.
@@ -206,6 +260,15 @@ int runRqd(const RqdOptions& options) {
       options.form == "triangulated" ? rqd::DiscForm::Triangulated : rqd::DiscForm::ExactEllipse;
   std::optional<io::BoreholeReport> boreholes;
   if (!settings.boreholes_file.empty()) boreholes = readBoreholeFiles(scene, settings);
+  std::optional<rqd::VolumeSpec> grid;
+  if (settings.grid_spacing) {
+    grid = volumeSpec(scene, settings);
+    try {  // before any work: a bad grid fails at once
+      rqd::validateVolumeSpec(*grid, scene.dfn.domain);
+    } catch (const std::invalid_argument& error) {
+      throw gridError(options.common.scene, error);
+    }
+  }
   const fs::path out = prepareOutput(options.common.output);
 
   auto start = Clock::now();
@@ -242,6 +305,12 @@ int runRqd(const RqdOptions& options) {
     run.stages.push_back("calibration");
     run.timings.emplace_back("calibration", secondsSince(start));
   }
+  if (grid) {
+    start = Clock::now();
+    report.grid = computeGrid(ray_scene, network, *grid, options.common.scene);
+    run.stages.push_back("grid");
+    run.timings.emplace_back("grid", secondsSince(start));
+  }
 
   start = Clock::now();
   if (!report.balls.empty()) {
@@ -259,6 +328,7 @@ int runRqd(const RqdOptions& options) {
   if (report.boreholes) {
     io::writeFileAtomically(out / "boreholes.csv", io::formatBoreholesCsv(*report.boreholes));
   }
+  if (report.grid) io::writeRqdVdb(out / "rqd.vdb", *report.grid);
   run.timings.emplace_back("write", secondsSince(start));
   io::writeFileAtomically(out / "summary.json", io::formatRqdSummary(run, report));
   std::fprintf(stderr, "rqd: wrote %s\n", out.string().c_str());
@@ -270,7 +340,8 @@ int runRqd(const RqdOptions& options) {
 Command addRqdCommand(CLI::App& app) {
   auto options = std::make_shared<RqdOptions>();
   CLI::App* cli = app.add_subcommand(
-      "rqd", "RQD balls, virtual boreholes and intensity calibration (analysis.rqd)");
+      "rqd",
+      "RQD balls, virtual boreholes, intensity calibration and RQD/P32 volume (analysis.rqd)");
   addCommonOptions(*cli, options->common);
   cli->add_option("--directions", options->directions,
                   "Directions of every RQD ball (overrides balls[].directions, >= 4)");
@@ -285,6 +356,13 @@ Command addRqdCommand(CLI::App& app) {
                   "Surface radius at RQD 100 of every ball, m (default: half its length)");
   cli->add_option("--merge-distance", options->merge_distance,
                   "Hits closer than this are one fracture, m (default 0.001)");
+  CLI::Option* grid_spacing =
+      cli->add_option("--grid-spacing", options->grid_spacing,
+                      "Cell size of the RQD/P32 volume rqd.vdb, m (overrides grid.spacing; adds "
+                      "a grid over the domain when the scene has none)");
+  cli->add_flag("--no-grid", options->no_grid,
+                "Skip the RQD/P32 volume even if the scene has analysis.rqd.grid")
+      ->excludes(grid_spacing);
   return {cli, [options] { return runRqd(*options); }};
 }
 

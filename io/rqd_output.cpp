@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "io/atomic_file.h"
+#include "io/rqd_vdb.h"
 #include "io/summary_json.h"
 #include "rqd/line_orientation.h"
 
@@ -55,6 +56,37 @@ Json ballJson(const BallReport& ball) {
     per_threshold.push_back(s);
   }
   j["thresholds"] = per_threshold;
+  return j;
+}
+
+/// {"mean", "min", "max"} of the cell values of a volume (arithmetic mean over the cells).
+Json cellStatistics(const std::vector<double>& values) {
+  if (values.empty()) return {{"mean", nullptr}, {"min", nullptr}, {"max", nullptr}};
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  const auto [low, high] = std::minmax_element(values.begin(), values.end());
+  return {{"mean", sum / static_cast<double>(values.size())}, {"min", *low}, {"max", *high}};
+}
+
+Json gridJson(const rqd::RqdVolume& volume) {
+  Json j;
+  j["file"] = "rqd.vdb";
+  j["cells"] = volume.grid.cellCount();
+  j["dims"] = volume.grid.dims;
+  j["spacing"] = volume.grid.cell_size;
+  j["origin"] = vector3(volume.grid.origin);
+  j["scanline_length"] = volume.scanline_length;
+  j["direction_count"] = volume.direction_count;
+  Json per_threshold = Json::array();
+  for (std::size_t k = 0; k < volume.thresholds.size(); ++k) {
+    Json s;
+    s["threshold"] = volume.thresholds[k];
+    s["grid"] = rqdGridName(volume.thresholds[k]);
+    s.update(cellStatistics(volume.mean_rqd[k]));
+    per_threshold.push_back(s);
+  }
+  j["thresholds"] = per_threshold;
+  j["p32"] = cellStatistics(volume.p32);
   return j;
 }
 
@@ -209,6 +241,7 @@ std::string formatRqdSummary(const RunInfo& run, const RqdReport& report) {
   j["balls"] = balls;
   if (report.boreholes) j["boreholes"] = boreholesJson(*report.boreholes);
   if (report.calibration) j["calibration"] = calibrationJson(*report.calibration);
+  if (report.grid) j["grid"] = gridJson(*report.grid);
   appendTimings(j, run.timings);
   return j.dump(2) + "\n";
 }

@@ -10,6 +10,7 @@
 #include "rqd/borehole.h"
 #include "rqd/calibration.h"
 #include "rqd/rqd_ball.h"
+#include "rqd/rqd_volume.h"
 
 namespace rockmass::io {
 
@@ -53,6 +54,7 @@ struct RqdReport {
   std::vector<BallReport> balls;                 ///< balls
   std::optional<BoreholeReport> boreholes;       ///< boreholes, if any
   std::optional<CalibrationReport> calibration;  ///< calibration, if it ran
+  std::optional<rqd::RqdVolume> grid;            ///< RQD/P32 volume (rqd.vdb), if computed
 };
 
 /// File name of the surface of `ball` for `threshold`: rqd_ball_<name>_t<T>.ply, T written
@@ -76,7 +78,9 @@ std::array<unsigned char, 3> rqdColour(double rqd);
 /// thresholds.
 std::string formatBoreholesCsv(const BoreholeReport& report);
 
-/// summary.json of the rqd command.
+/// summary.json of the rqd command. With a grid: "grid" {file, cells, dims, spacing, origin,
+/// scanline_length, direction_count, "thresholds" [{threshold, grid, mean, min, max}] (RQD,
+/// percent, over the cells) and "p32" {mean, min, max} (m2/m3)}.
 std::string formatRqdSummary(const RunInfo& run, const RqdReport& report);
 
 }  // namespace rockmass::io

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -20,7 +21,17 @@ using geometry::Vec3;
 /// Progress is reported this many times at most.
 constexpr std::int64_t kProgressSteps = 100;
 
-void validate(const VolumeSpec& spec, const geometry::FractureNetwork& network) {
+/// "(x, y, z) - (x, y, z)" of a box (m), at the default stream precision (6 digits).
+std::string boxText(const geometry::Box& box) {
+  std::ostringstream text;
+  text << "(" << box.min.x() << ", " << box.min.y() << ", " << box.min.z() << ") - (" << box.max.x()
+       << ", " << box.max.y() << ", " << box.max.z() << ")";
+  return text.str();
+}
+
+}  // namespace
+
+void validateVolumeSpec(const VolumeSpec& spec, const geometry::Box& domain) {
   if (spec.thresholds.empty()) {
     throw std::invalid_argument("an RQD volume needs at least one threshold");
   }
@@ -43,14 +54,16 @@ void validate(const VolumeSpec& spec, const geometry::FractureNetwork& network) 
                                 std::to_string(spec.merge_distance));
   }
   // Rounding slack: a region equal to the domain up to the last bits is accepted.
-  const geometry::Box& domain = network.domain;
   const double slack = 1e-9 * domain.diagonal();
   if ((spec.region.min.array() < domain.min.array() - slack).any() ||
       (spec.region.max.array() > domain.max.array() + slack).any()) {
-    throw std::invalid_argument(
-        "the RQD volume region must lie inside the rock domain: shrink the region");
+    throw std::invalid_argument("the RQD volume region " + boxText(spec.region) +
+                                " must lie inside the rock domain " + boxText(domain));
   }
+  (void)cellGridIn(spec.region, spec.cell_size);  // throws for a bad cell size or region
 }
+
+namespace {
 
 /// Sum over `axes` of RQD(t) of the scanlines through `center`, clipped to `domain`, into
 /// `sums` (one per threshold); returns how many scanlines had length. `hits`, `distances`
@@ -106,7 +119,7 @@ std::optional<std::array<double, 2>> clipSegmentToBox(const Vec3& start, const V
 
 RqdVolume computeRqdVolume(const ScanlineScene& scene, const geometry::FractureNetwork& network,
                            const VolumeSpec& spec, const VolumeProgress& progress) {
-  validate(spec, network);
+  validateVolumeSpec(spec, network.domain);
   RqdVolume volume;
   volume.grid = cellGridIn(spec.region, spec.cell_size);
   volume.thresholds = spec.thresholds;

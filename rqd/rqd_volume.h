@@ -56,6 +56,11 @@ using VolumeProgress = std::function<void(double fraction)>;
 RqdVolume computeRqdVolume(const ScanlineScene& scene, const geometry::FractureNetwork& network,
                            const VolumeSpec& spec, const VolumeProgress& progress = {});
 
+/// Checks `spec` against the rock `domain` without computing anything (cheap: callers check a
+/// spec read from a file before long work). Throws std::invalid_argument, with a message that
+/// says what is wrong, for exactly the specs computeRqdVolume() rejects.
+void validateVolumeSpec(const VolumeSpec& spec, const geometry::Box& domain);
+
 /// The part of the segment [start, end] (m) inside the closed `box`, as parameters
 /// [t0, t1] of start + t (end - start), t in [0, 1]; nothing when the segment misses the box
 /// (touching counts: t0 == t1). Slab method (Kay & Kajiya 1986).

@@ -1,13 +1,24 @@
-// rockmass rqd end to end: files, reproducibility, calibration, and located errors for bad
-// borehole files and threshold lists (exit code 2).
+// rockmass rqd end to end: files, reproducibility, calibration, the RQD/P32 volume (read back
+// with OpenVDB against the library run directly), and located errors for bad borehole files,
+// threshold lists and grids (exit code 2).
 #include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "geometry/fracture_network.h"
+#include "io/rqd_vdb.h"
+#include "io/scene.h"
+#include "rqd/embree_scene.h"
+#include "rqd/rqd_volume.h"
 #include "tests/support/test_support.h"
 
 namespace rockmass {
@@ -202,6 +213,139 @@ TEST(RqdCli, BadMeasuredLogAndThresholdsAreInputErrors) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output,
             "error: --thresholds: expected increasing numbers > 0 (m), got 1 at position 2\n");
+}
+
+/// The two joint sets of scene() in the same 30 m cube, with only a grid: 3 x 3 x 2 cells of
+/// 8 m in the region below (centred: x, y from 3 to 27, z from -24 to -8).
+std::string gridScene(const std::string& region = "{min: [2, 2, -26], max: [28, 28, -6]}") {
+  return R"(version: 1
+name: rqd-grid
+seed: 5
+domain:
+  box: {min: [0, 0, -30], max: [30, 30, 0]}
+joint_sets:
+  - name: J1
+    orientation: {distribution: fisher, dip_direction: 90, dip: 20, kappa: 30}
+    spacing: {distribution: lognormal, mean: 1.0, std: 0.8}
+    trace_length: {distribution: lognormal, mean: 4.0, std: 2.0}
+  - name: J2
+    orientation: {distribution: fisher, dip_direction: 200, dip: 75, kappa: 30}
+    spacing: {distribution: lognormal, mean: 2.0, std: 1.5}
+    trace_length: {distribution: lognormal, mean: 3.0, std: 1.5}
+analysis:
+  rqd:
+    thresholds: [0.1, 1, 2]
+    grid:
+      spacing: 8
+      direction_count: 30
+      length: 12
+      region: )" +
+         region + "\n";
+}
+
+TEST(RqdCli, GridWritesAVolumeEqualToTheLibrary) {
+  TempDir dir("rqd_cli_grid");
+  const fs::path scene_path = writeFile(dir.path() / "scene.yaml", gridScene());
+  const Result r = run("rqd " + scene_path.string() + " -o " + (dir.path() / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  // The same volume computed directly by the library from the same scene and seed.
+  const io::Scene scene = io::loadScene(scene_path);
+  const geometry::FractureNetwork network = geometry::generateNetwork(scene.dfn, scene.seed);
+  const rqd::ScanlineScene ray_scene(network, rqd::DiscForm::ExactEllipse, 24);
+  rqd::VolumeSpec spec;
+  spec.region = *scene.analysis.rqd->grid_region;
+  spec.cell_size = 8.0;
+  spec.scanline_length = 12.0;
+  spec.direction_count = 30;
+  spec.thresholds = {0.1, 1.0, 2.0};
+  const rqd::RqdVolume expected = rqd::computeRqdVolume(ray_scene, network, spec);
+  ASSERT_EQ(expected.grid.dims, (std::array<int, 3>{3, 3, 2}));  // floor(26/8), floor(20/8)
+
+  openvdb::initialize();
+  openvdb::io::File file((dir.path() / "out" / "rqd.vdb").string());
+  file.open();
+  EXPECT_EQ(file.getGrids()->size(), 4u);  // 3 thresholds + p32
+  std::vector<std::vector<double>> values = expected.mean_rqd;
+  values.push_back(expected.p32);
+  const std::vector<std::string> names{"rqd_0.1m", "rqd_1m", "rqd_2m", "p32"};
+  double p32_sum = 0.0;
+  for (std::size_t g = 0; g < names.size(); ++g) {
+    ASSERT_TRUE(file.hasGrid(names[g])) << names[g];
+    const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(names[g]));
+    ASSERT_TRUE(grid) << names[g];
+    EXPECT_EQ(grid->voxelSize()[0], 8.0);
+    EXPECT_EQ(grid->activeVoxelCount(), 18u);
+    const openvdb::FloatGrid::ConstAccessor accessor = grid->getConstAccessor();
+    for (std::int64_t cell = 0; cell < expected.grid.cellCount(); ++cell) {
+      const auto [i, j, k] = expected.grid.coordinates(cell);
+      // Deterministic whatever the thread count: the float of the library's value, exactly.
+      EXPECT_EQ(accessor.getValue(openvdb::Coord(i, j, k)),
+                static_cast<float>(values[g][static_cast<std::size_t>(cell)]))
+          << names[g] << " cell " << cell;
+      if (g == 3) p32_sum += values[g][static_cast<std::size_t>(cell)];
+    }
+  }
+  file.close();
+  // Not a trivial volume: fractures were found (P32 > 0, some RQD(2 m) < 100).
+  EXPECT_GT(p32_sum, 0.0);
+  EXPECT_LT(*std::min_element(expected.mean_rqd[2].begin(), expected.mean_rqd[2].end()), 100.0);
+
+  // summary.json: the grid, its statistics over the cells and its timing.
+  const nlohmann::json j = nlohmann::json::parse(readFile(dir.path() / "out" / "summary.json"));
+  EXPECT_EQ(j["stages"], nlohmann::json({"dfn", "rqd", "grid"}));
+  EXPECT_TRUE(j["timings"].contains("grid"));
+  const nlohmann::json& g = j["grid"];
+  EXPECT_EQ(g["file"], "rqd.vdb");
+  EXPECT_EQ(g["cells"], 18);
+  EXPECT_EQ(g["spacing"], 8.0);
+  EXPECT_EQ(g["origin"], nlohmann::json({3.0, 3.0, -24.0}));
+  EXPECT_EQ(g["direction_count"], 30);
+  ASSERT_EQ(g["thresholds"].size(), 3u);
+  for (std::size_t t = 0; t < 3; ++t) {
+    const std::vector<double>& v = expected.mean_rqd[t];
+    EXPECT_EQ(g["thresholds"][t]["grid"], names[t]);
+    EXPECT_EQ(g["thresholds"][t]["min"].get<double>(), *std::min_element(v.begin(), v.end()));
+    EXPECT_EQ(g["thresholds"][t]["max"].get<double>(), *std::max_element(v.begin(), v.end()));
+    // The mean over 18 cells, summed in cell order as the summary does: exact.
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    EXPECT_EQ(g["thresholds"][t]["mean"].get<double>(), sum / 18.0);
+  }
+  EXPECT_EQ(g["p32"]["mean"].get<double>(), p32_sum / 18.0);
+
+  // --no-grid skips the volume; the scene then has nothing else to compute.
+  const Result skipped =
+      run("rqd " + scene_path.string() + " -o " + (dir.path() / "none").string() + " --no-grid");
+  EXPECT_EQ(skipped.exit_code, 2) << skipped.output;
+  EXPECT_EQ(skipped.output, "error: " + scene_path.string() +
+                                ": analysis.rqd: nothing to compute; give balls, boreholes or a "
+                                "grid\n");
+}
+
+TEST(RqdCli, BadGridIsAnInputError) {
+  TempDir dir("rqd_cli_bad_grid");
+  // A region that sticks out of the domain (z above the surface).
+  std::string scene_path =
+      writeFile(dir.path() / "scene.yaml", gridScene("{min: [2, 2, -26], max: [28, 28, 5]}"))
+          .string();
+  Result r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output, "error: " + scene_path +
+                          ": analysis.rqd.grid: the RQD volume region (2, 2, -26) - (28, 28, 5) "
+                          "must lie inside the rock domain (0, 0, -30) - (30, 30, 0)\n");
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "rqd.vdb"));
+  // A region thinner than one cell (z: 4 m < 8 m).
+  scene_path =
+      writeFile(dir.path() / "scene.yaml", gridScene("{min: [2, 2, -26], max: [28, 28, -22]}"))
+          .string();
+  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output.rfind("error: " + scene_path + ": analysis.rqd.grid: ", 0), 0u) << r.output;
+  // A bad override on the command line.
+  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string() + " --grid-spacing -1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.output, "error: --grid-spacing: expected a number > 0 (m), got -1\n");
 }
 
 }  // namespace
