@@ -12,13 +12,6 @@
 // is one fracture; a plane is crossed at most once by a line, so two triangles of one disc
 // sharing the edge the segment passes through give the same crossing).
 //
-// Speed (exact form): the intersect callback first tests a compact float copy of the disc
-// (DiscRecord, one 64-byte cache line, contiguous by primitive id: 0.64 MB for 10^4 discs)
-// and rejects the candidate only when it misses by more than a conservative bound on the
-// float error; the double-precision test on the full Disc (about 160 bytes, three cache
-// lines) runs only for candidates that pass. Rejections are never wrong, so the hits are
-// exactly those of the double-precision test alone.
-//
 // Precision: doubles in, Embree is float inside. Coordinates are shifted to the centre of
 // the discs' bounds before rounding to float, to keep float errors small.
 // - Exact form: Embree (float) only culls by bounding boxes, which are padded by
@@ -50,26 +43,9 @@ using geometry::Vec3;
 
 namespace {
 
-/// Exact form: a disc in float, in the scene's shifted coordinates, for a quick rejection
-/// test before the double-precision one. One cache line.
-struct alignas(64) DiscRecord {
-  float center[3];        ///< centre minus the scene offset (m)
-  float normal[3];        ///< unit normal
-  float u[3];             ///< major axis / a (1/m): x = u . (p - centre) is 1 on the rim
-  float v[3];             ///< minor axis / b (1/m)
-  float inv_b;            ///< 1 / b (1/m): turns a distance error into an error of x or y
-  std::uint32_t polygon;  ///< 1: polygon disc, only the distance test applies
-};
-static_assert(sizeof(DiscRecord) == 64);
-
 /// What one hits() call carries through Embree's callbacks (lives on the caller's stack).
 struct Query {
-  const std::vector<Disc>* discs = nullptr;  ///< the scene's discs
-  const DiscRecord* records = nullptr;       ///< exact form: float copies
-  float origin[3] = {0, 0, 0};               ///< segment start minus the scene offset, in float (m)
-  float direction[3] = {1, 0, 0};            ///< unit direction, in float
-  float float_length = 0.0f;                 ///< L in float (m)
-  float reject_pad = 0.0f;  ///< bound on float errors of positions and distances (m)
+  const std::vector<Disc>* discs = nullptr;                   ///< the scene's discs
   const std::vector<std::uint32_t>* triangle_disc = nullptr;  ///< triangle -> disc index
   Vec3 start = Vec3::Zero();                                  ///< segment start, unshifted (m)
   Vec3 dir = Vec3::UnitX();                                   ///< unit direction of the segment
@@ -93,38 +69,13 @@ void record(Query& query, const Disc& disc, std::optional<double> t) {
   if (t && *t >= 0.0 && *t <= query.length) query.found->push_back({*t, disc.id});
 }
 
-/// Cosine between the ray and a disc's plane normal below which the float test is skipped
-/// (the error of the float distance grows as 1 / cosine).
-constexpr float kMinFloatCosine = 1e-2f;
-
-/// Exact form, quick test: true when the float copy of the disc misses the segment by more
-/// than the float error can explain, so the double-precision test would miss too.
-bool surelyMissed(const Query& query, const DiscRecord& r) {
-  const float* o = query.origin;
-  const float* d = query.direction;
-  const float cosine = r.normal[0] * d[0] + r.normal[1] * d[1] + r.normal[2] * d[2];
-  if (std::abs(cosine) < kMinFloatCosine) return false;  // grazing: leave it to double
-  const float w[3] = {r.center[0] - o[0], r.center[1] - o[1], r.center[2] - o[2]};
-  const float t = (r.normal[0] * w[0] + r.normal[1] * w[1] + r.normal[2] * w[2]) / cosine;
-  const float pad = query.reject_pad;
-  if (t < -pad || t > query.float_length + pad) return true;
-  if (r.polygon != 0) return false;
-  const float p[3] = {t * d[0] - w[0], t * d[1] - w[1], t * d[2] - w[2]};  // point - centre
-  const float x = r.u[0] * p[0] + r.u[1] * p[1] + r.u[2] * p[2];
-  const float y = r.v[0] * p[0] + r.v[1] * p[1] + r.v[2] * p[2];
-  const float margin = 1.0f + pad * r.inv_b;
-  return x * x + y * y > margin * margin;
-}
-
-/// Exact form: double-precision ray-ellipse (or ray-polygon) test, after the float
-/// rejection test; never commits a hit.
+/// Exact form: double-precision ray-ellipse (or ray-polygon) test; never commits a hit.
 void intersectDisc(const RTCIntersectFunctionNArguments* args) {
   Query& query = *queryContext(args->context).query;
+  const Disc& disc = (*query.discs)[args->primID];
   // rtcIntersect1 only: one ray, and the query's double-precision segment describes it.
   assert(args->N == 1);
   if (args->valid[0] == 0) return;
-  if (surelyMissed(query, query.records[args->primID])) return;
-  const Disc& disc = (*query.discs)[args->primID];
   record(query, disc, disc.intersectLine(query.start, query.dir));
 }
 
@@ -164,8 +115,6 @@ struct ScanlineScene::Impl {
   DiscForm form = DiscForm::ExactEllipse;
   std::vector<Disc> discs;                   ///< the discs in the scene (primitive order)
   std::vector<std::uint32_t> triangle_disc;  ///< triangulated form: triangle -> disc index
-  std::vector<DiscRecord> records;           ///< exact form: float copies, primitive order
-  double extent = 0.0;                       ///< largest |shifted coordinate| of a disc (m)
   Vec3 offset = Vec3::Zero();                ///< subtracted from coordinates given to Embree (m)
   /// Padding of the exact form's boxes and of the ray's ends (m): covers float rounding of
   /// shifted coordinates (relative 6e-8) and of the ray along segments far longer than the
@@ -203,22 +152,6 @@ struct ScanlineScene::Impl {
   }
 
   void addUserGeometry() {
-    records.resize(discs.size());
-    for (std::size_t i = 0; i < discs.size(); ++i) {
-      const Disc& disc = discs[i];
-      DiscRecord& r = records[i];
-      const Vec3 center = disc.center - offset;
-      const Vec3 u = disc.major / disc.a;
-      const Vec3 v = disc.minor() / disc.b;
-      for (int k = 0; k < 3; ++k) {
-        r.center[k] = static_cast<float>(center[k]);
-        r.normal[k] = static_cast<float>(disc.normal[k]);
-        r.u[k] = static_cast<float>(u[k]);
-        r.v[k] = static_cast<float>(v[k]);
-      }
-      r.inv_b = static_cast<float>(1.0 / disc.b);
-      r.polygon = disc.polygon.empty() ? 0u : 1u;
-    }
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned int>(discs.size()));
     rtcSetGeometryUserData(geometry, this);
@@ -288,7 +221,6 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
     }
     impl.offset = all.center();
     impl.bounds_pad = 1e-4 * (1.0 + all.size().maxCoeff());
-    impl.extent = 0.5 * all.size().norm();
   }
 
   impl.device = rtcNewDevice(nullptr);
@@ -339,17 +271,6 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
   query.dir = (end - start) / length;
   query.length = length;
   query.float_t_shift = impl.bounds_pad;
-  query.records = impl.records.data();
-  const Vec3 shifted_start = start - impl.offset;
-  for (int k = 0; k < 3; ++k) {
-    query.origin[k] = static_cast<float>(shifted_start[k]);
-    query.direction[k] = static_cast<float>(query.dir[k]);
-  }
-  query.float_length = static_cast<float>(length);
-  // Float rounding (relative 6e-8) of coordinates of magnitude up to |origin| + extent + L,
-  // amplified at most 100x by the cosine floor and a few operations: 1e-4 of that bounds the
-  // error of the float distance and of the point in the plane with a margin of 10x or more.
-  query.reject_pad = static_cast<float>(1e-4 * (shifted_start.norm() + impl.extent + length + 1.0));
 
   QueryContext context;
   rtcInitIntersectContext(&context.embree);
