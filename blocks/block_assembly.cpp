@@ -10,30 +10,13 @@
 #include "blocks/convex_split.h"
 #include "blocks/piece_contacts.h"
 #include "blocks/slab_material.h"
+#include "blocks/union_find.h"
 #include "geometry/disc.h"
 
 namespace rockmass::blocks {
 namespace {
 
 using geometry::Vec3;
-
-/// Union-find with path halving; the smallest index is the root (deterministic roots).
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 /// Marks Fictitious the faces of `pieces` wholly covered by faces of other pieces of the same
 /// solid (internal faces of a convex decomposition).

@@ -23,6 +23,7 @@
 
 #include "blocks/block_assembly.h"
 #include "blocks/slab_material.h"
+#include "blocks/union_find.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -948,25 +949,6 @@ RegionResult cutRegion(const Context& context, const Region& region, bool exact_
   result.extract_seconds = secondsSince(start);
   return result;
 }
-/// Union-find over piece indices.
-class DisjointSets {
- public:
-  explicit DisjointSets(int n) : parent_(static_cast<std::size_t>(n)) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int find(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 /// What the double separating-axis filter says about two convex polygons.
 enum class Overlap { No, Yes, Unsure };
@@ -1059,7 +1041,7 @@ struct CrackContact {
 /// first, and the pairs it cannot decide (faces that share an edge, where the exact test is
 /// expensive) only afterwards, when most of them already lie in one block.
 std::vector<CrackContact> matchFaces(const Context& context, const std::vector<FaceRecord>& records,
-                                     DisjointSets& sets, bool discs) {
+                                     UnionFind& sets, bool discs) {
   std::map<std::tuple<int, int, double>, std::vector<const FaceRecord*>> by_plane;
   for (const FaceRecord& r : records) {
     if (!discs && std::get<0>(r.plane_key) == 1) continue;
@@ -1292,11 +1274,11 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   for (const Region& region : regions) {
     local.disc_region_pairs += static_cast<int>(region.discs.size());
   }
-  DisjointSets sets(static_cast<int>(pieces.size()));
+  UnionFind sets(pieces.size());
   const std::vector<CrackContact> cracks = matchFaces(context, records, sets, /*discs=*/true);
   if (options.nef_referee) {
     // The Nef volumes, glued across region faces, must give the same partition.
-    DisjointSets nef_sets(static_cast<int>(pieces.size()));
+    UnionFind nef_sets(pieces.size());
     for (const auto& [a, b] : nef_links) nef_sets.unite(a, b);
     matchFaces(context, records, nef_sets, /*discs=*/false);
     std::map<int, int> forward;

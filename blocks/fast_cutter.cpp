@@ -10,6 +10,7 @@
 #include "blocks/convex_partition.h"
 #include "blocks/convex_split.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/union_find.h"
 #include "geometry/disc.h"
 
 namespace rockmass::blocks {
@@ -25,7 +26,7 @@ struct CutPolygon {
   std::vector<Vec3> points;  ///< counter-clockwise about plane.normal
   std::vector<Plane> edges;  ///< per edge: perpendicular to the disc, normal pointing inside
   Box box;                   ///< bounding box of the points
-  int plane_id = 0;          ///< id of `plane` (see PlaneIds)
+  int plane_id = 0;          ///< id of `plane` (a UnionFind id: coincident planes share a root)
   int first_edge_id = 0;     ///< id of edges[0]; edges[k] has first_edge_id + k
 };
 
@@ -37,29 +38,8 @@ struct WorkPiece {
   std::vector<int> planes;  ///< per face
 };
 
-/// Union-find over plane ids (coincident planes end up with one root).
-class PlaneIds {
- public:
-  int add() {
-    parent_.push_back(static_cast<int>(parent_.size()));
-    return parent_.back();
-  }
-  int find(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
-
 /// The convex cutting polygons of one disc.
-void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance, PlaneIds& ids,
+void addCutPolygons(const geometry::Disc& disc, int segments, double tolerance, UnionFind& ids,
                     std::vector<CutPolygon>& out) {
   std::vector<Vec3> outline = disc.outline(segments);
   const Vec3 n = disc.normal.normalized();
@@ -329,7 +309,7 @@ BlockModel cutFast(const CutInput& input, FastCutReport* report) {
   const auto start = std::chrono::steady_clock::now();
 
   // Plane ids: one per domain face, then per cutting polygon its plane and its edges.
-  PlaneIds plane_ids;
+  UnionFind plane_ids;  // coincident planes end up with one root
   std::vector<Piece> domain = labelDomainPieces(input, tol);
   std::vector<std::vector<int>> domain_planes(domain.size());
   for (std::size_t i = 0; i < domain.size(); ++i) {
