@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
 
 namespace rockmass {
@@ -18,17 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int run(const std::string& arguments, std::string* output = nullptr) {
-  const std::string command = std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return -1;
-  char buffer[4096];
-  std::string text;
-  while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
-  const int status = pclose(pipe);
-  if (output) *output = text;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using test::runRockmass;
 
 /// One row of blocks.csv: id, volume, material.
 struct CsvBlock {
@@ -83,21 +74,22 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   test::TempDir dir("blocks_cli");
   const fs::path scene = test::writeFile(dir.path() / "scene.yaml", kScene);
   std::string output;
-  ASSERT_EQ(
-      run("blocks " + scene.string() + " -o " + (dir.path() / "a").string() + " --cutter fast",
-          &output),
-      0)
+  ASSERT_EQ(runRockmass("blocks " + scene.string() + " -o " + (dir.path() / "a").string() +
+                            " --cutter fast",
+                        &output),
+            0)
       << output;
-  ASSERT_EQ(
-      run("blocks " + scene.string() + " -o " + (dir.path() / "b").string() + " --cutter fast",
-          &output),
-      0)
+  ASSERT_EQ(runRockmass("blocks " + scene.string() + " -o " + (dir.path() / "b").string() +
+                            " --cutter fast",
+                        &output),
+            0)
       << output;
   // The scene asks for the exact cutter (also the default). The exact cutter extends
   // structure face planes through the rock without gluing across them (known limit), so with
   // the dam it refuses to run (exit 2, naming the way out) instead of giving wrong blocks,
   // and the comparison runs on the rock alone.
-  EXPECT_EQ(run("blocks " + scene.string() + " -o " + (dir.path() / "e").string(), &output), 2);
+  EXPECT_EQ(runRockmass("blocks " + scene.string() + " -o " + (dir.path() / "e").string(), &output),
+            2);
   EXPECT_NE(output.find("structures: the exact cutter does not handle structures yet; run with "
                         "--cutter fast"),
             std::string::npos)
@@ -106,13 +98,15 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   const std::size_t from = rock_only.find("structures:");
   rock_only.erase(from, rock_only.find("analysis:") - from);
   const fs::path rock_scene = test::writeFile(dir.path() / "rock.yaml", rock_only);
-  ASSERT_EQ(run("blocks " + rock_scene.string() + " -o " + (dir.path() / "c").string(), &output), 0)
+  ASSERT_EQ(
+      runRockmass("blocks " + rock_scene.string() + " -o " + (dir.path() / "c").string(), &output),
+      0)
       << output;
   EXPECT_NE(output.find("exact cutter"), std::string::npos) << output;
-  ASSERT_EQ(
-      run("blocks " + rock_scene.string() + " -o " + (dir.path() / "d").string() + " --cutter fast",
-          &output),
-      0)
+  ASSERT_EQ(runRockmass("blocks " + rock_scene.string() + " -o " + (dir.path() / "d").string() +
+                            " --cutter fast",
+                        &output),
+            0)
       << output;
 
   const auto summary = nlohmann::json::parse(test::readFile(dir.path() / "a" / "summary.json"));

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
 
 namespace rockmass {
@@ -24,14 +25,8 @@ struct Result {
 
 /// Runs the rockmass binary with `arguments` and captures its output.
 Result run(const std::string& arguments) {
-  const std::string command = std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
   Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_code = test::runRockmass(arguments, &result.output);
   return result;
 }
 

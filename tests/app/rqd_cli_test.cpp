@@ -19,6 +19,7 @@
 #include "io/scene.h"
 #include "rqd/embree_scene.h"
 #include "rqd/rqd_volume.h"
+#include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
 
 namespace rockmass {
@@ -35,15 +36,10 @@ struct Result {
   std::string output;  ///< stdout and stderr together
 };
 
+/// Runs the rockmass binary with `arguments` and captures its output.
 Result run(const std::string& arguments) {
-  const std::string command = std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
   Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_code = test::runRockmass(arguments, &result.output);
   return result;
 }
 
