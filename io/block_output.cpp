@@ -3,16 +3,15 @@
 #include <map>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
-
 #include "blocks/volume_statistics.h"
 #include "io/atomic_file.h"
+#include "io/summary_json.h"
 #include "io/vtu.h"
 
 namespace rockmass::io {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using Json = SummaryJson;
 
 /// The material's name, or "none" for -1.
 std::string materialName(int material, const std::vector<Material>& materials) {
@@ -72,14 +71,7 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
 std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetwork& network,
                                 const blocks::BlockModel& model, const CutInfo& cut,
                                 const std::vector<Material>& materials) {
-  Json j;
-  j["rockmass_version"] = version();
-  j["command"] = run.command;
-  j["scene"] = run.scene;
-  j["name"] = run.name;
-  j["seed"] = run.seed;
-  j["stages"] = run.stages;
-  j["effects"] = run.effects;
+  Json j = summaryHeader(run);
   std::int64_t cutting = 0;
   for (const geometry::Disc& d : network.discs) cutting += d.cuts;
   j["discs"] = network.discs.size();
@@ -121,9 +113,7 @@ std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetw
         {{"material", materialName(m, materials)}, {"blocks", cv.first}, {"volume", cv.second}});
   }
   j["materials"] = mats;
-  Json t = Json::object();
-  for (const auto& [stage, seconds] : run.timings) t[stage] = seconds;
-  j["timings"] = t;
+  appendTimings(j, run.timings);
   return j.dump(2) + "\n";
 }
 
