@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "bench/bench_support.h"
 #include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
@@ -129,29 +130,17 @@ BENCHMARK(BM_FastSegments)
     ->Arg(96)
     ->Unit(benchmark::kMillisecond);
 
-/// Console output plus a record of each benchmark's real time, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) times[run.benchmark_name()] = run.GetAdjustedRealTime();
-  }
-  std::map<std::string, double> times;  ///< real time per iteration (ms)
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RecordingReporter reporter;
+  rockmass::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  const auto& t = reporter.times;
+  const auto t = reporter.realTimes();
   // Registered names carry the run options (".../iterations:1/real_time"): look up by prefix.
   const auto find = [&](const std::string& prefix) -> const double* {
-    for (const auto& [name, time] : t) {
-      if (name == prefix || name.rfind(prefix + "/", 0) == 0) return &time;
-    }
-    return nullptr;
+    const rockmass::bench::Record* record = reporter.find(prefix);
+    return record ? &record->real_time : nullptr;
   };
   std::printf("\nSize series, time growth over linear (same run; 1.0 = linear):\n");
   for (const std::string cutter : {"Fast", "Exact"}) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../tests/dda3d/dda_scenes.h"
+#include "bench/bench_support.h"
 #include "dda3d/simulation.h"
 
 namespace {
@@ -147,26 +148,6 @@ BENCHMARK(BM_SlidingAccuracy)
     ->ArgsProduct({{1, 4, 16}, {10, 40, 160}, {0}})
     ->Unit(benchmark::kMillisecond);
 
-/// Console output plus each run's CPU time and counters, for the tables after the run.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      // "BM_Pile/pcg:4e-07/100/iterations:1" -> "BM_Pile/pcg:4e-07/100"
-      const std::string name = run.benchmark_name();
-      Record& r = records[name.substr(0, name.find("/iterations:"))];
-      r.cpu_seconds = run.GetAdjustedCPUTime() / 1e3;  // the runs are in milliseconds
-      for (const auto& [name, counter] : run.counters) r.counters[name] = counter.value;
-    }
-  }
-  struct Record {
-    double cpu_seconds = 0.0;  ///< per iteration
-    std::map<std::string, double> counters;
-  };
-  std::map<std::string, Record> records;
-};
-
 /// Least-squares slope of log y against log x.
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
   double mx = 0, my = 0;
@@ -219,7 +200,7 @@ int main(int argc, char** argv) {
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RecordingReporter reporter;
+  rockmass::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
   std::printf(
@@ -231,15 +212,16 @@ int main(int argc, char** argv) {
   for (const SolverSpec& spec : solvers) {
     std::vector<double> n, seconds_per_step;
     for (int blocks : sizes) {
-      const auto it = reporter.records.find("BM_Pile/" + spec.label + "/" + std::to_string(blocks));
-      if (it == reporter.records.end()) continue;
-      const auto& c = it->second.counters;
+      const rockmass::bench::Record* record =
+          reporter.find("BM_Pile/" + spec.label + "/" + std::to_string(blocks));
+      if (!record) continue;
+      const auto& c = record->counters;
       std::printf("  %-12s %6d %10.0f %9.2f %8.0f %7.2f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
                   spec.label.c_str(), blocks, c.at("block_steps_per_s"), c.at("steps_per_s"),
                   c.at("contacts"), c.at("iter_per_step"), c.at("detect"), c.at("assemble"),
                   c.at("factorize"), c.at("solve"), c.at("states_update"));
       n.push_back(blocks);
-      seconds_per_step.push_back(it->second.cpu_seconds / c.at("steps"));
+      seconds_per_step.push_back(record->cpu_time / 1e3 / c.at("steps"));  // ms -> s
     }
     if (n.size() >= 2) {
       std::printf("  %-12s growth exponent of the time per step: fit %.2f", spec.label.c_str(),
@@ -255,15 +237,15 @@ int main(int argc, char** argv) {
   if (solvers.size() >= 2) {
     std::printf("\nTime per step relative to %s (same run):\n", solvers[0].label.c_str());
     for (int blocks : sizes) {
-      const auto base =
-          reporter.records.find("BM_Pile/" + solvers[0].label + "/" + std::to_string(blocks));
-      if (base == reporter.records.end()) continue;
+      const rockmass::bench::Record* base =
+          reporter.find("BM_Pile/" + solvers[0].label + "/" + std::to_string(blocks));
+      if (!base) continue;
       for (std::size_t s = 1; s < solvers.size(); ++s) {
-        const auto other =
-            reporter.records.find("BM_Pile/" + solvers[s].label + "/" + std::to_string(blocks));
-        if (other == reporter.records.end()) continue;
+        const rockmass::bench::Record* other =
+            reporter.find("BM_Pile/" + solvers[s].label + "/" + std::to_string(blocks));
+        if (!other) continue;
         std::printf("  %6d blocks: %s / %s = %.2f\n", blocks, solvers[s].label.c_str(),
-                    solvers[0].label.c_str(), other->second.cpu_seconds / base->second.cpu_seconds);
+                    solvers[0].label.c_str(), other->cpu_time / base->cpu_time);
       }
     }
   }

@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 
+#include "bench/bench_support.h"
 #include "geometry/fracture_network.h"
 #include "geometry/orientation.h"
 
@@ -81,28 +82,13 @@ void BM_DiscOutline(benchmark::State& state) {
 }
 BENCHMARK(BM_DiscOutline)->Arg(8)->Arg(24)->Arg(96)->Unit(benchmark::kMillisecond);
 
-/// Console output plus a record of each benchmark's real time, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      times[run.benchmark_name()] = run.GetAdjustedRealTime();
-      if (run.counters.count("discs_per_s"))
-        rates[run.benchmark_name()] = run.counters.at("discs_per_s");
-    }
-  }
-  std::map<std::string, double> times;  ///< real time per iteration, in the benchmark's unit
-  std::map<std::string, double> rates;  ///< discs per second
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RecordingReporter reporter;
+  rockmass::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  const auto& t = reporter.times;
+  const auto t = reporter.realTimes();
   const auto ratio = [&](const char* a, const char* b) {
     if (t.count(a) && t.count(b)) std::printf("  %-44s / %-32s = %.3f\n", a, b, t.at(a) / t.at(b));
   };
@@ -110,7 +96,7 @@ int main(int argc, char** argv) {
   ratio("BM_GenerateFisher/116/min_time:2.000", "BM_GenerateIndependentAngles/116/min_time:2.000");
   ratio("BM_DiscOutline/24", "BM_DiscOutline/8");
   ratio("BM_DiscOutline/96", "BM_DiscOutline/24");
-  for (const auto& [name, rate] : reporter.rates) {
+  for (const auto& [name, rate] : reporter.counterValues("discs_per_s")) {
     std::printf("  %-44s %.3g discs/s, 10^6 discs in %.2f s\n", name.c_str(), rate, 1e6 / rate);
   }
   benchmark::Shutdown();

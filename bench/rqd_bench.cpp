@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.h"
 #include "geometry/fisher.h"
 #include "geometry/fracture_network.h"
 #include "geometry/random.h"
@@ -328,31 +329,15 @@ BENCHMARK(BM_AccuracyDirections)
     ->Arg(8000)
     ->Unit(benchmark::kMillisecond);
 
-/// Console output plus a record of each benchmark's real time and counters, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      // CPU time: the ratios compare single-threaded benchmarks, and on a machine shared
-      // with other jobs the wall time also counts the time the thread waited for a core.
-      times[run.benchmark_name()] = run.GetAdjustedCPUTime();
-      for (const auto& [name, counter] : run.counters) {
-        counters[run.benchmark_name()][name] = counter.value;
-      }
-    }
-  }
-  std::map<std::string, double> times;                            ///< CPU time per iteration
-  std::map<std::string, std::map<std::string, double>> counters;  ///< final counter values
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RecordingReporter reporter;
+  rockmass::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  const auto& t = reporter.times;
+  // CPU time: the ratios compare single-threaded benchmarks, and on a machine shared with
+  // other jobs the wall time also counts the time the thread waited for a core.
+  const auto t = reporter.cpuTimes();
   std::printf("\nSpeed-up over brute force (same run, CPU time per ray):\n");
   for (const char* n : {"1000", "10000", "100000"}) {
     const std::string brute = std::string("BM_BruteForce/") + n;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.h"
 #include "dda3d/linear_solver.h"
 #include "tests/support/dda_matrices.h"
 
@@ -111,27 +112,13 @@ BENCHMARK(BM_Pcg1e10)->Apply(pileSizes);
 BENCHMARK(BM_CholmodAnalyze)->Apply(pileSizes);
 BENCHMARK(BM_EigenLdltAnalyze)->Apply(pileSizes);
 
-/// Console output plus each benchmark's real time and counters, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      times[run.benchmark_name()] = run.GetAdjustedCPUTime();
-      if (run.counters.count("error")) errors[run.benchmark_name()] = run.counters.at("error");
-    }
-  }
-  std::map<std::string, double> times;   ///< CPU ms per iteration
-  std::map<std::string, double> errors;  ///< relative error of the solution
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RecordingReporter reporter;
+  rockmass::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  const auto& t = reporter.times;
+  const auto t = reporter.cpuTimes();
   std::printf(
       "\nRatios to CHOLMOD (same run; CPU time of factorize + solve, analysis reused; the\n"
       "machine is shared, and CPU time is what a single-threaded solve costs):\n");
@@ -158,7 +145,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("\nRelative error |d - d*| / |d*|:\n");
-  for (const auto& [name, error] : reporter.errors)
+  for (const auto& [name, error] : reporter.counterValues("error"))
     std::printf("  %-20s %.3g\n", name.c_str(), error);
   benchmark::Shutdown();
   return 0;
