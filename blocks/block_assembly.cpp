@@ -1,5 +1,7 @@
 #include "blocks/block_assembly.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -160,19 +162,31 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
 
   const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
                             tolerances.distance);
-  std::map<int, std::vector<int>> members;  // root -> pieces, ascending
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    members[clusters.find(static_cast<int>(i))].push_back(static_cast<int>(i));
-  }
-  std::vector<Block> unordered;
+  // Clusters in the order of their roots (smallest piece), each listing its pieces ascending.
+  std::vector<int> cluster_of(all.size(), -1);
   std::vector<std::vector<int>> unordered_pieces;
-  for (const auto& [root, list] : members) {
-    Block b;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const int root = clusters.find(static_cast<int>(i));
+    if (cluster_of[root] < 0) {
+      cluster_of[root] = static_cast<int>(unordered_pieces.size());
+      unordered_pieces.emplace_back();
+    }
+    unordered_pieces[cluster_of[root]].push_back(static_cast<int>(i));
+  }
+  // Mass properties, boxes and materials per block, in parallel (each block on its own).
+  std::vector<Block> unordered(unordered_pieces.size());
+  tbb::parallel_for(std::size_t{0}, unordered.size(), [&](std::size_t k) {
+    const std::vector<int>& list = unordered_pieces[k];
+    Block& b = unordered[k];
     b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
     b.bounds.max = -b.bounds.min;
-    std::vector<const geometry::Polyhedron*> rock;
+    // Material volumes as SlabMaterials::ofBlock counts them (each convex piece with its
+    // volume for the material at its centroid), from the mass properties computed here.
+    std::map<int, double> material_volume;
     for (int i : list) {
-      b.mass += geometry::massProperties(all[i].shape);
+      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      b.mass += m;
+      material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
       const geometry::Box box = geometry::bounds(all[i].shape);
       b.bounds.min = b.bounds.min.cwiseMin(box.min);
       b.bounds.max = b.bounds.max.cwiseMax(box.max);
@@ -181,12 +195,13 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     if (structure >= 0) {
       b.material = input.structures[structure].material;
     } else {
-      for (int i : list) rock.push_back(&all[i].shape);
-      b.material = slabs.ofBlock(rock);
+      // The largest volume wins; ties go to the smaller material index.
+      b.material =
+          std::max_element(material_volume.begin(), material_volume.end(),
+                           [](const auto& x, const auto& y) { return x.second < y.second; })
+              ->first;
     }
-    unordered.push_back(std::move(b));
-    unordered_pieces.push_back(list);
-  }
+  });
   const std::vector<int> order = blockOrder(unordered, input.domain_box);
   struct Pending {
     Block block;

@@ -6,6 +6,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <numeric>
 #include <tuple>
 
 #include "blocks/convex_split.h"
@@ -58,6 +60,27 @@ bool inPlane(const FaceData& a, const FaceData& b, double tolerance) {
   return std::all_of(b.points.begin(), b.points.end(), [&](const Vec3& p) {
     return std::abs(a.normal.dot(p) - a.offset) <= tolerance;
   });
+}
+
+/// True when points[b_begin, b_end) is the loop points[a_begin, a_end) run backwards (the
+/// same face seen from its other side), with bitwise equal points.
+bool sameLoop(const std::vector<Vec3>& points, std::uint32_t a_begin, std::uint32_t a_end,
+              std::uint32_t b_begin, std::uint32_t b_end) {
+  const std::uint32_t n = a_end - a_begin;
+  if (b_end - b_begin != n) return false;
+  std::uint32_t start = n;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (points[b_begin + k] == points[a_begin]) {
+      start = k;
+      break;
+    }
+  }
+  if (start == n) return false;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    // a[k] pairs with b[start - k] (backwards).
+    if (points[a_begin + k] != points[b_begin + (start + n - k) % n]) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -146,75 +169,130 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
 std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const std::vector<std::vector<int>>& planes,
                                               double tolerance, double min_area) {
-  struct Ref {
-    int plane, piece, face;
-    bool operator<(const Ref& o) const {
-      return std::tie(plane, piece, face) < std::tie(o.plane, o.piece, o.face);
-    }
-  };
-  std::vector<Ref> refs;
+  // One flat table of faces in piece order (sequential memory access; built in parallel),
+  // their points in one array: no allocation per face.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    for (std::size_t f = 0; f < planes[i].size(); ++f) {
-      refs.push_back({planes[i][f], static_cast<int>(i), static_cast<int>(f)});
-    }
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
   }
-  std::sort(refs.begin(), refs.end());
-  std::vector<std::pair<std::size_t, std::size_t>> groups;  // [begin, end) in refs
-  for (std::size_t b = 0; b < refs.size();) {
+  const std::size_t face_count = first_face.back();
+  struct Face {
+    int plane, piece, face;
+    std::uint32_t begin, end;  ///< range in `points`
+    Vec3 normal;
+    double offset;
+    geometry::Box box;
+  };
+  std::vector<std::size_t> first_point(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    std::size_t n = 0;
+    for (const std::vector<int>& face : pieces[i].shape.faces) n += face.size();
+    first_point[i + 1] = first_point[i] + n;
+  }
+  std::vector<Face> faces(face_count);
+  std::vector<Vec3> points(first_point.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const geometry::Polyhedron& shape = pieces[i].shape;
+                        std::size_t at = first_point[i];
+                        for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+                          Face& d = faces[first_face[i] + f];
+                          d.plane = planes[i][f];
+                          d.piece = static_cast<int>(i);
+                          d.face = static_cast<int>(f);
+                          d.begin = static_cast<std::uint32_t>(at);
+                          Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
+                          const std::vector<int>& loop = shape.faces[f];
+                          d.box = {shape.vertices[loop[0]], shape.vertices[loop[0]]};
+                          for (std::size_t k = 0; k < loop.size(); ++k) {
+                            const Vec3& p = shape.vertices[loop[k]];
+                            const Vec3& q = shape.vertices[loop[k + 1 == loop.size() ? 0 : k + 1]];
+                            newell += p.cross(q);
+                            mean += p;
+                            d.box.min = d.box.min.cwiseMin(p);
+                            d.box.max = d.box.max.cwiseMax(p);
+                            points[at++] = p;
+                          }
+                          d.end = static_cast<std::uint32_t>(at);
+                          const double length = newell.norm();
+                          d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
+                          d.offset = d.normal.dot(mean / static_cast<double>(loop.size()));
+                        }
+                      }
+                    });
+  // Faces grouped by plane (ties in piece and face order: deterministic).
+  std::vector<std::uint32_t> order(face_count);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return faces[a].plane != faces[b].plane ? faces[a].plane < faces[b].plane : a < b;
+  });
+  std::vector<std::pair<std::size_t, std::size_t>> groups;  // [begin, end) in order
+  for (std::size_t b = 0; b < order.size();) {
     std::size_t e = b + 1;
-    while (e < refs.size() && refs[e].plane == refs[b].plane) ++e;
+    while (e < order.size() && faces[order[e]].plane == faces[order[b]].plane) ++e;
     if (e - b >= 2) groups.emplace_back(b, e);
     b = e;
   }
+  const auto inPlaneOf = [&](const Face& a, const Face& b) {
+    for (std::uint32_t k = b.begin; k < b.end; ++k) {
+      if (std::abs(a.normal.dot(points[k]) - a.offset) > tolerance) return false;
+    }
+    return true;
+  };
+  const auto loopOf = [&](const Face& f, std::vector<Vec3>& out) {
+    out.assign(points.begin() + f.begin, points.begin() + f.end);
+  };
   std::vector<std::vector<PieceContact>> found(groups.size());
   tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
     const auto [begin, end] = groups[g];
-    std::vector<FaceData> data;
-    for (std::size_t k = begin; k < end; ++k) {
-      const Piece& piece = pieces[refs[k].piece];
-      FaceData d;
-      d.normal = geometry::faceNormal(piece.shape, refs[k].face);
-      const std::vector<int>& face = piece.shape.faces[refs[k].face];
-      d.box = {piece.shape.vertices[face[0]], piece.shape.vertices[face[0]]};
-      Vec3 mean = Vec3::Zero();
-      for (int v : face) {
-        d.points.push_back(piece.shape.vertices[v]);
-        mean += d.points.back();
-        d.box.min = d.box.min.cwiseMin(d.points.back());
-        d.box.max = d.box.max.cwiseMax(d.points.back());
-      }
-      d.offset = d.normal.dot(mean / static_cast<double>(d.points.size()));
-      data.push_back(std::move(d));
-    }
-    const Vec3 reference = data.front().normal;
+    const Vec3 reference = faces[order[begin]].normal;
     std::vector<BoxWithIndex> front, back;  // faces along and against the reference normal
-    for (std::size_t k = 0; k < data.size(); ++k) {
-      const geometry::Box b = data[k].box.enlarged(tolerance);
+    for (std::size_t k = begin; k < end; ++k) {
+      const Face& d = faces[order[k]];
+      const geometry::Box b = d.box.enlarged(tolerance);
       const BoxWithIndex box(
           CGAL::Bbox_3(b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()),
-          static_cast<int>(k));
-      (data[k].normal.dot(reference) > 0.0 ? front : back).push_back(box);
+          static_cast<int>(order[k]));
+      (d.normal.dot(reference) > 0.0 ? front : back).push_back(box);
     }
     if (front.empty() || back.empty()) return;
     std::vector<std::pair<int, int>> candidates;
-    CGAL::box_intersection_d(front.begin(), front.end(), back.begin(), back.end(),
-                             [&](const BoxWithIndex& a, const BoxWithIndex& b) {
-                               candidates.emplace_back(a.info(), b.info());
-                             });
-    for (const auto& [ka, kb] : candidates) {
-      const Ref& ra = refs[begin + ka];
-      const Ref& rb = refs[begin + kb];
-      if (ra.piece == rb.piece) continue;
-      if (data[ka].normal.dot(data[kb].normal) > -0.999) continue;
-      if (!inPlane(data[ka], data[kb], tolerance) || !inPlane(data[kb], data[ka], tolerance)) {
-        continue;
+    const auto report = [&](const BoxWithIndex& a, const BoxWithIndex& b) {
+      candidates.emplace_back(a.info(), b.info());
+    };
+    if (front.size() == 1 || back.size() == 1) {
+      // One face against many: a plain loop beats the segment tree's set-up.
+      for (const BoxWithIndex& a : front) {
+        for (const BoxWithIndex& b : back) {
+          if (CGAL::do_overlap(a.bbox(), b.bbox())) report(a, b);
+        }
       }
-      const double area = faceOverlapArea(data[ka].points, data[kb].points, data[ka].normal);
-      if (area <= min_area) continue;
-      if (ra.piece < rb.piece) {
-        found[g].push_back({ra.piece, ra.face, rb.piece, rb.face, area});
+    } else {
+      CGAL::box_intersection_d(front.begin(), front.end(), back.begin(), back.end(), report);
+    }
+    std::vector<Vec3> loop_a, loop_b;
+    for (const auto& [ka, kb] : candidates) {
+      const Face& a = faces[ka];
+      const Face& b = faces[kb];
+      if (a.piece == b.piece) continue;
+      if (a.normal.dot(b.normal) > -0.999) continue;
+      if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
+      loopOf(a, loop_a);
+      double area = 0.0;
+      if (sameLoop(points, a.begin, a.end, b.begin, b.end)) {
+        // The common case: both sides of one cut, neither split further since. Shared points
+        // are bitwise equal (the splitter computes each crossing point once).
+        area = geometry::polygonArea(loop_a);
       } else {
-        found[g].push_back({rb.piece, rb.face, ra.piece, ra.face, area});
+        loopOf(b, loop_b);
+        area = faceOverlapArea(loop_a, loop_b, a.normal);
+      }
+      if (area <= min_area) continue;
+      if (a.piece < b.piece) {
+        found[g].push_back({a.piece, a.face, b.piece, b.face, area});
+      } else {
+        found[g].push_back({b.piece, b.face, a.piece, a.face, area});
       }
     }
   });
