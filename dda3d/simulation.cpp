@@ -245,7 +245,9 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
 void Simulation::initialAccelerations() {
   // assembleBlockTerms leaves the loads at t = 0 in load_f_; dt is irrelevant here.
   assembleBlockTerms(settings_.time_step);
+  const bool fixed_blocks = active_.fixed_blocks;
   active_ = ActiveTerms{};  // nothing was assembled into a system yet
+  active_.fixed_blocks = fixed_blocks;
   std::vector<BlockVector> force = load_f_;
   for (const BlockState& block : blocks_) {
     if (block.fixed || settings_.kinematics != Kinematics::Deformable) continue;
