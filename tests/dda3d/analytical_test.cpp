@@ -1,5 +1,5 @@
 // Verification of the 3D DDA engine against closed-form solutions (issue 5):
-// free fall (the Newmark beta = 1/2, gamma = 1 scheme is exact for constant acceleration),
+// free fall (the Bossak and Shi schemes are exact for constant acceleration),
 // a block sliding on an incline (a = g (sin theta - cos theta tan phi); e.g. Goodman & Shi
 // 1985, ch. 1, and the 2D DDA verification of MacLaughlin & Doolin 2006), the same block
 // with phi >= theta (no motion), an elastic column under its own weight (uniaxial stress,
