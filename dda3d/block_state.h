@@ -43,6 +43,8 @@ struct BlockState {
   geometry::Vec3 centroid = geometry::Vec3::Zero();  ///< m, current
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  ///< integral of X X^T about the centroid, m5
   BlockVector velocity = BlockVector::Zero();        ///< dD/dt at the start of the step
+  /// d2D/dt2 at the start of the step (the time integration's a0).
+  BlockVector acceleration = BlockVector::Zero();
   BlockVector last_displacement = BlockVector::Zero();  ///< D of the last accepted step
   VoigtVector stress = VoigtVector::Zero();             ///< Pa, Voigt order
   VoigtVector strain = VoigtVector::Zero();             ///< accumulated strain (-), Voigt order

@@ -1,5 +1,6 @@
 #include "dda3d/block_terms.h"
 
+#include <stdexcept>
 #include <vector>
 
 namespace rockmass::dda3d {
@@ -18,10 +19,38 @@ BlockVector initialStressLoad(const BlockState& block) {
   return f;
 }
 
-void inertiaTerms(const BlockMatrix& mass_matrix, const BlockVector& velocity, double dt,
+NewmarkCoefficients shiCoefficients() {
+  return {.alpha_m = 0.0, .beta = 0.5, .gamma = 1.0};
+}
+
+NewmarkCoefficients bossakCoefficients(double spectral_radius) {
+  if (!(spectral_radius >= 0.0 && spectral_radius <= 1.0)) {
+    throw std::invalid_argument("the spectral radius of the time integration must be in [0, 1]");
+  }
+  const double alpha_m = (spectral_radius - 1.0) / (spectral_radius + 1.0);
+  return {
+      .alpha_m = alpha_m, .beta = 0.25 * (1.0 - alpha_m) * (1.0 - alpha_m), .gamma = 0.5 - alpha_m};
+}
+
+void inertiaTerms(const BlockMatrix& mass_matrix, const BlockVector& velocity,
+                  const BlockVector& acceleration, double dt, const NewmarkCoefficients& s,
                   BlockMatrix& k, BlockVector& f) {
-  k += (2.0 / (dt * dt)) * mass_matrix;
-  f += (2.0 / dt) * (mass_matrix * velocity);
+  const double weight = 1.0 - s.alpha_m;
+  k += (weight / (s.beta * dt * dt)) * mass_matrix;
+  f += mass_matrix * ((weight / (s.beta * dt)) * velocity +
+                      (weight * (0.5 - s.beta) / s.beta - s.alpha_m) * acceleration);
+}
+
+BlockVector endAcceleration(const BlockVector& d, const BlockVector& velocity,
+                            const BlockVector& acceleration, double dt,
+                            const NewmarkCoefficients& s) {
+  return (d - dt * velocity - (0.5 - s.beta) * dt * dt * acceleration) / (s.beta * dt * dt);
+}
+
+BlockVector endVelocity(const BlockVector& velocity, const BlockVector& acceleration,
+                        const BlockVector& end_acceleration, double dt,
+                        const NewmarkCoefficients& s) {
+  return velocity + dt * ((1.0 - s.gamma) * acceleration + s.gamma * end_acceleration);
 }
 
 BlockVector bodyForceLoad(const BlockState& block, const Vec3& gravity) {

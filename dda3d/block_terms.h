@@ -13,10 +13,47 @@ BlockMatrix elasticStiffness(const BlockState& block, const ElasticMatrix& elast
 /// Initial (current) stress: F_i[6:12] -= V sigma (N m).
 BlockVector initialStressLoad(const BlockState& block);
 
-/// Inertia with Newmark beta = 1/2, gamma = 1: K_ii += (2 / dt^2) M, F_i += (2 / dt) M V.
-/// `mass_matrix` from massMatrix(); `dt` in s.
-void inertiaTerms(const BlockMatrix& mass_matrix, const BlockVector& velocity, double dt,
+/// Coefficients of a one-step Newmark-type scheme with a Bossak (Wood-Bossak-Zienkiewicz)
+/// weighting of the inertia: over a step of length dt with displacement d,
+///   d       = dt v0 + dt^2 ((1/2 - beta) a0 + beta a1),
+///   v1      = v0 + dt ((1 - gamma) a0 + gamma a1),
+///   M ((1 - alpha_m) a1 + alpha_m a0) + (internal forces at the end) = F (at the end).
+/// Derivation and properties: docs/dda3d.md, "Time integration".
+struct NewmarkCoefficients {
+  double alpha_m = 0.0;  ///< Bossak inertia weight (0: plain Newmark)
+  double beta = 0.5;     ///< -
+  double gamma = 1.0;    ///< -
+};
+
+/// Shi's DDA scheme (the formulation doc): beta = 1/2, gamma = 1, alpha_m = 0. First-order
+/// accurate; its spectral radius tends to 1 for stiff modes (no high-frequency damping).
+NewmarkCoefficients shiCoefficients();
+
+/// The Bossak alpha scheme with high-frequency spectral radius `spectral_radius` (rho_inf in
+/// [0, 1]): alpha_m = (rho_inf - 1) / (rho_inf + 1), gamma = 1/2 - alpha_m,
+/// beta = (1 - alpha_m)^2 / 4. Second-order accurate and unconditionally stable for linear
+/// systems; rho_inf = 0 annihilates the stiffest modes in one or two steps, rho_inf = 1 is
+/// the undamped trapezoidal rule. Throws std::invalid_argument outside [0, 1].
+NewmarkCoefficients bossakCoefficients(double spectral_radius);
+
+/// Inertia of one step: K_ii += (1 - alpha_m) / (beta dt^2) M and
+/// F_i += M ((1 - alpha_m) / (beta dt) v0 + ((1 - alpha_m) (1/2 - beta) / beta - alpha_m) a0).
+/// With Shi's coefficients: (2 / dt^2) M and (2 / dt) M v0 (the formulation doc).
+/// `mass_matrix` from massMatrix(); `velocity` (v0) and `acceleration` (a0) at the start of
+/// the step; `dt` in s.
+void inertiaTerms(const BlockMatrix& mass_matrix, const BlockVector& velocity,
+                  const BlockVector& acceleration, double dt, const NewmarkCoefficients& scheme,
                   BlockMatrix& k, BlockVector& f);
+
+/// Acceleration a1 at the end of a step of displacement `d` (from the displacement update).
+BlockVector endAcceleration(const BlockVector& d, const BlockVector& velocity,
+                            const BlockVector& acceleration, double dt,
+                            const NewmarkCoefficients& scheme);
+
+/// Velocity v1 at the end of a step: v0 + dt ((1 - gamma) a0 + gamma a1).
+BlockVector endVelocity(const BlockVector& velocity, const BlockVector& acceleration,
+                        const BlockVector& end_acceleration, double dt,
+                        const NewmarkCoefficients& scheme);
 
 /// Body force: F_i[0:3] += m g (first moments about the centroid vanish). `gravity` m/s2.
 BlockVector bodyForceLoad(const BlockState& block, const geometry::Vec3& gravity);

@@ -138,6 +138,12 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
     }
   }
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time_step must be > 0 s");
+  if (!(settings_.dynamic_ratio >= 0.0 && settings_.dynamic_ratio <= 1.0)) {
+    throw std::invalid_argument("dynamic_ratio must be in [0, 1]");
+  }
+  scheme_ = settings_.integration == TimeIntegration::Shi
+                ? shiCoefficients()
+                : bossakCoefficients(settings_.spectral_radius);
   if (!(settings_.max_displacement_ratio > 0.0)) {
     throw std::invalid_argument("max_displacement_ratio must be > 0");
   }
@@ -233,6 +239,46 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
   base_k_.assign(static_cast<std::size_t>(movable), BlockMatrix::Zero());
   base_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
   load_f_.assign(static_cast<std::size_t>(movable), BlockVector::Zero());
+  initialAccelerations();
+}
+
+void Simulation::initialAccelerations() {
+  // assembleBlockTerms leaves the loads at t = 0 in load_f_; dt is irrelevant here.
+  assembleBlockTerms(settings_.time_step);
+  const bool fixed_blocks = active_.fixed_blocks;
+  active_ = ActiveTerms{};  // nothing was assembled into a system yet
+  active_.fixed_blocks = fixed_blocks;
+  std::vector<BlockVector> force = load_f_;
+  for (const BlockState& block : blocks_) {
+    if (block.fixed || settings_.kinematics != Kinematics::Deformable) continue;
+    force[static_cast<std::size_t>(block.dof_offset)] += initialStressLoad(block);
+  }
+  for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
+    const DdaBolt& bolt = model_.bolts[k];
+    const Vec3 axis = bolt.point_b - bolt.point_a;
+    if (axis.norm() <= 0.0) continue;
+    // The pretension pulls point a towards b and b towards a.
+    const Vec3 pull = bolt.pretension * axis.normalized();
+    const BlockState& a = blocks_[static_cast<std::size_t>(bolt.block_a)];
+    if (!a.fixed) force[static_cast<std::size_t>(a.dof_offset)] += pointLoad(a, bolt.point_a, pull);
+    if (bolt.block_b >= 0) {
+      const BlockState& b = blocks_[static_cast<std::size_t>(bolt.block_b)];
+      if (!b.fixed) {
+        force[static_cast<std::size_t>(b.dof_offset)] += pointLoad(b, bolt.point_b, -pull);
+      }
+    }
+  }
+  for (BlockState& block : blocks_) {
+    if (block.fixed) continue;
+    const BlockMatrix m = massMatrix(block);
+    const BlockVector& f = force[static_cast<std::size_t>(block.dof_offset)];
+    block.acceleration.setZero();
+    if (dofs_ == kBlockDofs) {
+      block.acceleration = m.ldlt().solve(f);
+    } else {
+      block.acceleration.head<6>() = m.topLeftCorner<6, 6>().ldlt().solve(f.head<6>());
+    }
+  }
 }
 
 Simulation::~Simulation() = default;
@@ -330,7 +376,7 @@ void Simulation::assembleBlockTerms(double dt) {
         step.initial_stress = true;
       }
     }
-    inertiaTerms(massMatrix(block), block.velocity, dt, k, f);
+    inertiaTerms(massMatrix(block), block.velocity, block.acceleration, dt, scheme_, k, f);
     if (!model_.gravity.isZero(0.0)) {
       loads += bodyForceLoad(block, model_.gravity);
       step.body_force = true;
@@ -365,8 +411,8 @@ void Simulation::assembleBlockTerms(double dt) {
   active_ |= step;
 }
 
-void Simulation::addContactTerms(const Contact& c) {
-  if (c.state == ContactState::Open) return;
+Vec3 Simulation::addContactTerms(const Contact& c) {
+  if (c.state == ContactState::Open) return Vec3::Zero();
   const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
@@ -382,12 +428,13 @@ void Simulation::addContactTerms(const Contact& c) {
       system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk));
     }
     active_.contact_shear = true;
-  } else {
-    const double friction = jointOf(c).friction * std::max(0.0, c.normal_force);
-    system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
-    system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
-    active_.friction = true;
+    return Vec3::Zero();
   }
+  const double friction = jointOf(c).friction * std::max(0.0, c.normal_force);
+  system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
+  system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
+  active_.friction = true;
+  return -friction * c.slide_direction;
 }
 
 BlockVector Simulation::unknownsOf(const Eigen::VectorXd& solution, int block) const {
@@ -479,7 +526,10 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
       system_->addDiagonal(m, base_k_[static_cast<std::size_t>(m)]);
       system_->addForce(m, base_f_[static_cast<std::size_t>(m)]);
     }
-    for (const Contact& c : contacts_) addContactTerms(c);
+    applied_friction_.resize(contacts_.size());
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      applied_friction_[k] = addContactTerms(contacts_[k]);
+    }
     for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
       const MaterialPoint& a = bolt_a_[k];
       const MaterialPoint& b = bolt_b_[k];
@@ -562,6 +612,59 @@ double Simulation::maxPenetration() const {
   return deepest;
 }
 
+void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) {
+  // Friction: the forces applied in the last solve, -f N s on i and +f N s on j, did the work
+  // -f N s . (u_i - u_j); the blocks lost that much.
+  for (std::size_t k = 0; k < contacts_.size() && k < applied_friction_.size(); ++k) {
+    if (applied_friction_[k].isZero(0.0)) continue;
+    friction_work_ -= applied_friction_[k].dot(relativeDisplacement(contacts_[k], solution));
+  }
+  // Springs at the start of the step, in the states the step ended with: the energy
+  // 1/2 k (d0 + e^T D)^2 of every spring at D = 0. Where it differs from the springs' energy
+  // at the end of the last step, contact changes between the steps added (or removed) it:
+  // contacts detected already penetrating, closed or opened, shear springs restarted,
+  // penalty changes. A contact still apart (d0 > 0) that closes during the step is the
+  // exception: the solve counts 1/2 k d0^2 as if its spring pulled from the start and takes
+  // it back in 1/2 d^T K d (an implicit, inelastic impact), so that share is moved from the
+  // numerical dissipation instead of being counted as a change.
+  double springs_start = pointSpringEnergy();
+  double pulling = 0.0;
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::Open) continue;
+    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * penalty_ * c.gap0 * c.gap0;
+    if (c.state == ContactState::Locked) {
+      springs_start += 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
+    }
+  }
+  contact_changes_ += springs_start - springs_after_step_;
+  numerical_dissipation_ -= pulling;
+  if (solution.size() == 0) return;
+  // The step solved (K + c0 M) d = F + M (c1 v0 + c2 a0). Dotted with d, and with every
+  // spring and the strain energy quadratic, the work of the loads less the friction work
+  // equals dU + 1/2 d^T K d (forces taken at the end of the step) + d^T M a_b, a_b =
+  // (1 - alpha_m) a1 + alpha_m a0 the Bossak-weighted acceleration. The scheme removed what
+  // of that did not become kinetic energy: 1/2 d^T K d + d^T M a_b - (T1 - T0).
+  const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
+  const double c0 = (1.0 - scheme_.alpha_m) / (scheme_.beta * dt * dt);
+  double removed = 0.5 * solution.dot(system_->matrix() * solution);
+  for (const BlockState& block : blocks_) {
+    if (block.fixed) continue;
+    const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    const BlockMatrix m = massMatrix(block);
+    const BlockVector a1 = endAcceleration(d, block.velocity, block.acceleration, dt, scheme_);
+    const BlockVector v1 = endVelocity(block.velocity, block.acceleration, a1, dt, scheme_);
+    const BlockVector weighted =
+        (1.0 - scheme_.alpha_m) * a1 + scheme_.alpha_m * block.acceleration;
+    const double end_kinetic = 0.5 * v1.dot(m * v1);
+    removed += -0.5 * c0 * d.dot(m * d) + d.dot(m * weighted) - end_kinetic +
+               0.5 * block.velocity.dot(m * block.velocity);
+    // A dynamic ratio below 1 (or static mode) takes a share of the kinetic energy away.
+    removed += (1.0 - ratio * ratio) * end_kinetic;
+  }
+  numerical_dissipation_ += removed;
+}
+
 void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
   for (Contact& c : contacts_) {
     if (c.state == ContactState::Locked) {
@@ -599,7 +702,10 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
       block.stress = rotateVoigt(block.stress, rotation, 1.0);
       block.strain = rotateVoigt(block.strain, rotation, 0.5);
     }
-    block.velocity = ratio * ((2.0 / dt) * d - block.velocity);
+    const BlockVector a1 = endAcceleration(d, block.velocity, block.acceleration, dt, scheme_);
+    block.velocity =
+        ratio * endVelocity(block.velocity, block.acceleration, a1, dt, scheme_).eval();
+    block.acceleration = ratio * a1;
     block.last_displacement = d;
     block.updateMassProperties();
   }
@@ -654,7 +760,9 @@ StepReport Simulation::step() {
     break;
   }
   start = Clock::now();
+  accountDissipation(solution, dt);
   updateBlocks(solution, dt);
+  springs_after_step_ = springEnergy();
   last_solution_ = solution;
   last_dt_ = dt;
   timings_.update_blocks += secondsSince(start);
@@ -730,25 +838,39 @@ EnergyAccount Simulation::energy() const {
           block.strain.dot(elastic_[static_cast<std::size_t>(block.material)] * block.strain);
     }
   }
+  e.springs = springEnergy();
+  e.work_of_loads = work_of_loads_;
+  e.friction = friction_work_;
+  e.numerical = numerical_dissipation_;
+  e.contact_changes = contact_changes_;
+  return e;
+}
+
+double Simulation::springEnergy() const {
+  double energy = pointSpringEnergy();
   const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::Open) continue;
-    e.springs += 0.5 * penalty_ * c.gap * c.gap;
-    if (c.state == ContactState::Locked) e.springs += 0.5 * ks * c.shear.squaredNorm();
+    energy += 0.5 * penalty_ * c.gap * c.gap;
+    if (c.state == ContactState::Locked) energy += 0.5 * ks * c.shear.squaredNorm();
   }
+  return energy;
+}
+
+double Simulation::pointSpringEnergy() const {
+  double energy = 0.0;
   for (const MaterialPoint& fp : fixed_points_) {
-    e.springs += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ *
-                 (fp.current - fp.initial).squaredNorm();
+    energy += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ *
+              (fp.current - fp.initial).squaredNorm();
   }
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
     const DdaBolt& bolt = model_.bolts[k];
     const double free_length =
         (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
     const double stretch = (bolt_b_[k].current - bolt_a_[k].current).norm() - free_length;
-    e.springs += 0.5 * bolt.stiffness * stretch * stretch;
+    energy += 0.5 * bolt.stiffness * stretch * stretch;
   }
-  e.work_of_loads = work_of_loads_;
-  return e;
+  return energy;
 }
 
 }  // namespace rockmass::dda3d

@@ -12,6 +12,7 @@
 
 #include "dda3d/block_state.h"
 #include "dda3d/block_system.h"
+#include "dda3d/block_terms.h"
 #include "dda3d/contact.h"
 #include "dda3d/linear_solver.h"
 #include "dda3d/model.h"
@@ -22,13 +23,27 @@ namespace rockmass::dda3d {
 enum class AnalysisMode { Dynamic, Static };
 /// Deformable blocks (12 unknowns) or rigid blocks (6).
 enum class Kinematics { Deformable, Rigid };
+/// How the inertia term is integrated in time (docs/dda3d.md, "Time integration").
+enum class TimeIntegration {
+  /// Bossak alpha scheme (Newmark with a weighted inertia), second-order accurate, damping
+  /// the stiff contact modes by the spectral radius DdaSettings::spectral_radius.
+  Bossak,
+  /// Shi's scheme of the formulation doc (Newmark beta = 1/2, gamma = 1): first order, no
+  /// damping of stiff modes (a velocity that flips sign every step on contact springs).
+  Shi,
+};
 
 /// Settings of a run (scene: analysis.dda). Defaults follow the 2D reference lineage.
 struct DdaSettings {
   AnalysisMode mode = AnalysisMode::Dynamic;
   Kinematics kinematics = Kinematics::Deformable;
-  /// Share of the velocity carried to the next step in dynamic mode (1 fully dynamic).
+  /// Share of the velocity (and acceleration) carried to the next step in dynamic mode (1
+  /// fully dynamic). Below 1 it is an extra, non-physical velocity damping.
   double dynamic_ratio = 1.0;
+  TimeIntegration integration = TimeIntegration::Bossak;
+  /// Bossak: spectral radius rho_inf of the scheme for modes much stiffer than M / dt^2 (the
+  /// contact springs), in [0, 1]. 0 removes them within two steps; 1 keeps them undamped.
+  double spectral_radius = 0.0;
   double time_step = 1e-3;      ///< s, the largest step; shrunk and regrown automatically
   double min_time_step = 1e-9;  ///< s, below this a step is accepted as it is (flagged)
   /// g2: largest displacement of any vertex in a step as a share of half the domain size.
@@ -130,12 +145,28 @@ struct StepReport {
 };
 
 /// Energies (J), for checking that nothing grows beyond the work of the loads.
+/// Balance: stored() + dissipated() = work_of_loads, up to the energy of contact state
+/// changes between steps (a contact that closes, a shear spring that starts at the friction
+/// force), the geometric non-linearity of a step (exact rotation, moving contact frames) and
+/// the solver's residual (docs/dda3d.md, "Energy account").
 struct EnergyAccount {
   double kinetic = 0.0;        ///< 1/2 V^T M V
   double strain = 0.0;         ///< 1/2 V eps^T E eps of the accumulated strain
   double springs = 0.0;        ///< contact, fixed-point and bolt springs
   double work_of_loads = 0.0;  ///< cumulative work of body forces, point loads, pressure
+  /// Cumulative work done against the friction forces of sliding contacts, f N s . slip
+  /// (>= 0 step by step: s is the direction of the slip).
+  double friction = 0.0;
+  /// Cumulative energy the time integration removed: per step 1/2 d^T K d (forces taken at
+  /// the end of the step) + d^T M ((1 - alpha_m) a1 + alpha_m a0) - (T1 - T0), plus the
+  /// kinetic energy removed by a dynamic ratio below 1 or by static mode.
+  double numerical = 0.0;
+  /// Cumulative energy the springs gained between steps (signed): contacts detected, closed
+  /// or opened, shear springs restarted, penalty raised. A contact that closes on a moving
+  /// block adds here what the end-of-step spring force then removes in `numerical`.
+  double contact_changes = 0.0;
   double stored() const { return kinetic + strain + springs; }
+  double dissipated() const { return friction + numerical; }
 };
 
 /// A monitored point: displacement since time 0 and current velocity.
@@ -199,7 +230,18 @@ class Simulation {
   void detectContacts();
   void assembleBlockTerms(double dt);
   int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
-  void addContactTerms(const Contact& c);
+  /// Adds c's springs or friction; returns the friction force applied to block i (N; zero
+  /// unless sliding).
+  geometry::Vec3 addContactTerms(const Contact& c);
+  /// The time integration's acceleration at t = 0: M a0 = loads + initial stress + bolt
+  /// pretension (contacts and fixed points carry no force yet).
+  void initialAccelerations();
+  /// Adds the step's friction work and numerical dissipation to the energy account.
+  void accountDissipation(const Eigen::VectorXd& solution, double dt);
+  /// Energy of the contact, fixed-point and bolt springs now (J).
+  double springEnergy() const;
+  /// Energy of the fixed-point and bolt springs now (J).
+  double pointSpringEnergy() const;
   bool updateContactStates(const Eigen::VectorXd& solution);
   double maxDisplacementRatio(const Eigen::VectorXd& solution) const;
   double maxPenetration() const;
@@ -219,6 +261,13 @@ class Simulation {
   double dt_ = 0.0;
   double time_ = 0.0;
   double work_of_loads_ = 0.0;
+  double friction_work_ = 0.0;
+  double numerical_dissipation_ = 0.0;
+  double contact_changes_ = 0.0;
+  double springs_after_step_ = 0.0;  ///< springEnergy() after the last accepted step
+  NewmarkCoefficients scheme_;
+  /// Friction force on block i of each contact in the last assembly (aligned with contacts_).
+  std::vector<geometry::Vec3> applied_friction_;
   std::vector<BlockState> blocks_;
   std::vector<geometry::Vec3> initial_centroids_;
   std::vector<ElasticMatrix> elastic_;

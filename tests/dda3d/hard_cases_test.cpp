@@ -1,12 +1,17 @@
 // Hard cases that break penalty-contact codes (issue 5). Each run asserts, after every
-// step: no NaN or Inf, the deepest penetration below the allowed g3 * l0, the stored
-// energy (kinetic + strain + springs) never above the work done by the loads, and that the
-// run completes. Energy bound: the beta = 1/2, gamma = 1 scheme and friction only remove
-// energy; the margin below covers round-off and the spring energy of contacts that close
-// between steps (at most 1/2 k_n (1e-6 l0)^2 each).
+// step: no NaN or Inf, the deepest penetration below the allowed g3 * l0, that the run
+// completes, and the energy account (docs/dda3d.md, "Energy account"):
+// - it balances: stored + friction + numerical = work of loads + contact changes, up to
+//   the geometric non-linearity of the steps (exact rotation, moving contact frames) and
+//   round-off: every term is computed on its own (friction from the applied forces and
+//   slips, numerical from the scheme's formula), so a wrong sign or a lost term shows;
+// - friction and the time integration only remove energy (>= 0, cumulative);
+// - contact changes add at most the hysteresis allowance, 1/2 k_n (close threshold)^2 per
+//   contact, so stored + dissipated never exceeds the work of loads by more than that.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "dda3d/simulation.h"
 #include "dda_scenes.h"
@@ -20,6 +25,7 @@ constexpr double kG = 9.81;
 void runChecked(const DdaModel& model, const DdaSettings& settings, int steps) {
   Simulation sim(model, settings);
   const double allowed = settings.allowed_penetration_ratio * sim.halfDomainSize();
+  double closing = 0.0;  // hysteresis allowance, summed over the steps
   for (int k = 0; k < steps; ++k) {
     const StepReport r = sim.step();
     ASSERT_FALSE(r.forced) << "step " << k << " accepted without meeting its checks";
@@ -31,11 +37,41 @@ void runChecked(const DdaModel& model, const DdaSettings& settings, int steps) {
     }
     ASSERT_LE(r.max_penetration, allowed) << "step " << k;
     const EnergyAccount e = sim.energy();
-    const double closing = 0.5 * sim.penalty() * std::pow(1e-6 * sim.halfDomainSize(), 2) *
-                           static_cast<double>(r.contacts.total);
-    ASSERT_LE(e.stored(), e.work_of_loads * (1.0 + 1e-6) + closing + 1e-6)
+    closing += 0.5 * sim.penalty() *
+               std::pow(settings.close_threshold_ratio * sim.halfDomainSize(), 2) *
+               static_cast<double>(r.contacts.total);
+    const double scale = e.work_of_loads + std::abs(e.contact_changes) + e.dissipated() + 1.0;
+    // Balance: the geometric non-linearity of a step is second order in its rotation
+    // (< 1e-3 rad here): measured residuals < 1e-7 of the energies moved for rigid blocks.
+    // Deformable blocks also change volume by their volumetric strain (up to ~1e-4 in the
+    // 0.75 GPa layer), and the strain energy uses the current volume: measured 3e-5.
+    const double balance = settings.kinematics == Kinematics::Rigid ? 1e-6 : 1e-3;
+    ASSERT_NEAR(e.stored() + e.dissipated(), e.work_of_loads + e.contact_changes, balance * scale)
         << "step " << k << ": kinetic " << e.kinetic << " strain " << e.strain << " springs "
-        << e.springs;
+        << e.springs << " friction " << e.friction << " numerical " << e.numerical
+        << " contact changes " << e.contact_changes << " work " << e.work_of_loads;
+    // Known defect (docs/dda3d.md): friction on deformable blocks follows the rigid part of
+    // the slip, so where strain dominates the slip it can do positive work (-0.5 J for the
+    // slivers); asserted for rigid blocks only.
+    if (settings.kinematics == Kinematics::Rigid)
+      ASSERT_GE(e.friction, -1e-9 * scale)
+          << "step " << k << ": friction did positive work " << e.friction;
+    // The Bossak scheme conserves or removes a modified energy that includes
+    // 1/2 (beta - gamma/2) dt^2 a^T M a (Hughes 1987, sec. 9.3, for Newmark; alpha_m shifts
+    // the coefficient only), so the plain kinetic + strain + spring energy may exceed the
+    // balance by at most that.
+    double acceleration_term = 0.0;
+    for (const BlockState& b : sim.blocks()) {
+      if (!b.fixed) acceleration_term += b.acceleration.dot(massMatrix(b) * b.acceleration);
+    }
+    acceleration_term *= 0.5 * r.time_step * r.time_step;
+    ASSERT_GE(e.numerical, -acceleration_term - 1e-9 * scale)
+        << "step " << k << ": the scheme added energy";
+    ASSERT_LE(e.contact_changes, closing + 1e-9 * scale)
+        << "step " << k << ": contact changes added " << e.contact_changes << " J";
+    ASSERT_LE(e.stored() + std::max(0.0, e.friction) + e.numerical,
+              e.work_of_loads + closing + balance * scale)
+        << "step " << k;
   }
   EXPECT_GT(sim.time(), 0.0);
 }
@@ -99,7 +135,7 @@ TEST(HardCases, CoplanarVertexOnVertexAndEdgeOnEdge) {
   runChecked(model, hardSettings(Kinematics::Rigid), 200);
 }
 
-TEST(HardCases, TenBlockColumn) {
+DdaModel tenBlockColumn() {
   DdaModel model;
   scenes::setRock(model, 35.0);
   model.blocks.push_back(scenes::boxBlock({-2, -2, -1}, {2, 2, 0}, 0, true));
@@ -107,18 +143,26 @@ TEST(HardCases, TenBlockColumn) {
     model.blocks.push_back(scenes::boxBlock({-0.5, -0.5, k * 1.0}, {0.5, 0.5, k + 1.0}, 0, false));
   }
   model.gravity = Vec3(0, 0, -kG);
-  // Fully dynamic, ten stacked stiff contacts keep a velocity sawtooth the scheme does not
-  // damp, and state changes feed it until the energy bound fails near step 120 (see
-  // docs/dda3d.md); 2% velocity damping per step removes it.
-  DdaSettings settings = hardSettings();
-  settings.dynamic_ratio = 0.98;
-  // Pinned to Eigen LDLT, the backend this damping was verified with: with CHOLMOD (the
-  // Auto choice for 10 blocks) the different round-off feeds the sawtooth until the energy
-  // bound fails at step 108 (stored 449 J > work 183 J). A known marginal case, not a
-  // solver defect: both solves agree to ~kappa eps (linear_solver_test.cpp).
-  settings.solver.kind = SolverKind::Eigen;
-  runChecked(model, settings, 300);
+  return model;
 }
+
+class TenBlockColumn : public ::testing::TestWithParam<SolverKind> {};
+
+TEST_P(TenBlockColumn, FullyDynamicWithEverySolver) {
+  // Fully dynamic (ratio 1). Shi's scheme keeps a velocity sawtooth on the ten stacked
+  // contact springs; the Bossak scheme (rho_inf = 0) removes it, and the column settles.
+  DdaSettings settings = hardSettings(Kinematics::Rigid);
+  settings.solver.kind = GetParam();
+  settings.solver.tolerance = 1e-10;
+  runChecked(tenBlockColumn(), settings, 300);
+}
+INSTANTIATE_TEST_SUITE_P(Solvers, TenBlockColumn,
+                         ::testing::Values(SolverKind::Cholmod, SolverKind::Eigen, SolverKind::Pcg),
+                         [](const ::testing::TestParamInfo<SolverKind>& info) {
+                           return std::string(info.param == SolverKind::Cholmod ? "Cholmod"
+                                              : info.param == SolverKind::Eigen ? "EigenLdlt"
+                                                                                : "Pcg");
+                         });
 
 TEST(HardCases, TwoHundredBlockPileSettles) {
   // 200 cubes dropped from a loose lattice (0.2 m gaps, staggered rows) into a fixed box.
