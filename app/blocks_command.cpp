@@ -6,9 +6,11 @@
 #include <vector>
 
 #include "app/command.h"
+#include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "blocks/prism.h"
 #include "io/atomic_file.h"
+#include "io/block_mesh.h"
 #include "io/block_output.h"
 #include "io/input_error.h"
 #include "io/summary.h"
@@ -30,17 +32,18 @@ struct BlocksOptions {
   std::string mesh_format;  ///< "", obj, ply, stl or glb
 };
 
-/// The cut input of a scene: its box domain, its network and its structures as convex
-/// prism pieces.
+/// The cut input of a scene: its domain (a box, or a mesh domain's surface and its convex
+/// decomposition), its network and its structures as convex prism pieces.
 blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwork& network,
                           const std::string& scene_path) {
-  if (!scene.domain_mesh.empty()) {
-    throw io::InputError(scene_path + ": domain: mesh domains are cut by the exact cutter's " +
-                         "mesh import, which is not built yet; use a box domain");
-  }
   blocks::CutInput input;
   input.domain_box = scene.dfn.domain;
-  input.domain_pieces = {geometry::boxPolyhedron(scene.dfn.domain)};
+  if (scene.domain_surface.faces.empty()) {
+    input.domain_pieces = {geometry::boxPolyhedron(scene.dfn.domain)};
+  } else {
+    input.domain_surface = scene.domain_surface;
+    input.domain_pieces = blocks::convexDecomposition(scene.domain_surface);
+  }
   input.network = &network;
   input.disc_segments = scene.analysis.blocks ? scene.analysis.blocks->disc_segments : 24;
   input.rock_material = scene.rock_material;
@@ -63,7 +66,7 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
 }
 
 int runBlocks(const BlocksOptions& options) {
-  const io::Scene scene = loadScene(options.common);
+  const io::Scene scene = loadScene(options.common, /*mesh_domain_supported=*/true);
   const std::string cutter =
       !options.cutter.empty() ? options.cutter
       : (scene.analysis.blocks && scene.analysis.blocks->cutter == io::BlocksAnalysis::Cutter::Fast)
@@ -73,9 +76,6 @@ int runBlocks(const BlocksOptions& options) {
     throw io::InputError(options.common.scene +
                          ": the exact cutter (analysis.blocks.cutter: exact, the default) is " +
                          "not built yet; run with --cutter fast");
-  }
-  if (!options.mesh_format.empty()) {
-    throw io::InputError("--mesh-format: block meshes through assimp are not built yet");
   }
   const fs::path out = prepareOutput(options.common.output);
 
@@ -99,6 +99,10 @@ int runBlocks(const BlocksOptions& options) {
   start = Clock::now();
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
   io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
+  if (const auto format = io::parseMeshFormat(options.mesh_format)) {
+    io::writeFileAtomically(out / ("blocks." + io::meshExtension(*format)),
+                            io::formatBlockMesh(model, *format));
+  }
   io::RunInfo run;
   run.command = "blocks";
   run.scene = options.common.scene;
