@@ -104,28 +104,51 @@ std::vector<Polygon> difference(const Polygon& p, const Polygon& g, const Vec3& 
   return result;
 }
 
-/// Groups the faces of all pieces by plane.
+/// Groups the faces of all pieces by plane: a face joins a group when its normal is
+/// parallel to the group's (within 1e-6 in the cosine) and every vertex lies within `tol` of
+/// the group's plane. Faces are taken from the largest down, so a group's plane comes from
+/// its largest face. (The normal of a millimetre face is off by ~1e-10 and its offset n.x by
+/// ~1e-9 m at 10 m from the origin, so taking its own plane split one plane into two groups,
+/// and the faces between two pieces that were left in different groups stayed in the
+/// surface as an internal sheet.)
 std::vector<PlaneGroup> planeGroups(const Block& block, double tol) {
-  std::vector<PlaneGroup> groups;
+  struct Candidate {
+    Polygon polygon;
+    Vec3 normal;
+    double area = 0.0;
+  };
+  std::vector<Candidate> candidates;
   for (const Piece& piece : block.pieces) {
     const geometry::Polyhedron& shape = piece.shape;
     for (std::size_t f = 0; f < shape.faces.size(); ++f) {
-      Polygon polygon;
-      for (int v : shape.faces[f]) polygon.push_back(shape.vertices[static_cast<std::size_t>(v)]);
-      const Vec3 n = geometry::faceNormal(shape, static_cast<int>(f));
-      const double d = n.dot(polygon.front());
-      bool placed = false;
-      for (PlaneGroup& g : groups) {
-        const double c = n.dot(g.normal);
-        if (std::abs(std::abs(c) - 1.0) > 1e-9) continue;
-        const double sign = c > 0 ? 1.0 : -1.0;
-        if (std::abs(sign * d - g.offset) > tol) continue;
-        g.faces.push_back({std::move(polygon), c > 0});
-        placed = true;
-        break;
-      }
-      if (!placed) groups.push_back({n, d, {{std::move(polygon), true}}});
+      Candidate c;
+      for (int v : shape.faces[f]) c.polygon.push_back(shape.vertices[static_cast<std::size_t>(v)]);
+      c.normal = geometry::faceNormal(shape, static_cast<int>(f));
+      c.area = areaVector(c.polygon).norm();
+      candidates.push_back(std::move(c));
     }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.area > b.area; });
+  std::vector<PlaneGroup> groups;
+  for (Candidate& c : candidates) {
+    bool placed = false;
+    for (PlaneGroup& g : groups) {
+      const double cosine = c.normal.dot(g.normal);
+      if (std::abs(cosine) < 1.0 - 1e-6) continue;
+      const bool on_plane = std::all_of(c.polygon.begin(), c.polygon.end(), [&](const Vec3& p) {
+        return std::abs(g.normal.dot(p) - g.offset) <= tol;
+      });
+      if (!on_plane) continue;
+      g.faces.push_back({std::move(c.polygon), cosine > 0});
+      placed = true;
+      break;
+    }
+    if (placed) continue;
+    double offset = 0.0;
+    for (const Vec3& p : c.polygon) offset += c.normal.dot(p);
+    offset /= static_cast<double>(c.polygon.size());
+    groups.push_back({c.normal, offset, {{std::move(c.polygon), true}}});
   }
   return groups;
 }

@@ -1,8 +1,10 @@
 #include "blocks/surface_check.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
@@ -84,6 +86,34 @@ std::optional<std::string> surfaceProblem(const geometry::Polyhedron& surface,
     }
   }
   return std::nullopt;
+}
+
+bool isClosedSurface(const geometry::Polyhedron& soup) {
+  std::vector<Kernel::Point_3> points;
+  for (const geometry::Vec3& p : soup.vertices) points.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const std::vector<int>& face : soup.faces) polygons.emplace_back(face.begin(), face.end());
+  PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  if (polygons.empty()) return false;
+  // Every edge in exactly two polygons, once each way.
+  std::map<std::pair<std::size_t, std::size_t>, int> directed;
+  for (const std::vector<std::size_t>& polygon : polygons) {
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      ++directed[{polygon[k], polygon[(k + 1) % polygon.size()]}];
+    }
+  }
+  for (const auto& [edge, count] : directed) {
+    const auto back = directed.find({edge.second, edge.first});
+    if (count != 1 || back == directed.end() || back->second != 1) return false;
+  }
+  // A point where the solid touches itself (two cones of faces around one point) is split
+  // into one copy per cone, as CGAL's orient_polygon_soup does; orientations are already
+  // consistent, so that is all it changes.
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) PMP::orient_polygon_soup(points, polygons);
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return false;
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  return CGAL::is_closed(mesh);
 }
 
 }  // namespace rockmass::blocks

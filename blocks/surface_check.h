@@ -21,4 +21,13 @@ namespace rockmass::blocks {
 std::optional<std::string> surfaceProblem(const geometry::Polyhedron& surface,
                                           geometry::Polyhedron* triangles = nullptr);
 
+/// Whether a polygon soup is a closed, consistently oriented surface once its duplicate
+/// points are merged (PMP::merge_duplicate_points_in_polygon_soup; for meshes read back
+/// from files, where a triangle may have its own copies of its points): every edge is used
+/// by exactly two polygons running opposite ways, and CGAL::is_closed holds on the
+/// Surface_mesh built from the soup. A point where the solid touches itself (two cones of
+/// faces meeting at one vertex, which a block glued from convex pieces can have) is split
+/// into one copy per cone first (PMP::orient_polygon_soup), as a Surface_mesh needs.
+bool isClosedSurface(const geometry::Polyhedron& soup);
+
 }  // namespace rockmass::blocks
