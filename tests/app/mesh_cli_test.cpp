@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -59,6 +61,30 @@ TEST(MeshCli, LShapedMeshDomainGivesBlocksSummingToItsVolume) {
   const std::string glb = test::readFile(dir.path() / "a" / "blocks.glb");
   EXPECT_GT(glb.size(), 0u);
   EXPECT_EQ(glb, test::readFile(dir.path() / "b" / "blocks.glb"));  // same scene, same bytes
+  // The exact cutter (the default) on the same mesh domain: the same blocks.csv ids and
+  // volumes to 1e-9 relative (issue 3's agreement contract).
+  ASSERT_EQ(
+      test::runRockmass("blocks " + yaml.string() + " -o " + (dir.path() / "c").string(), &output),
+      0)
+      << output;
+  const auto exact = nlohmann::json::parse(test::readFile(dir.path() / "c" / "summary.json"));
+  EXPECT_EQ(exact["cutter"].get<std::string>(), "exact");
+  EXPECT_EQ(exact["blocks"].get<int>(), 4);
+  const auto volumes = [](const std::string& csv) {
+    std::vector<double> out;
+    std::istringstream lines(csv);
+    std::string line;
+    std::getline(lines, line);  // header
+    while (std::getline(lines, line)) out.push_back(std::stod(line.substr(line.find(',') + 1)));
+    return out;
+  };
+  const std::vector<double> fast_volumes = volumes(test::readFile(dir.path() / "a" / "blocks.csv"));
+  const std::vector<double> exact_volumes =
+      volumes(test::readFile(dir.path() / "c" / "blocks.csv"));
+  ASSERT_EQ(exact_volumes.size(), fast_volumes.size());
+  for (std::size_t i = 0; i < fast_volumes.size(); ++i) {
+    EXPECT_NEAR(exact_volumes[i], fast_volumes[i], 1e-9 * fast_volumes[i]) << "block " << i + 1;
+  }
 }
 
 TEST(MeshCli, OpenMeshDomainIsExitTwoWithTheProblem) {
