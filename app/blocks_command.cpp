@@ -8,6 +8,7 @@
 #include "app/command.h"
 #include "app/scene_blocks.h"
 #include "io/atomic_file.h"
+#include "io/block_mesh.h"
 #include "io/block_output.h"
 #include "io/input_error.h"
 #include "io/summary.h"
@@ -26,11 +27,8 @@ struct BlocksOptions {
 };
 
 int runBlocks(const BlocksOptions& options) {
-  const io::Scene scene = loadScene(options.common);
+  const io::Scene scene = loadScene(options.common, /*mesh_domain_supported=*/true);
   const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
-  if (!options.mesh_format.empty()) {
-    throw io::InputError("--mesh-format: block meshes through assimp are not built yet");
-  }
   const fs::path out = prepareOutput(options.common.output);
 
   auto start = Clock::now();
@@ -47,6 +45,10 @@ int runBlocks(const BlocksOptions& options) {
   start = Clock::now();
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
   io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
+  if (const auto format = io::parseMeshFormat(options.mesh_format)) {
+    io::writeFileAtomically(out / ("blocks." + io::meshExtension(*format)),
+                            io::formatBlockMesh(model, *format));
+  }
   io::RunInfo run;
   run.command = "blocks";
   run.scene = options.common.scene;

@@ -4,6 +4,7 @@
 #include <system_error>
 
 #include "io/input_error.h"
+#include "io/mesh_domain.h"
 
 namespace rockmass::app {
 
@@ -20,13 +21,17 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
   command.add_option("--seed", options.seed, "Seed overriding the scene's `seed`");
 }
 
-io::Scene loadScene(const CommonOptions& options) {
+io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
   io::Scene scene = io::loadScene(options.scene);
   if (options.seed) scene.seed = *options.seed;
-  if (!scene.domain_mesh.empty()) {
+  if (!scene.domain_mesh.empty() && mesh_domain_supported) {
+    io::MeshDomain domain = io::readMeshDomain(scene.domain_mesh, options.scene);
+    scene.domain_surface = std::move(domain.surface);
+    scene.dfn.domain = domain.bounds;
+  } else if (!scene.domain_mesh.empty()) {
     throw io::InputError(options.scene +
                          ": domain.mesh: mesh domains are not supported by this version yet; "
-                         "give domain.box");
+                         "give domain.box (mesh domains work with dfn and blocks)");
   }
   return scene;
 }

@@ -37,8 +37,10 @@ double secondsSince(Clock::time_point start);
 /// Adds SCENE, -o OUTDIR and --seed to a sub-command.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
 
-/// Reads the scene and applies command-line overrides.
-io::Scene loadScene(const CommonOptions& options);
+/// Reads the scene and applies command-line overrides. A mesh domain is read and checked
+/// (io::readMeshDomain; scene.domain_surface, and dfn.domain becomes its bounding box) when
+/// `mesh_domain_supported`, else it is an io::InputError (the command works on boxes only).
+io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported = false);
 
 /// Creates the output folder (an error naming it when that is impossible).
 std::filesystem::path prepareOutput(const std::string& output);

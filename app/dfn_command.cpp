@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 int runDfn(const CommonOptions& options) {
-  const io::Scene scene = loadScene(options);
+  const io::Scene scene = loadScene(options, /*mesh_domain_supported=*/true);
   const fs::path out = prepareOutput(options.output);
 
   auto start = Clock::now();

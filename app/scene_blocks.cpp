@@ -35,17 +35,22 @@ std::string chooseCutter(const io::Scene& scene, const std::string& option,
   return cutter;
 }
 
-/// The cut input of a scene: its box domain, its network and its structures as convex
-/// prism pieces.
+/// The cut input of a scene: its domain (a box, or a mesh domain's surface and its convex
+/// decomposition), its network and its structures as convex prism pieces.
 blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwork& network,
                           const std::string& scene_path) {
-  if (!scene.domain_mesh.empty()) {
-    throw io::InputError(scene_path + ": domain: mesh domains are cut by the exact cutter's " +
-                         "mesh import, which is not built yet; use a box domain");
+  if (!scene.domain_mesh.empty() && scene.domain_surface.faces.empty()) {
+    throw io::InputError(scene_path + ": domain.mesh: this command reads mesh domains only " +
+                         "through loadScene(options, mesh_domain_supported = true)");
   }
   blocks::CutInput input;
   input.domain_box = scene.dfn.domain;
-  input.domain_pieces = {geometry::boxPolyhedron(scene.dfn.domain)};
+  if (scene.domain_surface.faces.empty()) {
+    input.domain_pieces = {geometry::boxPolyhedron(scene.dfn.domain)};
+  } else {
+    input.domain_surface = scene.domain_surface;
+    input.domain_pieces = blocks::convexDecomposition(scene.domain_surface);
+  }
   input.network = &network;
   input.disc_segments = scene.analysis.blocks ? scene.analysis.blocks->disc_segments : 24;
   input.rock_material = scene.rock_material;

@@ -32,9 +32,10 @@ void addCutterOption(CLI::App& command, std::string& cutter);
 std::string chooseCutter(const io::Scene& scene, const std::string& option,
                          const std::string& scene_path);
 
-/// The cut input of a scene: its box domain, `network` (kept by pointer) and its structures
-/// as convex prism pieces. Throws io::InputError for what cannot be cut yet (mesh domains
-/// and structures) or a bad prism.
+/// The cut input of a scene: its domain (the box, or the checked surface of a mesh domain,
+/// scene.domain_surface, with its convex decomposition as domain_pieces), `network` (kept by
+/// pointer) and its structures as convex prism pieces. Throws io::InputError for what cannot
+/// be cut yet (mesh structures; a mesh domain whose surface was not read) or a bad prism.
 blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwork& network,
                           const std::string& scene_path);
 

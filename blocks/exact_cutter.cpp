@@ -4,6 +4,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
 #include <tbb/parallel_for.h>
@@ -89,18 +90,50 @@ std::optional<Plane3> polygonPlane(const std::vector<Point3>& polygon) {
   return std::nullopt;
 }
 
-/// Nef polyhedron of a closed polyhedron whose coordinates are taken as exact; faces are
-/// fanned into triangles (coplanar triangles merge again inside the Nef polyhedron).
+/// Whether a face of `solid` is a convex polygon (then a fan from its first vertex is a
+/// valid triangulation). Double test on the Newell normal; a near-flat corner counts as
+/// convex only when its turn is positive beyond round-off.
+bool convexFace(const Polyhedron& solid, const std::vector<int>& face) {
+  if (face.size() <= 3) return true;
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    normal += solid.vertices[face[k]].cross(solid.vertices[face[(k + 1) % face.size()]]);
+  }
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Vec3& a = solid.vertices[face[k]];
+    const Vec3& b = solid.vertices[face[(k + 1) % face.size()]];
+    const Vec3& c = solid.vertices[face[(k + 2) % face.size()]];
+    const Vec3 turn = (b - a).cross(c - b);
+    if (turn.dot(normal) <= 1e-12 * turn.norm() * normal.norm()) return false;
+  }
+  return true;
+}
+
+/// Nef polyhedron of a closed polyhedron whose coordinates are taken as exact. Convex faces
+/// are fanned into triangles; any other face (a concave polygon, or one with a flat corner)
+/// is triangulated by CGAL (PMP::triangulate_faces: a constrained Delaunay triangulation of
+/// the polygon). A fan of a concave polygon covers area outside it and overlaps itself: the
+/// Nef polyhedron built from such a surface is not the solid, and convex_decomposition_3 did
+/// not return on it (the L-shaped prism). Coplanar triangles merge again inside the Nef.
 Nef nefFromPolyhedron(const Polyhedron& solid) {
   Mesh mesh;
   std::vector<Mesh::Vertex_index> vertices;
   vertices.reserve(solid.vertices.size());
   for (const Vec3& v : solid.vertices) vertices.push_back(mesh.add_vertex(toPoint(v)));
+  bool polygons = false;
   for (const std::vector<int>& face : solid.faces) {
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      mesh.add_face(vertices[face[0]], vertices[face[k]], vertices[face[k + 1]]);
+    if (convexFace(solid, face)) {
+      for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+        mesh.add_face(vertices[face[0]], vertices[face[k]], vertices[face[k + 1]]);
+      }
+    } else {
+      std::vector<Mesh::Vertex_index> loop;
+      for (const int v : face) loop.push_back(vertices[v]);
+      mesh.add_face(loop);
+      polygons = true;
     }
   }
+  if (polygons) CGAL::Polygon_mesh_processing::triangulate_faces(mesh);
   return Nef(mesh);
 }
 
@@ -228,6 +261,10 @@ struct Context {
   std::vector<ExactDisc> discs;
   std::vector<Polyhedron> domain_solids;    ///< the surface, or the pieces
   std::vector<KnownPlane> boundary_planes;  ///< one per face of domain_solids (id = index)
+  /// Mesh domains, per boundary plane: the first boundary plane it coincides with (the key
+  /// of the plane's interior faces), and the disc group lying in it (-1: none).
+  std::vector<int> boundary_canonical;
+  std::vector<int> boundary_group;
   std::vector<std::vector<KnownPlane>> structure_planes;        ///< per structure
   std::vector<Box> structure_bounds;                            ///< per structure piece
   std::vector<std::pair<int, int>> structure_piece_index;       ///< (structure, piece)
@@ -471,12 +508,14 @@ bool polygonMayMeetCell(const std::vector<Vec3>& polygon, const Polyhedron& cell
 
 /// A face kept for matching with the faces of other pieces in the same plane.
 struct FaceRecord {
-  int piece = 0;                           ///< piece index (region-local, later global)
-  std::tuple<int, int, double> plane_key;  ///< (0, axis, level) region face; (1, group, 0) disc
-  bool above = false;                      ///< the piece lies on the positive side of the plane
-  int drop_axis = 0;                       ///< coordinate left out by the 2D projection
-  std::vector<Point2> polygon;             ///< projected, counter-clockwise
-  std::array<double, 4> bounds{};          ///< u_min, u_max, v_min, v_max of the projection
+  int piece = 0;  ///< piece index (region-local, later global)
+  /// (0, axis, level) region face; (1, group, 0) disc plane; (2, boundary plane, 0) the
+  /// plane of a mesh domain face, inside the domain.
+  std::tuple<int, int, double> plane_key;
+  bool above = false;              ///< the piece lies on the positive side of the plane
+  int drop_axis = 0;               ///< coordinate left out by the 2D projection
+  std::vector<Point2> polygon;     ///< projected, counter-clockwise
+  std::array<double, 4> bounds{};  ///< u_min, u_max, v_min, v_max of the projection
   FaceSource source;
 };
 
@@ -788,6 +827,16 @@ void projectFace(const std::vector<Point3>& vertices, const std::vector<int>& ri
   record.polygon = counterClockwise(std::move(record.polygon));
 }
 
+/// Whether a cell face (its ring in `vertices`) lies inside the domain, not on its surface:
+/// its interior point is in a marked volume of the domain's Nef polyhedron.
+bool insideDomain(const Nef& domain, const std::vector<Point3>& vertices,
+                  const std::vector<int>& ring) {
+  std::vector<Point3> points;
+  for (const int v : ring) points.push_back(vertices[static_cast<std::size_t>(v)]);
+  Nef::Volume_const_handle volume;
+  return CGAL::assign(volume, domain.locate(interiorPoint(points))) && volume->mark();
+}
+
 /// Whether the point is inside the rock: inside the domain and outside every structure.
 bool insideRock(const Context& context, const Point3& p, const Nef* domain_nef) {
   if (domain_nef != nullptr) {
@@ -901,6 +950,24 @@ RegionResult cutRegion(const Context& context, const Region& region, bool exact_
     }
     Piece piece;
     for (const Point3& p : cell.vertices) piece.shape.vertices.push_back(toVec(p));
+    // A face in the plane of disc group `group`: a Disc face where the group's discs cover it
+    // wholly, else fictitious; recorded for the matching in that plane.
+    const auto discFace = [&](int group, const std::vector<int>& ring, FaceRecord& record) {
+      const int first = context.groups[static_cast<std::size_t>(group)].front();
+      const int drop = context.discs[static_cast<std::size_t>(first)].drop_axis;
+      FaceSource source{FaceKind::Fictitious, -1};
+      record.plane_key = {1, group, 0.0};
+      projectFace(cell.vertices, ring, drop, record);
+      if (coveredByGroup(context, group, record.polygon, drop)) {
+        std::vector<Point3> points;
+        for (const int v : ring) points.push_back(cell.vertices[static_cast<std::size_t>(v)]);
+        const int d = discHolding(context, group, interiorPoint(points));
+        source = {FaceKind::Disc, static_cast<int>(context.discs[static_cast<std::size_t>(d)].id)};
+      }
+      record.source = source;
+      result.records.push_back(std::move(record));
+      return source;
+    };
     std::vector<std::vector<int>> rings;
     for (const Cell::Face& face : cell.faces) {
       piece.shape.faces.push_back(face.ring);
@@ -917,29 +984,32 @@ RegionResult cutRegion(const Context& context, const Region& region, bool exact_
           projectFace(cell.vertices, face.ring, tag.axis, record);
           result.records.push_back(std::move(record));
           break;
-        case PlaneTag::DomainFace:
-          source = {FaceKind::Boundary, tag.index};
+        case PlaneTag::DomainFace: {
+          // A mesh face's full plane also cuts the rock inside the domain: only the faces
+          // on the surface are Boundary; the others are matched in their plane.
+          // (A face on the domain's bounding box is never inside it, so tag.index >= 0 below.)
+          if (!domain_nef || !insideDomain(*domain_nef, cell.vertices, face.ring)) {
+            source = {FaceKind::Boundary, tag.index};
+          } else if (const int group = context.boundary_group[tag.index]; group >= 0) {
+            source = discFace(group, face.ring, record);
+          } else {
+            const int canonical = context.boundary_canonical[tag.index];
+            const KnownPlane& plane = context.boundary_planes[canonical];
+            int drop = 0;
+            plane.normal.cwiseAbs().maxCoeff(&drop);
+            record.plane_key = {2, canonical, 0.0};
+            record.above = plane.exact.oriented_side(inside) == CGAL::ON_POSITIVE_SIDE;
+            projectFace(cell.vertices, face.ring, drop, record);
+            result.records.push_back(std::move(record));
+          }
           break;
+        }
         case PlaneTag::StructurePlane:
           source = {FaceKind::Structure, tag.index};
           break;
-        case PlaneTag::DiscPlane: {
-          const int first = context.groups[static_cast<std::size_t>(tag.index)].front();
-          const int drop = context.discs[static_cast<std::size_t>(first)].drop_axis;
-          record.plane_key = {1, tag.index, 0.0};
-          projectFace(cell.vertices, face.ring, drop, record);
-          if (coveredByGroup(context, tag.index, record.polygon, drop)) {
-            std::vector<Point3> ring;
-            for (const int v : face.ring)
-              ring.push_back(cell.vertices[static_cast<std::size_t>(v)]);
-            const int d = discHolding(context, tag.index, interiorPoint(ring));
-            source = {FaceKind::Disc,
-                      static_cast<int>(context.discs[static_cast<std::size_t>(d)].id)};
-          }
-          record.source = source;
-          result.records.push_back(std::move(record));
+        case PlaneTag::DiscPlane:
+          source = discFace(tag.index, face.ring, record);
           break;
-        }
       }
       piece.face_sources.push_back(source);
     }
@@ -1044,13 +1114,14 @@ std::vector<CrackContact> matchFaces(const Context& context, const std::vector<F
                                      UnionFind& sets, bool discs) {
   std::map<std::tuple<int, int, double>, std::vector<const FaceRecord*>> by_plane;
   for (const FaceRecord& r : records) {
-    if (!discs && std::get<0>(r.plane_key) == 1) continue;
+    // The referee glues its Nef volumes across region faces only.
+    if (!discs && std::get<0>(r.plane_key) != 0) continue;
     by_plane[r.plane_key].push_back(&r);
   }
   std::vector<CrackContact> cracks;
   // Decides one pair that overlaps with area: glue, or record the crack.
   const auto settle = [&](const FaceRecord* a, const FaceRecord* b) {
-    if (std::get<0>(a->plane_key) == 0) {
+    if (std::get<0>(a->plane_key) != 1) {  // region faces, mesh planes inside the domain
       sets.unite(a->piece, b->piece);
       return;
     }
@@ -1115,6 +1186,47 @@ ExactFT exactDomainVolume(const Context& context) {
     total += exactVolume(vertices, solid.faces);
   }
   return total;
+}
+
+/// Fills context.boundary_canonical and boundary_group (mesh domains): the full plane of a
+/// surface face also splits the rock inside the domain, and the cell faces it makes there are
+/// matched by plane (a mesh's coplanar faces are one plane) like region faces, or like disc
+/// faces when a disc group lies in that plane.
+void linkBoundaryPlanes(Context& context) {
+  std::vector<std::vector<Point3>> points;
+  for (const Polyhedron& solid : context.domain_solids) {
+    for (std::size_t f = 0; f < solid.faces.size(); ++f) {
+      std::vector<Point3> face;
+      for (const int v : solid.faces[f]) face.push_back(toPoint(solid.vertices[v]));
+      points.push_back(std::move(face));
+    }
+  }
+  const std::size_t count = context.boundary_planes.size();
+  context.boundary_canonical.assign(count, -1);
+  context.boundary_group.assign(count, -1);
+  for (std::size_t b = 0; b < count; ++b) {
+    const KnownPlane& plane = context.boundary_planes[b];
+    for (std::size_t c = 0; c < b && context.boundary_canonical[b] < 0; ++c) {
+      if (context.boundary_canonical[c] == static_cast<int>(c) &&
+          allOnPlane(context.boundary_planes[c], plane.normal, plane.offset, points[b],
+                     context.tolerance)) {
+        context.boundary_canonical[b] = static_cast<int>(c);
+      }
+    }
+    if (context.boundary_canonical[b] >= 0) {
+      context.boundary_group[b] =
+          context.boundary_group[static_cast<std::size_t>(context.boundary_canonical[b])];
+      continue;
+    }
+    context.boundary_canonical[b] = static_cast<int>(b);
+    for (std::size_t g = 0; g < context.groups.size(); ++g) {
+      const ExactDisc& first = context.discs[static_cast<std::size_t>(context.groups[g].front())];
+      if (allOnPlane(first.plane, plane.normal, plane.offset, points[b], context.tolerance)) {
+        context.boundary_group[b] = static_cast<int>(g);
+        break;
+      }
+    }
+  }
 }
 
 std::string toString(const ExactFT& value) {
@@ -1199,6 +1311,7 @@ Context makeContext(const CutInput& input) {
     context.groups[static_cast<std::size_t>(group)].push_back(static_cast<int>(d));
     context.group_of_disc.push_back(group);
   }
+  if (!context.box_domain) linkBoundaryPlanes(context);
   return context;
 }
 

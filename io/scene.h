@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/dfn_spec.h"
+#include "geometry/polyhedron.h"
 #include "geometry/vec.h"
 
 namespace rockmass::io {
@@ -116,7 +117,7 @@ struct RqdAnalysis {
   double merge_distance = 1e-3;               ///< hits closer than this are one fracture (m)
   std::optional<double> grid_spacing;         ///< RQD/P32 grid cell size (m)
   int grid_direction_count = 200;             ///< directions per grid cell
-  std::optional<double> grid_length;     ///< grid scanline length (m); none: 2 x largest threshold
+  std::optional<double> grid_length;  ///< grid scanline length (m); none: 2 x largest threshold
   std::optional<geometry::Box> grid_region;  ///< box the grid fills (m); none: the domain box
 };
 
@@ -152,11 +153,14 @@ struct Analysis {
 
 /// A whole scene, validated, with names resolved to indices.
 struct Scene {
-  std::filesystem::path file;             ///< the scene file as given
-  int version = 1;                        ///< format version
-  std::string name;                       ///< site name
-  std::uint64_t seed = 0;                 ///< seed of every random draw
-  std::filesystem::path domain_mesh;      ///< closed mesh domain (absolute), empty for a box
+  std::filesystem::path file;         ///< the scene file as given
+  int version = 1;                    ///< format version
+  std::string name;                   ///< site name
+  std::uint64_t seed = 0;             ///< seed of every random draw
+  std::filesystem::path domain_mesh;  ///< closed mesh domain (absolute), empty for a box
+  /// The mesh domain's checked surface (io/mesh_domain.h), filled by the commands that
+  /// support mesh domains (then dfn.domain is its bounding box); empty otherwise.
+  geometry::Polyhedron domain_surface;
   geometry::DfnSpec dfn;                  ///< domain box and everything the DFN is made of
   std::vector<Material> materials;        ///< in scene order
   int rock_material = -1;                 ///< material of the rock (-1: not given)
