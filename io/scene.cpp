@@ -1096,7 +1096,6 @@ class SceneReader {
   WaterLoad readWater(const Cursor& c) const {
     const Cursor m = c.map({"level", "unit_weight", "uplift", "on"});
     WaterLoad water;
-    water.line = c.line();
     const Cursor level = m.at("level");
     water.level = level.number();
     // Below the domain's bottom the water wets nothing (box domains: a mesh domain's extent

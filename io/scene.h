@@ -58,7 +58,6 @@ struct WaterLoad {
   bool domain_top = false;      ///< the top face of the domain
   Region region;                ///< restricts the wet faces in plan
   bool uplift = false;          ///< also the structure-rock interface
-  int line = 0;                 ///< line of the entry in the scene file (messages)
 };
 
 /// A concentrated force.
