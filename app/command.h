@@ -54,5 +54,7 @@ Command addDfnCommand(CLI::App& app);
 Command addRqdCommand(CLI::App& app);
 Command addBlocksCommand(CLI::App& app);
 Command addDdaCommand(CLI::App& app);
+Command addOverloadCommand(CLI::App& app);
+Command addStrengthCommand(CLI::App& app);
 
 }  // namespace rockmass::app

@@ -16,6 +16,7 @@
 #include "io/dda_summary.h"
 #include "io/input_error.h"
 #include "io/scene_model.h"
+#include "io/stability_settings.h"
 
 namespace rockmass::app {
 
@@ -35,17 +36,11 @@ struct DdaOptions {
 
 /// Engine settings from analysis.dda and the command line.
 dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOptions& options) {
-  dda3d::DdaSettings settings;
-  settings.mode = dda.dynamic ? dda3d::AnalysisMode::Dynamic : dda3d::AnalysisMode::Static;
-  settings.kinematics = dda.deformable ? dda3d::Kinematics::Deformable : dda3d::Kinematics::Rigid;
-  settings.time_step = dda.time_step;
-  settings.max_displacement_ratio = dda.max_displacement_ratio;
-  settings.penalty = dda.penalty.value_or(0.0);
+  dda3d::DdaSettings settings = io::ddaSettings(dda);
   settings.solver.kind = options.solver == "pcg"       ? dda3d::SolverKind::Pcg
                          : options.solver == "eigen"   ? dda3d::SolverKind::Eigen
                          : options.solver == "cholmod" ? dda3d::SolverKind::Cholmod
                                                        : dda3d::SolverKind::Auto;
-  settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
   settings.solver.tolerance = options.pcg_tolerance;
   return settings;
 }

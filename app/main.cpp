@@ -15,12 +15,17 @@ int main(int argc, char** argv) {
   CLI::App app{"rockmass: fractured rock workbench (DFN, blocks, RQD, 3D DDA)"};
   app.set_version_flag("--version", rockmass::io::version());
   app.require_subcommand(1);
+  // One sub-command per line.
+  // clang-format off
   const std::vector<rockmass::app::Command> commands = {
       rockmass::app::addDfnCommand(app),
       rockmass::app::addBlocksCommand(app),
       rockmass::app::addRqdCommand(app),
       rockmass::app::addDdaCommand(app),
+      rockmass::app::addOverloadCommand(app),
+      rockmass::app::addStrengthCommand(app),
   };
+  // clang-format on
 
   try {
     app.parse(argc, argv);

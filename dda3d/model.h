@@ -58,6 +58,9 @@ struct DdaPressure {
   int face = 0;               ///< index into Polyhedron::faces of that piece
   double level = 0.0;         ///< z of the free water surface (m)
   double unit_weight = 9810;  ///< N/m3
+  /// Uplift: water in a structure-rock interface rather than on an exposed face. The
+  /// overload method scales it only when asked (OverloadSettings::scale_uplift).
+  bool uplift = false;
 };
 
 /// A bolt: an elastic spring between a material point of one block and one of another

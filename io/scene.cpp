@@ -161,6 +161,9 @@ class Cursor {
         path_(std::move(path)),
         mark_(node_.IsNull() || node_.Mark().is_null() ? fallback : node_.Mark()) {}
 
+  /// 1-based line of this node in the scene file.
+  int line() const { return mark_.line + 1; }
+
   /// The key path, e.g. "materials.concrete.young" ("" at the root).
   const std::string& path() const { return path_; }
 
@@ -829,19 +832,40 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
 
 /// analysis.overload
 OverloadAnalysis readOverloadAnalysis(const Cursor& c) {
-  const Cursor m = c.map({"factors", "scales"});
-  return {.factors = m.at("factors").increasingNumbers(kPositive),
-          .scales = m.at("scales").distinctChoices("load", {"water", "gravity", "point_loads"})};
+  const Cursor m = c.map({"factors", "scales", "tolerance", "scale_uplift"});
+  OverloadAnalysis overload{
+      .factors = m.at("factors").increasingNumbers(kPositive),
+      .scales = m.at("scales").distinctChoices("load", {"water", "gravity", "point_loads"})};
+  overload.tolerance = m.numberOr("tolerance", overload.tolerance, kNonNegative);
+  overload.scale_uplift = m.valueOr("scale_uplift", overload.scale_uplift, &Cursor::boolean);
+  return overload;
 }
 
 /// analysis.strength_reduction
 StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
-  return {.factors = c.map({"factors"}).at("factors").increasingNumbers(kPositive)};
+  const Cursor m = c.map({"factors", "tolerance"});
+  StrengthReductionAnalysis srf{.factors = m.at("factors").increasingNumbers(kPositive)};
+  srf.tolerance = m.numberOr("tolerance", srf.tolerance, kPositive);
+  return srf;
+}
+
+/// analysis.equilibrium
+EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c) {
+  const Cursor m =
+      c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps", "dynamic_ratio"});
+  EquilibriumAnalysis e;
+  if (const auto steps = m.get("max_steps")) e.max_steps = steps->integer(above(0));
+  e.unbalanced_ratio = m.numberOr("unbalanced_ratio", e.unbalanced_ratio, kPositive);
+  e.kinetic_ratio = m.numberOr("kinetic_ratio", e.kinetic_ratio, kPositive);
+  e.settle_steps = m.integerOr("settle_steps", e.settle_steps, above(0));
+  e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio,
+                               {.low = 0, .high = 1, .low_open = false, .high_open = false});
+  return e;
 }
 
 /// The `analysis` section: each stage present only when its key is.
 Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets) {
-  const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction"});
+  const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction", "equilibrium"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
   if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v, joint_sets);
@@ -850,6 +874,7 @@ Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_set
   if (const auto v = m.get("strength_reduction")) {
     analysis.strength_reduction = readStrengthReductionAnalysis(*v);
   }
+  if (const auto v = m.get("equilibrium")) analysis.equilibrium = readEquilibriumAnalysis(*v);
   return analysis;
 }
 
@@ -902,7 +927,8 @@ class SceneReader {
     UniqueNames monitor_names;
     forEachItem(m, "monitors", [&](const Cursor& c) {
       const Cursor monitor = c.map({"name", "point"});
-      scene_.monitors.push_back({monitor_names.claimName(monitor), monitor.at("point").vec3()});
+      scene_.monitors.push_back(
+          {monitor_names.claimName(monitor), monitor.at("point").vec3(), c.line()});
     });
     if (const auto analysis = m.get("analysis")) {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets));
@@ -1070,7 +1096,15 @@ class SceneReader {
   WaterLoad readWater(const Cursor& c) const {
     const Cursor m = c.map({"level", "unit_weight", "uplift", "on"});
     WaterLoad water;
-    water.level = m.at("level").number();
+    const Cursor level = m.at("level");
+    water.level = level.number();
+    // Below the domain's bottom the water wets nothing (box domains: a mesh domain's extent
+    // is not known here).
+    if (scene_.domain_mesh.empty() && water.level < scene_.dfn.domain.min.z()) {
+      level.fail("the water level " + formatDouble(water.level) +
+                 " m lies below the domain bottom z = " + formatDouble(scene_.dfn.domain.min.z()) +
+                 " m and would wet nothing");
+    }
     water.unit_weight = m.numberOr("unit_weight", water.unit_weight, kPositive);
     water.uplift = m.valueOr("uplift", false, &Cursor::boolean);
     const Cursor on = m.at("on").map({"structure", "facing", "domain_top", "region"});

@@ -78,6 +78,7 @@ struct Loads {
 struct Monitor {
   std::string name;           ///< e.g. "P4"
   Vec3 point = Vec3::Zero();  ///< m
+  int line = 0;               ///< line of the entry in the scene file (messages)
 };
 
 /// analysis.blocks
@@ -135,11 +136,25 @@ struct DdaAnalysis {
 struct OverloadAnalysis {
   std::vector<double> factors;      ///< load factors K, increasing
   std::vector<std::string> scales;  ///< loads multiplied: "water", "gravity", "point_loads"
+  /// Bisect [last K at rest, first K not at rest] to this width after the sweep (0: no).
+  double tolerance = 0.0;
+  bool scale_uplift = false;  ///< `water` also scales uplift (else uplift stays at K = 1)
 };
 
 /// analysis.strength_reduction
 struct StrengthReductionAnalysis {
   std::vector<double> factors;  ///< strength reduction factors, increasing
+  double tolerance = 0.02;      ///< bisection to this bracket width
+};
+
+/// analysis.equilibrium: when an overload or strength-reduction run is at rest
+/// (docs/stability.md).
+struct EquilibriumAnalysis {
+  std::optional<int> max_steps;    ///< step limit per run; none: analysis.dda.steps
+  double unbalanced_ratio = 1e-3;  ///< step displacement / (g dt^2 / 2)
+  double kinetic_ratio = 1e-6;     ///< kinetic energy / work of the loads
+  int settle_steps = 5;            ///< calm steps in a row
+  double dynamic_ratio = 0.95;     ///< velocity share kept per step in dynamic mode (damping)
 };
 
 /// The `analysis` section: a stage runs only when its entry is present.
@@ -149,6 +164,7 @@ struct Analysis {
   std::optional<DdaAnalysis> dda;
   std::optional<OverloadAnalysis> overload;
   std::optional<StrengthReductionAnalysis> strength_reduction;
+  std::optional<EquilibriumAnalysis> equilibrium;
 };
 
 /// A whole scene, validated, with names resolved to indices.

@@ -132,15 +132,42 @@ int structureIndex(const Scene& scene, const std::string& name) {
   throw std::invalid_argument("unknown structure '" + name + "'");
 }
 
+/// Index of the structure a block belongs to (its outer faces are labelled Structure; the
+/// cutters never glue a structure to rock), or -1 for a rock block.
+int structureOf(const blocks::Block& block) {
+  for (const blocks::Piece& piece : block.pieces) {
+    for (const blocks::FaceSource& source : piece.face_sources) {
+      if (source.kind == blocks::FaceKind::Structure) return source.id;
+    }
+  }
+  return -1;
+}
+
+/// Block indices by owner (structureOf): members[0] the rock blocks, members[s + 1] those of
+/// structure s.
+using Members = std::vector<std::vector<int>>;
+
+/// True when `point` lies inside a piece of a block of `owner` (structure index, or -1 for
+/// rock) by more than `depth` m.
+bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int owner,
+                   const geometry::Vec3& point, double depth) {
+  for (int b : members[static_cast<std::size_t>(owner + 1)]) {
+    const blocks::Block& block = blocks.blocks[static_cast<std::size_t>(b)];
+    if (block.bounds.distance(point) > 0.0) continue;
+    for (const blocks::Piece& piece : block.pieces) {
+      if (geometry::convexPlaneDistance(piece.shape, point) < -depth) return true;
+    }
+  }
+  return false;
+}
+
 /// Pressure entries of one water load: every outer piece face it wets (see buildDdaModel).
 void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::BlockModel& blocks,
-                  dda3d::DdaModel& model) {
-  if (water.uplift) {
-    throw InputError(locate(scene.file, 0, 0,
-                            "loads.water: uplift under a structure is not applied by the DDA "
-                            "of this version yet; remove `uplift: true`"));
-  }
+                  const std::vector<int>& owner, const Members& members, dda3d::DdaModel& model) {
   const double tol = tolerance(blocks);
+  // How far past a face we look for the body on its other side: far beyond the cutters'
+  // snapping (tol), far below any block size that matters.
+  const double probe = 100.0 * tol;
   const bool box_domain = scene.domain_mesh.empty();
   const DomainFace top = domainFace("top");
   const int structure = water.domain_top ? -1 : structureIndex(scene, water.structure);
@@ -152,22 +179,42 @@ void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::Bloc
         const int face = static_cast<int>(f);
         const blocks::FaceSource source =
             f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
+        const geometry::Vec3 normal = geometry::faceNormal(piece.shape, face);
+        const geometry::Vec3 center = faceCenter(piece.shape, face);
+        const geometry::Vec3 beyond = center + probe * normal;
         bool wet = false;
         if (water.domain_top) {
+          // The reservoir floor: the rock surface not covered by a structure.
           wet = (box_domain && source.kind == blocks::FaceKind::Boundary && source.id == 5) ||
                 liesOnDomainFace(piece, face, top, blocks.domain, tol);
-        } else {
-          wet = source.kind == blocks::FaceKind::Structure && source.id == structure &&
-                water.facing && geometry::faceNormal(piece.shape, face).dot(*water.facing) > 0.0;
+          for (std::size_t s = 0; s < scene.structures.size() && wet; ++s) {
+            wet = !insideOwnedBy(blocks, members, static_cast<int>(s), beyond, 0.5 * probe);
+          }
+        } else if (owner[b] == structure) {
+          wet = source.kind == blocks::FaceKind::Structure && water.facing &&
+                normal.dot(*water.facing) > 0.0;
         }
-        if (!wet || !inRegion(water.region, faceCenter(piece.shape, face))) continue;
+        wet = wet && inRegion(water.region, center);
+        // Uplift (under the named structure, or under every structure for domain_top): the
+        // structure's faces resting on rock and the rock's faces under the structure.
+        bool uplift = false;
+        if (!wet && water.uplift) {
+          for (std::size_t s = 0; s < scene.structures.size() && !uplift; ++s) {
+            const int under = static_cast<int>(s);
+            if (structure >= 0 && under != structure) continue;
+            uplift =
+                (owner[b] == under && insideOwnedBy(blocks, members, -1, beyond, 0.5 * probe)) ||
+                (owner[b] < 0 && insideOwnedBy(blocks, members, under, beyond, 0.5 * probe));
+          }
+        }
+        if (!wet && !uplift) continue;
         double lowest = std::numeric_limits<double>::infinity();
         for (int v : piece.shape.faces[f]) {
           lowest = std::min(lowest, piece.shape.vertices[static_cast<std::size_t>(v)].z());
         }
         if (lowest >= water.level || internalFace(block, p, face, tol)) continue;
-        model.pressures.push_back(
-            {static_cast<int>(b), static_cast<int>(p), face, water.level, water.unit_weight});
+        model.pressures.push_back({static_cast<int>(b), static_cast<int>(p), face, water.level,
+                                   water.unit_weight, uplift});
       }
     }
   }
@@ -243,7 +290,7 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
   for (const Monitor& monitor : scene.monitors) {
     const int block = findContainingBlock(blocks, monitor.point);
     if (block < 0) {
-      throw InputError(locate(scene.file, 0, 0,
+      throw InputError(locate(scene.file, monitor.line, 0,
                               "monitors: " + monitor.name + " at " + pointText(monitor.point) +
                                   " lies in no block; a monitor must be inside the rock or a "
                                   "structure"));
@@ -262,7 +309,15 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
     }
     model.point_loads.push_back({block, load.point, load.force});
   }
-  for (const WaterLoad& water : scene.loads.water) addWaterLoad(scene, water, blocks, model);
+  std::vector<int> owner;
+  Members members(scene.structures.size() + 1);
+  for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+    owner.push_back(structureOf(blocks.blocks[b]));
+    members[static_cast<std::size_t>(owner.back() + 1)].push_back(static_cast<int>(b));
+  }
+  for (const WaterLoad& water : scene.loads.water) {
+    addWaterLoad(scene, water, blocks, owner, members, model);
+  }
   return model;
 }
 

@@ -27,13 +27,16 @@ constexpr double kSceneModelRelativeTolerance = 1e-6;
 /// - monitors: each attached to the block that contains its point (findContainingBlock);
 /// - point loads: each acting on the block that contains its point;
 /// - water: one DdaPressure (level, unit weight) per wetted outer piece face that reaches
-///   below the level: faces on the domain top (`domain_top`), or faces of the named
-///   structure whose outward normal n has n . facing > 0; `region` selects faces by the plan
-///   position of their centre; faces glued to another piece of the same block are internal
-///   and stay dry. The engine clips each face at the water line.
-/// Throws InputError naming the scene file when a monitor or point load lies in no block, a
-/// block has no material, the scene gives no default_joint, or a water entry asks for uplift
-/// (not applied yet: refusing is better than silently leaving it out).
+///   below the level: faces on the domain top (`domain_top`) not covered by a structure, or
+///   faces of the named structure whose outward normal n has n . facing > 0; with `uplift`,
+///   also both sides of that structure's (domain_top: every structure's) interface with the
+///   rock (DdaPressure::uplift, not restricted by `region`): the
+///   structure's faces whose far side lies in a rock block and the rock's faces whose far
+///   side lies in the structure, at the full hydrostatic head; `region` selects faces by the
+///   plan position of their centre; faces glued to another piece of the same block are
+///   internal and stay dry. The engine clips each face at the water line.
+/// Throws InputError naming the scene file (and the monitor's line) when a monitor or point
+/// load lies in no block, a block has no material, or the scene gives no default_joint.
 dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks);
 
 /// Index into blocks.blocks of the block with a piece containing `point` (within

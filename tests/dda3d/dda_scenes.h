@@ -62,6 +62,50 @@ inline void setRock(DdaModel& model, double phi_degrees, double young = 10e9, do
   model.joints = {DdaJoint{std::tan(phi_degrees * 3.14159265358979323846 / 180.0), 0.0, 0.0}};
 }
 
+/// A prism wedge in a V groove along x: plane A (normal (0, -sin a, cos a), rising to +y)
+/// and plane B (normal (0, sin b, cos b), rising to -y), on two fixed supports (blocks 0
+/// and 1); the wedge is block 2. Angles in degrees, `phi` the joints' friction angle.
+struct Wedge {
+  DdaModel model;
+  geometry::Vec3 n_a, n_b;  ///< outward normals of the two planes
+};
+inline Wedge vGrooveWedge(double alpha, double beta, double phi, const geometry::Vec3& gravity) {
+  constexpr double kRad = 3.14159265358979323846 / 180.0;
+  Wedge w;
+  setRock(w.model, phi);
+  const double ta = std::tan(alpha * kRad), tb = std::tan(beta * kRad);
+  constexpr double kHeight = 1.0, kWidth = 3.0, kDepth = 1.0;
+  w.model.blocks.push_back(prismBlock(
+      {{0, 0}, {0, -kDepth}, {kWidth, -kDepth}, {kWidth, kWidth * ta}}, -1.0, 6.0, 0, true));
+  w.model.blocks.push_back(prismBlock(
+      {{0, 0}, {-kWidth, kWidth * tb}, {-kWidth, -kDepth}, {0, -kDepth}}, -1.0, 6.0, 0, true));
+  w.model.blocks.push_back(
+      prismBlock({{0, 0}, {kHeight / ta, kHeight}, {-kHeight / tb, kHeight}}, 0.0, 1.5, 0, false));
+  w.model.gravity = gravity;
+  w.n_a = geometry::Vec3(0, -std::sin(alpha * kRad), std::cos(alpha * kRad));
+  w.n_b = geometry::Vec3(0, std::sin(beta * kRad), std::cos(beta * kRad));
+  return w;
+}
+
+/// Block theory of a wedge on two planes (Goodman & Shi 1985, ch. 9), per unit mass under
+/// body force `w` (N/kg): sliding direction s along the line of intersection, normal forces
+/// N_A, N_B on the two planes and the driving force |w . s|.
+struct TwoPlane {
+  geometry::Vec3 s;
+  double n_a, n_b, drive;
+};
+inline TwoPlane twoPlane(const geometry::Vec3& n_a, const geometry::Vec3& n_b,
+                         const geometry::Vec3& w) {
+  const geometry::Vec3 cross = n_a.cross(n_b);
+  TwoPlane t;
+  t.s = cross.normalized();
+  if (t.s.dot(w) < 0) t.s = -t.s;
+  t.n_a = w.cross(n_b).dot(n_b.cross(n_a)) / cross.squaredNorm();
+  t.n_b = w.cross(n_a).dot(n_a.cross(n_b)) / cross.squaredNorm();
+  t.drive = std::abs(w.dot(t.s));
+  return t;
+}
+
 /// Rotates every position and the gravity of the model by r (a rigid change of frame).
 inline void rotateModel(DdaModel& model, const Eigen::Matrix3d& r) {
   for (DdaBlock& b : model.blocks) {

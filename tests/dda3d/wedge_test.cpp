@@ -14,7 +14,6 @@
 namespace rockmass::dda3d {
 namespace {
 
-using geometry::Vec2;
 using geometry::Vec3;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
@@ -25,43 +24,11 @@ double degrees(double r) {
   return r * 180.0 / kPi;
 }
 
-/// A prism wedge in a V groove along x: plane A (normal (0, -sin a, cos a), rising to +y)
-/// and plane B (normal (0, sin b, cos b), rising to -y), on two fixed supports.
-struct Wedge {
-  DdaModel model;
-  Vec3 n_a, n_b;
-};
+using scenes::twoPlane;
+using scenes::TwoPlane;
+using scenes::Wedge;
 Wedge wedge(double alpha, double beta, double phi, const Vec3& gravity) {
-  Wedge w;
-  scenes::setRock(w.model, phi);
-  const double ta = std::tan(radians(alpha)), tb = std::tan(radians(beta));
-  constexpr double kHeight = 1.0, kWidth = 3.0, kDepth = 1.0;
-  w.model.blocks.push_back(scenes::prismBlock(
-      {{0, 0}, {0, -kDepth}, {kWidth, -kDepth}, {kWidth, kWidth * ta}}, -1.0, 6.0, 0, true));
-  w.model.blocks.push_back(scenes::prismBlock(
-      {{0, 0}, {-kWidth, kWidth * tb}, {-kWidth, -kDepth}, {0, -kDepth}}, -1.0, 6.0, 0, true));
-  w.model.blocks.push_back(scenes::prismBlock(
-      {{0, 0}, {kHeight / ta, kHeight}, {-kHeight / tb, kHeight}}, 0.0, 1.5, 0, false));
-  w.model.gravity = gravity;
-  w.n_a = Vec3(0, -std::sin(radians(alpha)), std::cos(radians(alpha)));
-  w.n_b = Vec3(0, std::sin(radians(beta)), std::cos(radians(beta)));
-  return w;
-}
-
-/// Block-theory forces for unit mass: sliding direction s, normal forces N_A, N_B (N/kg).
-struct TwoPlane {
-  Vec3 s;
-  double n_a, n_b, drive;
-};
-TwoPlane twoPlane(const Vec3& n_a, const Vec3& n_b, const Vec3& w) {
-  const Vec3 cross = n_a.cross(n_b);
-  TwoPlane t;
-  t.s = cross.normalized();
-  if (t.s.dot(w) < 0) t.s = -t.s;
-  t.n_a = w.cross(n_b).dot(n_b.cross(n_a)) / cross.squaredNorm();
-  t.n_b = w.cross(n_a).dot(n_a.cross(n_b)) / cross.squaredNorm();
-  t.drive = std::abs(w.dot(t.s));
-  return t;
+  return scenes::vGrooveWedge(alpha, beta, phi, gravity);
 }
 
 DdaSettings wedgeSettings() {

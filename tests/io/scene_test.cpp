@@ -323,6 +323,48 @@ TEST(SceneErrors, WaterOnUnknownStructure) {
             "no structures are defined");
 }
 
+TEST(SceneErrors, WaterLevelBelowTheDomainBottom) {
+  EXPECT_EQ(errorOf(valid_head + "loads:\n  water:\n"
+                                 "    - {level: -12, on: {domain_top: true}}\n"),
+            "bad.yaml:5:15: loads.water[0].level: the water level -12 m lies below the domain "
+            "bottom z = -10 m and would wet nothing");
+}
+
+TEST(SceneErrors, UnknownLoadInOverloadScales) {
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  overload: {factors: [1, 2], scales: [water, "
+                                 "wind]}\n"),
+            "bad.yaml:4:47: analysis.overload.scales[1]: unknown load 'wind'; expected one of: "
+            "water, gravity, point_loads");
+}
+
+TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
+  const Scene scene = parseScene(valid_head +
+                                     "monitors:\n"
+                                     "  - {name: m, point: [1, 1, -1]}\n"
+                                     "analysis:\n"
+                                     "  overload: {factors: [1, 2], scales: [water], "
+                                     "tolerance: 0.05, scale_uplift: true}\n"
+                                     "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01}\n"
+                                     "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
+                                     "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9}\n",
+                                 "ok.yaml");
+  EXPECT_EQ(scene.monitors.at(0).line, 4);  // the monitor's line, for messages
+  EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
+  EXPECT_TRUE(scene.analysis.overload->scale_uplift);
+  EXPECT_EQ(scene.analysis.strength_reduction->tolerance, 0.01);
+  ASSERT_TRUE(scene.analysis.equilibrium.has_value());
+  EXPECT_EQ(scene.analysis.equilibrium->max_steps, 50);
+  EXPECT_EQ(scene.analysis.equilibrium->unbalanced_ratio, 1e-4);
+  EXPECT_EQ(scene.analysis.equilibrium->kinetic_ratio, 1e-7);
+  EXPECT_EQ(scene.analysis.equilibrium->settle_steps, 3);
+  EXPECT_EQ(scene.analysis.equilibrium->dynamic_ratio, 0.9);
+  // Defaults when absent.
+  const Scene plain =
+      parseScene(valid_head + "analysis:\n  strength_reduction: {factors: [1]}\n", "ok.yaml");
+  EXPECT_EQ(plain.analysis.strength_reduction->tolerance, 0.02);
+  EXPECT_FALSE(plain.analysis.equilibrium.has_value());
+}
+
 TEST(SceneErrors, MissingMeshFile) {
   const fs::path looked_for = fs::weakly_canonical(fs::current_path() / "no_such_rock.stl");
   EXPECT_EQ(errorOf("version: 1\ndomain: {mesh: no_such_rock.stl}\n"),

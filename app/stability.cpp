@@ -1,0 +1,106 @@
+#include "app/stability.h"
+
+#include <cstdio>
+
+#include "app/scene_blocks.h"
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+#include "io/scene_model.h"
+#include "io/stability_output.h"
+#include "io/stability_settings.h"
+
+namespace rockmass::app {
+
+namespace {
+
+/// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps".
+dda3d::FactorRunCallback progress(const char* label) {
+  return [label](const dda3d::FactorRun& run) {
+    std::fprintf(stderr, "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g)\n", label,
+                 run.factor, run.bisection ? " (bisection)" : "",
+                 run.equilibrium.reached ? "at rest" : "NOT at rest", run.equilibrium.steps,
+                 run.equilibrium.unbalanced_ratio);
+  };
+}
+
+/// "K = 2.41" or the reason there is none.
+std::string describe(const dda3d::FactorSearchResult& r) {
+  if (r.critical) return std::to_string(*r.critical);
+  if (!r.last_stable) return "none: not at rest at the first factor";
+  return "none: at rest up to the last factor " + std::to_string(*r.last_stable);
+}
+
+}  // namespace
+
+dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const dda3d::DdaModel& model) {
+  const dda3d::FactorSearch search = io::overloadSearch(scene);
+  return dda3d::runOverload(model, io::equilibriumDdaSettings(scene),
+                            io::loadScaling(*scene.analysis.overload), search,
+                            progress("overload"));
+}
+
+dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
+                                                    const dda3d::DdaModel& model) {
+  const dda3d::FactorSearch search = io::strengthReductionSearch(scene);
+  return dda3d::runStrengthReduction(model, io::equilibriumDdaSettings(scene), search,
+                                     progress("strength"));
+}
+
+int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analysis) {
+  const bool overload = analysis == StabilityAnalysis::Overload;
+  const io::Scene scene = loadScene(options.common);
+  // Every input check before any work: the settings throw for a missing analysis section.
+  const dda3d::FactorSearch search =
+      overload ? io::overloadSearch(scene) : io::strengthReductionSearch(scene);
+  io::equilibriumDdaSettings(scene);
+  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+  const std::filesystem::path out = prepareOutput(options.common.output);
+  io::RunInfo run;
+  run.command = overload ? "overload" : "strength";
+  run.scene = options.common.scene;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  run.stages = {"dfn", "cut", overload ? "overload" : "strength_reduction"};
+
+  auto start = Clock::now();
+  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
+  run.timings.emplace_back("dfn", secondsSince(start));
+  start = Clock::now();
+  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
+  run.timings.emplace_back("cut", secondsSince(start));
+  const dda3d::DdaModel model = io::buildDdaModel(scene, cut.model);
+  std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
+               model.blocks.size(), model.pressures.size(), search.factors.size());
+
+  start = Clock::now();
+  const dda3d::FactorSearchResult result =
+      overload ? runSceneOverload(scene, model) : runSceneStrengthReduction(scene, model);
+  run.timings.emplace_back(overload ? "overload" : "strength_reduction", secondsSince(start));
+
+  start = Clock::now();
+  io::StabilitySummary summary;
+  summary.blocks = static_cast<int>(model.blocks.size());
+  for (const dda3d::DdaBlock& b : model.blocks) summary.fixed_blocks += b.fixed;
+  summary.pressures = static_cast<int>(model.pressures.size());
+  summary.equilibrium = search.equilibrium;
+  std::vector<std::string> monitor_names;
+  for (const dda3d::DdaMonitor& m : model.monitors) monitor_names.push_back(m.name);
+  if (overload) {
+    summary.overload = &result;
+    summary.overload_scales = scene.analysis.overload->scales;
+    summary.scale_uplift = scene.analysis.overload->scale_uplift;
+    io::writeFileAtomically(out / "overload.csv", io::formatOverloadCsv(monitor_names, result));
+  } else {
+    summary.strength_reduction = &result;
+  }
+  dda3d::ActiveTerms terms;
+  for (const dda3d::FactorRun& r : result.runs) terms |= r.terms;
+  run.effects = terms.names();
+  run.timings.emplace_back("write", secondsSince(start));
+  io::writeFileAtomically(out / "summary.json", io::formatStabilitySummary(run, summary));
+  std::fprintf(stderr, "%s: %s = %s; wrote %s\n", run.command.c_str(),
+               overload ? "K_s" : "critical SRF", describe(result).c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace rockmass::app

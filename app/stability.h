@@ -1,0 +1,41 @@
+// The stability analyses of a scene (docs/stability.md), shared by `rockmass overload`,
+// `rockmass strength` and the whole-run pipeline: the overload method and strength
+// reduction on the scene's DDA model, with progress on stderr, and the command that cuts the
+// scene, runs one of them and writes its files.
+#pragma once
+
+#include <string>
+
+#include "app/command.h"
+#include "dda3d/model.h"
+#include "dda3d/stability.h"
+#include "io/scene.h"
+
+namespace rockmass::app {
+
+/// The overload method of analysis.overload on `model` (io::buildDdaModel of the scene's
+/// blocks): K_s and the K-displacement runs. Settings from analysis.dda, .equilibrium and
+/// .overload (io/stability_settings.h). Throws io::InputError naming the missing key when
+/// the scene lacks analysis.dda or analysis.overload.
+dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const dda3d::DdaModel& model);
+
+/// Strength reduction of analysis.strength_reduction on `model`: the critical SRF. Throws
+/// io::InputError naming the missing key when the scene lacks analysis.dda or
+/// analysis.strength_reduction.
+dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
+                                                    const dda3d::DdaModel& model);
+
+/// Which analysis a stability command runs.
+enum class StabilityAnalysis { Overload, StrengthReduction };
+
+/// Options of `rockmass overload` / `rockmass strength` beyond the common ones.
+struct StabilityOptions {
+  CommonOptions common;
+  std::string cutter;  ///< "", "exact" or "fast" ("": the scene's choice)
+};
+
+/// `rockmass overload|strength`: cuts the scene as `rockmass dda` does, runs the analysis and
+/// writes summary.json (and overload.csv for the overload method). Returns the exit code.
+int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analysis);
+
+}  // namespace rockmass::app

@@ -1,0 +1,98 @@
+#include "dda3d/stability.h"
+
+#include <stdexcept>
+
+namespace rockmass::dda3d {
+
+DdaModel scaledLoads(const DdaModel& model, const LoadScaling& scaling, double factor) {
+  DdaModel out = model;
+  if (scaling.gravity) out.gravity *= factor;
+  for (DdaPressure& p : out.pressures) {
+    if (p.uplift ? scaling.uplift : scaling.water) p.unit_weight *= factor;
+  }
+  if (scaling.point_loads) {
+    for (DdaPointLoad& l : out.point_loads) l.force *= factor;
+  }
+  return out;
+}
+
+DdaModel reducedStrength(const DdaModel& model, double srf) {
+  if (!(srf > 0.0)) throw std::invalid_argument("a strength reduction factor must be > 0");
+  DdaModel out = model;
+  for (DdaJoint& j : out.joints) {
+    j.friction /= srf;
+    j.cohesion /= srf;
+  }
+  return out;
+}
+
+namespace {
+
+/// One run of `make(factor)` to equilibrium.
+FactorRun runFactor(const std::function<DdaModel(double)>& make, const DdaSettings& settings,
+                    const EquilibriumSettings& equilibrium, double factor, bool bisection) {
+  Simulation sim(make(factor), settings);
+  FactorRun run;
+  run.factor = factor;
+  run.bisection = bisection;
+  run.equilibrium = runToEquilibrium(sim, equilibrium);
+  run.monitors = sim.monitors();
+  run.terms = sim.activeTerms();
+  return run;
+}
+
+}  // namespace
+
+FactorSearchResult searchCriticalFactor(const std::function<DdaModel(double)>& make,
+                                        const DdaSettings& settings, const FactorSearch& search,
+                                        const FactorRunCallback& callback) {
+  if (search.factors.empty()) throw std::invalid_argument("the factor search has no factor");
+  for (std::size_t k = 1; k < search.factors.size(); ++k) {
+    if (!(search.factors[k] > search.factors[k - 1])) {
+      throw std::invalid_argument("the factors of a search must increase");
+    }
+  }
+  FactorSearchResult result;
+  const auto run = [&](double factor, bool bisection) {
+    result.runs.push_back(runFactor(make, settings, search.equilibrium, factor, bisection));
+    if (callback) callback(result.runs.back());
+    return result.runs.back().equilibrium.reached;
+  };
+  for (double factor : search.factors) {
+    const bool stable = run(factor, false);
+    if (!result.first_unstable) {
+      if (stable) {
+        result.last_stable = factor;
+      } else {
+        result.first_unstable = factor;
+        if (!search.sweep_all) break;
+      }
+    }
+  }
+  if (!result.last_stable || !result.first_unstable) return result;
+  double low = *result.last_stable, high = *result.first_unstable;
+  while (search.tolerance > 0.0 && high - low > search.tolerance) {
+    const double middle = 0.5 * (low + high);
+    (run(middle, true) ? low : high) = middle;
+  }
+  result.last_stable = low;
+  result.first_unstable = high;
+  result.critical = 0.5 * (low + high);
+  return result;
+}
+
+FactorSearchResult runOverload(const DdaModel& model, const DdaSettings& settings,
+                               const LoadScaling& scaling, const FactorSearch& search,
+                               const FactorRunCallback& callback) {
+  return searchCriticalFactor([&](double k) { return scaledLoads(model, scaling, k); }, settings,
+                              search, callback);
+}
+
+FactorSearchResult runStrengthReduction(const DdaModel& model, const DdaSettings& settings,
+                                        const FactorSearch& search,
+                                        const FactorRunCallback& callback) {
+  return searchCriticalFactor([&](double srf) { return reducedStrength(model, srf); }, settings,
+                              search, callback);
+}
+
+}  // namespace rockmass::dda3d

@@ -1,0 +1,116 @@
+#include "io/stability_output.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "io/atomic_file.h"
+#include "io/stability_json.h"
+
+namespace rockmass::io {
+
+namespace {
+
+using Json = SummaryJson;
+
+/// The rule that decides K_s / the critical SRF, as stated in the summary.
+constexpr const char* kSearchRule =
+    "a run is at rest when settle_steps steps in a row are accepted on every check with "
+    "unbalanced ratio (step displacement / (g dt^2 / 2)) and kinetic ratio (kinetic energy / "
+    "work of the loads) at most their tolerances, within max_steps; the first factor "
+    "(ascending) at which the run is not at rest marks the loss of stability; the critical "
+    "factor is the middle of [last factor at rest, first factor not at rest], bisected to the "
+    "tolerance";
+
+/// `value` or null.
+Json optionalJson(const std::optional<double>& value) {
+  return value ? Json(*value) : Json(nullptr);
+}
+
+/// One entry per run, in the order they ran.
+Json runsJson(const dda3d::FactorSearchResult& result) {
+  Json runs = Json::array();
+  for (const dda3d::FactorRun& r : result.runs) {
+    runs.push_back({{"factor", r.factor},
+                    {"bisection", r.bisection},
+                    {"at_rest", r.equilibrium.reached},
+                    {"steps", r.equilibrium.steps},
+                    {"time", r.equilibrium.time},
+                    {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
+                    {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)}});
+  }
+  return runs;
+}
+
+}  // namespace
+
+std::string formatOverloadCsv(const std::vector<std::string>& monitor_names,
+                              const dda3d::FactorSearchResult& overload) {
+  std::vector<std::size_t> order(overload.runs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return overload.runs[a].factor < overload.runs[b].factor;
+  });
+  std::string out = "factor,monitor,ux,uy,uz,u,at_rest,steps\n";
+  for (std::size_t k : order) {
+    const dda3d::FactorRun& run = overload.runs[k];
+    for (std::size_t m = 0; m < run.monitors.size(); ++m) {
+      const geometry::Vec3& u = run.monitors[m].displacement;
+      out += formatDouble(run.factor) + ',' + csvField(monitor_names.at(m)) + ',' +
+             formatDouble(u.x()) + ',' + formatDouble(u.y()) + ',' + formatDouble(u.z()) + ',' +
+             formatDouble(u.norm()) + ',' + (run.equilibrium.reached ? "1" : "0") + ',' +
+             std::to_string(run.equilibrium.steps) + '\n';
+    }
+  }
+  return out;
+}
+
+Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
+  return {{"unbalanced_ratio", settings.unbalanced_ratio},
+          {"kinetic_ratio", settings.kinetic_ratio},
+          {"settle_steps", settings.settle_steps},
+          {"max_steps", settings.max_steps}};
+}
+
+Json overloadJson(const dda3d::FactorSearchResult& overload, const std::vector<std::string>& scales,
+                  bool scale_uplift) {
+  return {{"rule", kSearchRule},
+          {"scales", scales},
+          {"scale_uplift", scale_uplift},
+          {"last_stable", optionalJson(overload.last_stable)},
+          {"first_unstable", optionalJson(overload.first_unstable)},
+          {"K_s", optionalJson(overload.critical)},
+          {"runs", runsJson(overload)}};
+}
+
+Json strengthReductionJson(const dda3d::FactorSearchResult& strength) {
+  return {{"rule", kSearchRule},
+          {"last_stable", optionalJson(strength.last_stable)},
+          {"first_unstable", optionalJson(strength.first_unstable)},
+          {"critical_srf", optionalJson(strength.critical)},
+          {"runs", runsJson(strength)}};
+}
+
+void appendStability(Json& j, const StabilitySummary& summary) {
+  j["equilibrium"] = equilibriumJson(summary.equilibrium);
+  if (summary.overload) {
+    j["overload"] = overloadJson(*summary.overload, summary.overload_scales, summary.scale_uplift);
+  }
+  if (summary.strength_reduction) {
+    j["strength_reduction"] = strengthReductionJson(*summary.strength_reduction);
+  }
+  const dda3d::FactorSearchResult* decisive =
+      summary.overload ? summary.overload : summary.strength_reduction;
+  j["safety_factor"] = decisive ? optionalJson(decisive->critical) : Json(nullptr);
+}
+
+std::string formatStabilitySummary(const RunInfo& run, const StabilitySummary& summary) {
+  Json j = summaryHeader(run);
+  j["blocks"] = summary.blocks;
+  j["fixed_blocks"] = summary.fixed_blocks;
+  j["pressures"] = summary.pressures;
+  appendStability(j, summary);
+  appendTimings(j, run.timings);
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rockmass::io

@@ -1,0 +1,82 @@
+#include "io/stability_settings.h"
+
+#include <algorithm>
+
+#include "io/input_error.h"
+
+namespace rockmass::io {
+
+namespace {
+
+/// Throws "file: analysis.<key>: required by <what>".
+[[noreturn]] void missing(const Scene& scene, const std::string& key, const std::string& what) {
+  throw InputError(scene.file.string() + ": analysis." + key + ": required by " + what +
+                   "; add it to the scene's analysis section");
+}
+
+}  // namespace
+
+dda3d::DdaSettings ddaSettings(const DdaAnalysis& dda) {
+  dda3d::DdaSettings settings;
+  settings.mode = dda.dynamic ? dda3d::AnalysisMode::Dynamic : dda3d::AnalysisMode::Static;
+  settings.kinematics = dda.deformable ? dda3d::Kinematics::Deformable : dda3d::Kinematics::Rigid;
+  settings.time_step = dda.time_step;
+  settings.max_displacement_ratio = dda.max_displacement_ratio;
+  settings.penalty = dda.penalty.value_or(0.0);
+  settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
+  return settings;
+}
+
+dda3d::DdaSettings equilibriumDdaSettings(const Scene& scene) {
+  if (!scene.analysis.dda) {
+    missing(scene, "dda", "the overload and strength-reduction runs (mode, time_step, ...)");
+  }
+  dda3d::DdaSettings settings = ddaSettings(*scene.analysis.dda);
+  settings.dynamic_ratio = scene.analysis.equilibrium.value_or(EquilibriumAnalysis{}).dynamic_ratio;
+  return settings;
+}
+
+dda3d::EquilibriumSettings equilibriumSettings(const Scene& scene) {
+  const EquilibriumAnalysis e = scene.analysis.equilibrium.value_or(EquilibriumAnalysis{});
+  dda3d::EquilibriumSettings settings;
+  settings.max_steps =
+      e.max_steps.value_or(scene.analysis.dda ? scene.analysis.dda->steps : settings.max_steps);
+  settings.unbalanced_ratio = e.unbalanced_ratio;
+  settings.kinetic_ratio = e.kinetic_ratio;
+  settings.settle_steps = e.settle_steps;
+  return settings;
+}
+
+dda3d::LoadScaling loadScaling(const OverloadAnalysis& overload) {
+  const auto named = [&](const char* load) {
+    return std::find(overload.scales.begin(), overload.scales.end(), load) != overload.scales.end();
+  };
+  return {.gravity = named("gravity"),
+          .water = named("water"),
+          .uplift = named("water") && overload.scale_uplift,
+          .point_loads = named("point_loads")};
+}
+
+dda3d::FactorSearch overloadSearch(const Scene& scene) {
+  if (!scene.analysis.overload) missing(scene, "overload", "the overload method");
+  dda3d::FactorSearch search;
+  search.factors = scene.analysis.overload->factors;
+  search.tolerance = scene.analysis.overload->tolerance;
+  search.sweep_all = true;
+  search.equilibrium = equilibriumSettings(scene);
+  return search;
+}
+
+dda3d::FactorSearch strengthReductionSearch(const Scene& scene) {
+  if (!scene.analysis.strength_reduction) {
+    missing(scene, "strength_reduction", "the strength reduction");
+  }
+  dda3d::FactorSearch search;
+  search.factors = scene.analysis.strength_reduction->factors;
+  search.tolerance = scene.analysis.strength_reduction->tolerance;
+  search.sweep_all = false;
+  search.equilibrium = equilibriumSettings(scene);
+  return search;
+}
+
+}  // namespace rockmass::io
