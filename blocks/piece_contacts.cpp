@@ -85,21 +85,27 @@ bool sameLoop(const std::vector<Vec3>& points, std::uint32_t a_begin, std::uint3
 
 }  // namespace
 
-double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+void faceOverlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal,
+                 std::vector<Vec3>& out) {
   // Two buffers swapped between clips: no allocation once they have grown.
-  thread_local std::vector<Vec3> clipped, next;
-  clipped.assign(a.begin(), a.end());
+  thread_local std::vector<Vec3> next;
+  out.assign(a.begin(), a.end());
   // b runs clockwise about `normal`: walking it backwards, its inside is on the left.
   const std::size_t n = b.size();
-  for (std::size_t k = 0; k < n && clipped.size() >= 3; ++k) {
+  for (std::size_t k = 0; k < n && out.size() >= 3; ++k) {
     const Vec3& p = b[(k + 1) % n];
     const Vec3& q = b[k];
     const Vec3 inward = normal.cross(q - p);
     const double length = inward.norm();
     if (length == 0.0) continue;
-    clipPolygon(clipped, Plane::through(p, inward / length), next);
-    std::swap(clipped, next);
+    clipPolygon(out, Plane::through(p, inward / length), next);
+    std::swap(out, next);
   }
+}
+
+double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+  thread_local std::vector<Vec3> clipped;
+  faceOverlap(a, b, normal, clipped);
   return clipped.size() >= 3 ? geometry::polygonArea(clipped) : 0.0;
 }
 
