@@ -685,14 +685,36 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         next.push_back(std::move(cell));
         continue;
       }
-      // Does the polygon meet the section with area?
-      covered = section.polygon;
+      // Does the polygon meet the section with area? Vertex signs first: an edge with the
+      // whole section outside (within the tolerance) leaves at most a strip of that width;
+      // a section inside every edge is covered whole; only the rest is clipped.
+      bool apart = false, inside = true;
       for (const Plane& edge : polygon.edges) {
-        clipPolygon(covered, edge, scratch);
-        std::swap(covered, scratch);
-        if (covered.size() < 3) break;
+        double low = std::numeric_limits<double>::infinity(), high = -low;
+        for (const Vec3& x : section.polygon) {
+          const double d = edge.distance(x);
+          low = std::min(low, d);
+          high = std::max(high, d);
+        }
+        if (high <= tol.distance) {
+          apart = true;
+          break;
+        }
+        inside = inside && low >= 0.0;
       }
-      if (covered.size() < 3 || geometry::polygonArea(covered) <= tol.area) {
+      double area = 0.0;
+      if (!apart && inside) {
+        area = geometry::polygonArea(section.polygon);
+      } else if (!apart) {
+        covered = section.polygon;
+        for (const Plane& edge : polygon.edges) {
+          clipPolygon(covered, edge, scratch);
+          std::swap(covered, scratch);
+          if (covered.size() < 3) break;
+        }
+        if (covered.size() >= 3) area = geometry::polygonArea(covered);
+      }
+      if (area <= tol.area) {
         next.push_back(std::move(cell));
         continue;
       }
