@@ -32,14 +32,15 @@ double processCpuSeconds() {
 }
 
 /// Cuts `spec` with the fast cutter, reporting blocks and pieces.
-void fastCut(benchmark::State& state, const DiscSceneSpec& spec, int segments) {
+void fastCut(benchmark::State& state, const DiscSceneSpec& spec, int segments,
+             const FastCutOptions& options = {}) {
   const rockmass::geometry::FractureNetwork network = randomDiscNetwork(spec);
   const CutInput input = boxCutInput(network, segments);
   FastCutReport report;
   std::size_t blocks = 0;
   const double cpu_start = processCpuSeconds();
   for (auto _ : state) {
-    const BlockModel model = cutFast(input, &report);
+    const BlockModel model = cutFast(input, options, &report);
     blocks = model.blocks.size();
     benchmark::DoNotOptimize(model.blocks.data());
   }
@@ -59,6 +60,23 @@ void BM_FastDensity(benchmark::State& state) {
   fastCut(state, spec, 24);
 }
 BENCHMARK(BM_FastDensity)
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(200)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+/// The density series with the fast cutter's other strategy (FastStrategy::EdgePlanes, the
+/// issue's original design), for the piece counts and times of both in one run.
+void BM_FastEdgeDensity(benchmark::State& state) {
+  DiscSceneSpec spec;
+  spec.discs = static_cast<int>(state.range(0));
+  FastCutOptions options;
+  options.strategy = FastStrategy::EdgePlanes;
+  fastCut(state, spec, 24, options);
+}
+BENCHMARK(BM_FastEdgeDensity)
     ->Arg(10)
     ->Arg(30)
     ->Arg(100)
@@ -311,6 +329,17 @@ int main(int argc, char** argv) {
             exact->real_time / fast->real_time,
             exact->counters.at("cpu_s") / fast->counters.at("cpu_s"));
       }
+    }
+  }
+  std::printf("Fast cutter, EdgePlanes over FullPlanes (same run):\n");
+  for (int n : {10, 30, 100, 200}) {
+    const auto* edge = find("BM_FastEdgeDensity/" + std::to_string(n));
+    const auto* full = find("BM_FastDensity/" + std::to_string(n));
+    if (edge && full) {
+      std::printf("  %5d discs: pieces %8.0f / %8.0f = %5.2f;  CPU %5.2f\n", n,
+                  edge->counters.at("pieces"), full->counters.at("pieces"),
+                  edge->counters.at("pieces") / full->counters.at("pieces"),
+                  edge->counters.at("cpu_s") / full->counters.at("cpu_s"));
     }
   }
   std::printf("Segments, time against 24 segments of the same cutter (same run):\n");

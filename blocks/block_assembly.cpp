@@ -116,7 +116,8 @@ std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances&
 
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
-                          const CutTolerances& tolerances, AssemblyReport* report) {
+                          const CutTolerances& tolerances, AssemblyReport* report,
+                          const std::vector<FaceSource>* contact_sources) {
   std::vector<Piece> all = std::move(rock_pieces);
   const std::size_t rock_count = all.size();
   std::vector<int> structure_of(rock_count, -1);
@@ -142,7 +143,25 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   const auto fictitious = [&](int piece, int face) {
     return all[piece].face_sources[face].kind == FaceKind::Fictitious;
   };
-  for (const PieceContact& c : contacts) {
+  // The source of contact k as the cutter decided it (rock contacts), else nothing.
+  const auto decided = [&](std::size_t k) -> const FaceSource* {
+    return contact_sources != nullptr && k < rock_contacts.size() ? &(*contact_sources)[k]
+                                                                  : nullptr;
+  };
+  const auto outer = [&](int piece, int face) {
+    const FaceKind kind = all[piece].face_sources[face].kind;
+    return kind == FaceKind::Boundary || kind == FaceKind::Structure;
+  };
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const PieceContact& c = contacts[k];
+    if (const FaceSource* source = decided(k)) {
+      if (outer(c.piece_a, c.face_a) != outer(c.piece_b, c.face_b)) {
+        ++local_report.inconsistent_contacts;
+      } else if (source->kind == FaceKind::Fictitious) {
+        clusters.unite(c.piece_a, c.piece_b);
+      }
+      continue;
+    }
     const bool fa = fictitious(c.piece_a, c.face_a);
     const bool fb = fictitious(c.piece_b, c.face_b);
     if (fa && fb) {
@@ -231,11 +250,18 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   // Adjacency: real contacts between different blocks. The source is the structure when
   // one side is a structure, else the face of the block with the smaller id.
   std::map<std::tuple<int, int, int, int>, double> areas;
-  for (const PieceContact& c : contacts) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const PieceContact& c = contacts[k];
     int a = block_of[c.piece_a], b = block_of[c.piece_b];
     if (a == b) continue;
     const FaceSource source_a = face_sources[c.piece_a][c.face_a];
     const FaceSource source_b = face_sources[c.piece_b][c.face_b];
+    if (const FaceSource* source = decided(k)) {
+      if (source->kind == FaceKind::Fictitious) continue;
+      if (a > b) std::swap(a, b);
+      areas[{a, b, static_cast<int>(source->kind), source->id}] += c.area;
+      continue;
+    }
     if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
     FaceSource source = a < b ? source_a : source_b;
     if (source_b.kind == FaceKind::Structure) source = source_b;

@@ -47,8 +47,16 @@ struct AssemblyReport {
 /// rock blocks: SlabMaterials::ofBlock), numbers the blocks 1..N in blockOrder, and lists the
 /// adjacency: one entry per (block_a, block_b, source) with the summed contact area, sorted. Pieces
 /// keep their face provenance. Contacts between structures and rock are found here.
+///
+/// `contact_sources`, when given (one per rock contact), is the cutter's own decision for
+/// each rock contact instead of the face labels: Fictitious glues the two pieces, anything
+/// else is a real contact with that source (a cutter that decides coverage per shared part,
+/// where a face partly covered by a disc is labelled Fictitious but may touch a neighbour
+/// only where the disc covers it). Inconsistent contacts are then those between a
+/// Boundary or Structure face and a face of another kind.
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
-                          const CutTolerances& tolerances, AssemblyReport* report = nullptr);
+                          const CutTolerances& tolerances, AssemblyReport* report = nullptr,
+                          const std::vector<FaceSource>* contact_sources = nullptr);
 
 }  // namespace rockmass::blocks

@@ -3,9 +3,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "blocks/convex_partition.h"
 #include "blocks/convex_split.h"
@@ -28,6 +31,7 @@ struct CutPolygon {
   Box box;                   ///< bounding box of the points
   int plane_id = 0;          ///< id of `plane` (a UnionFind id: coincident planes share a root)
   int first_edge_id = 0;     ///< id of edges[0]; edges[k] has first_edge_id + k
+  int group = -1;            ///< FullPlanes: its DiscGroup
 };
 
 /// A piece being cut, with the id of the plane each face lies in. Faces made by one cutting
@@ -297,15 +301,9 @@ void checkStructuresOutsideRock(const CutInput& input, const CutTolerances& tol)
   }
 }
 
-}  // namespace
-
-BlockModel cutFast(const CutInput& input, FastCutReport* report) {
-  if (input.domain_pieces.empty()) throw std::invalid_argument("cutFast: no domain piece");
-  if (input.network == nullptr) throw std::invalid_argument("cutFast: no fracture network");
-  if (input.disc_segments < 3) throw std::invalid_argument("cutFast: disc_segments < 3");
-  const CutTolerances tol = cutTolerances(input.domain_box);
-  checkStructuresOutsideRock(input, tol);
+BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCutReport* report) {
   FastCutReport counters;
+  counters.regions = 1;
   const auto start = std::chrono::steady_clock::now();
 
   // Plane ids: one per domain face, then per cutting polygon its plane and its edges.
@@ -380,6 +378,535 @@ BlockModel cutFast(const CutInput& input, FastCutReport* report) {
   counters.assemble_seconds = secondsSince(assemble_start);
   if (report) *report = counters;
   return model;
+}
+
+// ---------------------------------------------------------------------------------------
+// FastStrategy::FullPlanes: the exact cutter's strategy in floating point.
+
+/// Discs in one plane (within the tolerance): their union is what covers a face.
+struct DiscGroup {
+  Plane plane;                ///< the plane of the group's first disc
+  int plane_id = 0;           ///< plane id shared by all its polygons
+  std::vector<int> polygons;  ///< indices of its cutting polygons
+};
+
+/// Puts every cutting polygon into the group of its plane; a polygon that joins a group is
+/// moved onto the group's plane (its points projected, its edges rebuilt) and takes its id.
+std::vector<DiscGroup> groupPolygons(std::vector<CutPolygon>& polygons, double tolerance) {
+  std::vector<DiscGroup> groups;
+  std::vector<int> group_of_plane_id;  // by the polygon's own plane id, for the parts of a disc
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    CutPolygon& polygon = polygons[i];
+    int found = -1;
+    if (i > 0 && polygons[i - 1].disc_id == polygon.disc_id) {
+      found = polygons[i - 1].group;  // the next convex part of the same disc
+    }
+    for (std::size_t g = 0; g < groups.size() && found < 0; ++g) {
+      const Plane& plane = groups[g].plane;
+      if (std::abs(plane.normal.dot(polygon.plane.normal)) < 1.0 - 1e-12) continue;
+      const bool on = std::all_of(polygon.points.begin(), polygon.points.end(), [&](const Vec3& p) {
+        return std::abs(plane.distance(p)) <= tolerance;
+      });
+      if (on) found = static_cast<int>(g);
+    }
+    if (found < 0) {
+      found = static_cast<int>(groups.size());
+      groups.push_back({polygon.plane, polygon.plane_id, {}});
+    } else if (groups[found].plane_id != polygon.plane_id) {
+      // Rebase onto the group's plane, counter-clockwise about its normal.
+      const Plane& plane = groups[found].plane;
+      for (Vec3& p : polygon.points) p -= plane.distance(p) * plane.normal;
+      if (plane.normal.dot(polygon.plane.normal) < 0.0) {
+        std::reverse(polygon.points.begin(), polygon.points.end());
+      }
+      polygon.plane = plane;
+      polygon.plane_id = groups[found].plane_id;
+      polygon.edges.clear();
+      const std::size_t m = polygon.points.size();
+      for (std::size_t k = 0; k < m; ++k) {
+        const Vec3 inward = plane.normal.cross(polygon.points[(k + 1) % m] - polygon.points[k]);
+        if (inward.norm() <= tolerance) continue;
+        polygon.edges.push_back(Plane::through(polygon.points[k], inward.normalized()));
+      }
+    }
+    polygon.group = found;
+    groups[found].polygons.push_back(static_cast<int>(i));
+  }
+  return groups;
+}
+
+/// How the discs of a plane cover a convex face in that plane.
+enum class Cover : std::uint8_t {
+  None,     ///< not at all (the covered part has no area above the tolerance)
+  Partial,  ///< partly
+  Whole,    ///< wholly (what is left uncovered has no area above the tolerance)
+};
+
+/// True when every point lies inside the convex polygon, within `tolerance` (m).
+bool insidePolygon(const std::vector<Vec3>& points, const CutPolygon& polygon, double tolerance) {
+  for (const Plane& edge : polygon.edges) {
+    for (const Vec3& p : points) {
+      if (edge.distance(p) < -tolerance) return false;
+    }
+  }
+  return true;
+}
+
+/// Area (m2) of the part of `face` inside the convex polygon.
+double coveredArea(const std::vector<Vec3>& face, const CutPolygon& polygon) {
+  thread_local std::vector<Vec3> a, b;
+  a.assign(face.begin(), face.end());
+  for (const Plane& edge : polygon.edges) {
+    clipPolygon(a, edge, b);
+    std::swap(a, b);
+    if (a.size() < 3) return 0.0;
+  }
+  return geometry::polygonArea(a);
+}
+
+/// How the group's polygons cover the convex face (points in the group's plane); `disc` gets
+/// the disc holding the face's centre when Whole. Double precision with the cutter's
+/// tolerances: a vertex within tolerance.distance of an edge is on it, an uncovered or
+/// covered part of area at most tolerance.area is none.
+Cover coverage(const std::vector<Vec3>& face, const DiscGroup& group,
+               const std::vector<CutPolygon>& polygons, const CutTolerances& tol, int* disc) {
+  const geometry::Box box = [&] {
+    geometry::Box b{face[0], face[0]};
+    for (const Vec3& p : face) {
+      b.min = b.min.cwiseMin(p);
+      b.max = b.max.cwiseMax(p);
+    }
+    return b.enlarged(tol.distance);
+  }();
+  const auto boxesMeet = [&](const Box& other) {
+    return (box.min.array() <= other.max.array()).all() &&
+           (other.min.array() <= box.max.array()).all();
+  };
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : face) centre += p;
+  centre /= static_cast<double>(face.size());
+  const auto holder = [&] {
+    for (int i : group.polygons) {
+      if (insidePolygon({centre}, polygons[i], tol.distance)) return polygons[i].disc_id;
+    }
+    return polygons[group.polygons.front()].disc_id;
+  };
+  // Fast path: the face lies inside one polygon.
+  bool any = false;
+  for (int i : group.polygons) {
+    if (!boxesMeet(polygons[i].box)) continue;
+    if (insidePolygon(face, polygons[i], tol.distance)) {
+      *disc = polygons[i].disc_id;
+      return Cover::Whole;
+    }
+    any = any || coveredArea(face, polygons[i]) > tol.area;
+  }
+  if (!any) return Cover::None;
+  if (group.polygons.size() == 1) return Cover::Partial;
+  // Several polygons: peel the parts of the face outside each polygon in turn; what is left
+  // at the end is uncovered.
+  std::vector<std::vector<Vec3>> rest{face};
+  std::vector<Vec3> outside;
+  for (int i : group.polygons) {
+    const CutPolygon& polygon = polygons[i];
+    if (!boxesMeet(polygon.box)) continue;
+    std::vector<std::vector<Vec3>> next;
+    for (std::vector<Vec3> piece : rest) {
+      for (const Plane& edge : polygon.edges) {
+        if (piece.size() < 3) break;
+        clipPolygon(piece, Plane{-edge.normal, -edge.offset}, outside);
+        if (outside.size() >= 3 && geometry::polygonArea(outside) > tol.area) {
+          next.push_back(outside);
+        }
+        piece = clipPolygon(piece, edge);
+      }
+    }
+    rest = std::move(next);
+    if (rest.empty()) break;
+  }
+  if (!rest.empty()) return Cover::Partial;
+  *disc = holder();
+  return Cover::Whole;
+}
+
+/// A cell of a region: a work piece and its bounding box.
+struct Cell {
+  WorkPiece work;
+  Box box;
+};
+
+/// A kd region: its box, the plane id of each of its six faces (boxPolyhedron order; -1 on
+/// the domain's bounding box) and the polygons that may meet it, ascending.
+struct Region {
+  Box box;
+  std::array<int, 6> face_plane{-1, -1, -1, -1, -1, -1};
+  std::vector<int> polygons;
+};
+
+/// Conservative: may the polygon meet the box?
+bool polygonMayMeetBox(const CutPolygon& polygon, const Box& box, double tolerance) {
+  const Box b = box.enlarged(tolerance);
+  if ((polygon.box.max.array() < b.min.array()).any() ||
+      (polygon.box.min.array() > b.max.array()).any()) {
+    return false;
+  }
+  return !boxMissesPlane(box, polygon.plane, tolerance);
+}
+
+/// kd split of `region` (longest axis) until it meets at most `max_polygons` polygons or
+/// its longest edge is below `min_size`. Split levels avoid every axis-aligned polygon
+/// plane and domain-piece face plane (`avoid[axis]`: their levels), so a region face never
+/// lies in a disc: region faces are fictitious.
+void splitRegions(const std::vector<CutPolygon>& polygons,
+                  const std::array<std::vector<double>, 3>& avoid, double min_size,
+                  int max_polygons, double tolerance, UnionFind& plane_ids, Region region,
+                  std::vector<Region>& out) {
+  const Vec3 size = region.box.size();
+  int axis = 0;
+  size.maxCoeff(&axis);
+  if (static_cast<int>(region.polygons.size()) <= max_polygons || size[axis] < 2.0 * min_size) {
+    out.push_back(std::move(region));
+    return;
+  }
+  double level = 0.0;
+  for (int attempt = 0;; ++attempt) {
+    const double offset = (attempt % 2 == 0 ? 1.0 : -1.0) * ((attempt + 1) / 2) / 67.0;
+    level = region.box.min[axis] + (0.5 + offset) * size[axis];
+    const bool clash = std::any_of(avoid[axis].begin(), avoid[axis].end(), [&](double x) {
+      return std::abs(x - level) <= 1e3 * tolerance;
+    });
+    if (!clash || attempt == 32) break;
+  }
+  const int plane = plane_ids.add();
+  for (int side = 0; side < 2; ++side) {
+    Region child;
+    child.box = region.box;
+    child.face_plane = region.face_plane;
+    // boxPolyhedron faces: 2 axis = min side, 2 axis + 1 = max side.
+    if (side == 0) {
+      child.box.max[axis] = level;
+      child.face_plane[2 * axis + 1] = plane;
+    } else {
+      child.box.min[axis] = level;
+      child.face_plane[2 * axis] = plane;
+    }
+    for (int p : region.polygons) {
+      if (polygonMayMeetBox(polygons[p], child.box, tolerance)) child.polygons.push_back(p);
+    }
+    splitRegions(polygons, avoid, min_size, max_polygons, tolerance, plane_ids, std::move(child),
+                 out);
+  }
+}
+
+/// What one region gives.
+struct RegionCut {
+  std::vector<WorkPiece> pieces;
+  std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
+  long long piece_tests = 0;
+  long long splits = 0;
+};
+
+/// The region's starting cells: the domain pieces clipped to the region box.
+std::vector<Cell> regionCells(const Region& region, const std::vector<Piece>& domain,
+                              const std::vector<std::vector<int>>& domain_planes, bool box_domain,
+                              const CutTolerances& tol) {
+  std::vector<Cell> cells;
+  if (box_domain) {
+    // The box itself: exact coordinates, faces on the domain keep its labels.
+    WorkPiece work;
+    work.piece.shape = geometry::boxPolyhedron(region.box);
+    for (int f = 0; f < 6; ++f) {
+      if (region.face_plane[f] < 0) {
+        work.piece.face_sources.push_back(domain[0].face_sources[f]);
+        work.planes.push_back(domain_planes[0][f]);
+      } else {
+        work.piece.face_sources.push_back({FaceKind::Fictitious, -1});
+        work.planes.push_back(region.face_plane[f]);
+      }
+    }
+    cells.push_back({std::move(work), region.box});
+    return cells;
+  }
+  const geometry::Polyhedron box_shape = geometry::boxPolyhedron(region.box);
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    const Box b = geometry::bounds(domain[i].shape);
+    if ((b.max.array() < region.box.min.array()).any() ||
+        (b.min.array() > region.box.max.array()).any()) {
+      continue;
+    }
+    WorkPiece work{domain[i], domain_planes[i]};
+    bool empty = false;
+    for (int f = 0; f < 6 && !empty; ++f) {
+      if (region.face_plane[f] < 0) continue;
+      const Plane plane = Plane::through(box_shape.vertices[box_shape.faces[f][0]],
+                                         geometry::faceNormal(box_shape, f));
+      if (auto split = splitWork(work, plane, region.face_plane[f], tol.distance,
+                                 {FaceKind::Fictitious, -1})) {
+        work = std::move(split->first);
+      } else {
+        const Vec3 c = geometry::massProperties(work.piece.shape).centroid();
+        empty = plane.distance(c) > 0.0;
+      }
+    }
+    if (empty) continue;
+    const Box box = geometry::bounds(work.piece.shape);
+    cells.push_back({std::move(work), box});
+  }
+  return cells;
+}
+
+/// Splits the region's cells by the full plane of every polygon that meets them.
+RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygons,
+                    const std::vector<Piece>& domain,
+                    const std::vector<std::vector<int>>& domain_planes, bool box_domain,
+                    const CutTolerances& tol) {
+  RegionCut out;
+  std::vector<Cell> cells = regionCells(region, domain, domain_planes, box_domain, tol);
+  std::vector<Cell> next;
+  std::vector<Vec3> covered, scratch;
+  for (int p : region.polygons) {
+    const CutPolygon& polygon = polygons[p];
+    const Box reach = polygon.box.enlarged(tol.distance);
+    next.clear();
+    for (Cell& cell : cells) {
+      const bool near = (cell.box.min.array() <= reach.max.array()).all() &&
+                        (reach.min.array() <= cell.box.max.array()).all() &&
+                        !boxMissesPlane(cell.box, polygon.plane, tol.distance);
+      if (!near) {
+        next.push_back(std::move(cell));
+        continue;
+      }
+      ++out.piece_tests;
+      const Section section = planeSection(cell.work.piece, polygon.plane, tol.distance);
+      if (section.kind == SectionKind::OnFace) {
+        out.coincident.emplace_back(cell.work.planes[section.face], polygon.plane_id);
+      }
+      if (section.kind != SectionKind::Crossing) {
+        next.push_back(std::move(cell));
+        continue;
+      }
+      // Does the polygon meet the section with area? Vertex signs first: an edge with the
+      // whole section outside (within the tolerance) leaves at most a strip of that width;
+      // a section inside every edge is covered whole; only the rest is clipped.
+      bool apart = false, inside = true;
+      for (const Plane& edge : polygon.edges) {
+        double low = std::numeric_limits<double>::infinity(), high = -low;
+        for (const Vec3& x : section.polygon) {
+          const double d = edge.distance(x);
+          low = std::min(low, d);
+          high = std::max(high, d);
+        }
+        if (high <= tol.distance) {
+          apart = true;
+          break;
+        }
+        inside = inside && low >= 0.0;
+      }
+      double area = 0.0;
+      if (!apart && inside) {
+        area = geometry::polygonArea(section.polygon);
+      } else if (!apart) {
+        covered = section.polygon;
+        for (const Plane& edge : polygon.edges) {
+          clipPolygon(covered, edge, scratch);
+          std::swap(covered, scratch);
+          if (covered.size() < 3) break;
+        }
+        if (covered.size() >= 3) area = geometry::polygonArea(covered);
+      }
+      if (area <= tol.area) {
+        next.push_back(std::move(cell));
+        continue;
+      }
+      auto split = splitWork(cell.work, polygon.plane, polygon.plane_id, tol.distance,
+                             {FaceKind::Fictitious, -1});
+      if (!split) {
+        next.push_back(std::move(cell));
+        continue;
+      }
+      ++out.splits;
+      for (WorkPiece* half : {&split->first, &split->second}) {
+        const Box box = geometry::bounds(half->piece.shape);
+        next.push_back({std::move(*half), box});
+      }
+    }
+    std::swap(cells, next);
+  }
+  out.pieces.reserve(cells.size());
+  for (Cell& cell : cells) out.pieces.push_back(std::move(cell.work));
+  return out;
+}
+
+/// The vertices of face f of a piece.
+void faceLoop(const Piece& piece, int f, std::vector<Vec3>& out) {
+  out.clear();
+  for (int v : piece.shape.faces[f]) out.push_back(piece.shape.vertices[v]);
+}
+
+BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
+                         const CutTolerances& tol, FastCutReport* report) {
+  FastCutReport counters;
+  const auto start = std::chrono::steady_clock::now();
+  UnionFind plane_ids;
+  std::vector<Piece> domain = labelDomainPieces(input, tol);
+  std::vector<std::vector<int>> domain_planes(domain.size());
+  for (std::size_t i = 0; i < domain.size(); ++i) {
+    for (std::size_t f = 0; f < domain[i].shape.faces.size(); ++f) {
+      domain_planes[i].push_back(plane_ids.add());
+    }
+  }
+  if (domain.size() > 1) {
+    for (const PieceContact& c : findPieceContacts(domain, tol.distance, tol.area)) {
+      plane_ids.unite(domain_planes[c.piece_a][c.face_a], domain_planes[c.piece_b][c.face_b]);
+    }
+  }
+  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
+                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
+                          geometry::bounds(domain[0].shape).max == input.domain_box.max &&
+                          domain[0].shape.vertices.size() == 8;
+  std::vector<CutPolygon> polygons;
+  for (const geometry::Disc& disc : input.network->discs) {
+    if (disc.cuts) addCutPolygons(disc, input.disc_segments, tol.distance, plane_ids, polygons);
+  }
+  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
+  counters.cutting_polygons = static_cast<int>(polygons.size());
+
+  // Regions.
+  std::array<std::vector<double>, 3> avoid;
+  for (const CutPolygon& polygon : polygons) {
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(polygon.plane.normal[a]) >= 1.0 - 1e-12) {
+        avoid[a].push_back(polygon.plane.offset * (polygon.plane.normal[a] > 0 ? 1.0 : -1.0));
+      }
+    }
+  }
+  for (const Piece& piece : domain) {
+    for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+      const Vec3 n = geometry::faceNormal(piece.shape, static_cast<int>(f));
+      for (int a = 0; a < 3; ++a) {
+        if (std::abs(n[a]) >= 1.0 - 1e-12) {
+          avoid[a].push_back(piece.shape.vertices[piece.shape.faces[f][0]][a]);
+        }
+      }
+    }
+  }
+  Region root;
+  root.box = input.domain_box;
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
+    if (polygonMayMeetBox(polygons[p], root.box, tol.distance)) {
+      root.polygons.push_back(static_cast<int>(p));
+    }
+  }
+  std::vector<Region> regions;
+  splitRegions(polygons, avoid, input.domain_box.size().maxCoeff() / 64.0,
+               std::max(1, options.max_discs_per_region), tol.distance, plane_ids, std::move(root),
+               regions);
+  counters.regions = static_cast<int>(regions.size());
+
+  std::vector<RegionCut> cuts(regions.size());
+  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
+    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol);
+  });
+  std::vector<Piece> pieces;
+  std::vector<std::vector<int>> planes;
+  for (RegionCut& cut : cuts) {
+    counters.piece_tests += cut.piece_tests;
+    counters.splits += cut.splits;
+    for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
+    for (WorkPiece& w : cut.pieces) {
+      pieces.push_back(std::move(w.piece));
+      planes.push_back(std::move(w.planes));
+    }
+  }
+  cuts.clear();
+  counters.pieces = static_cast<int>(pieces.size());
+  for (std::vector<int>& list : planes) {
+    for (int& id : list) id = plane_ids.find(id);
+  }
+  counters.cut_seconds = secondsSince(start);
+
+  // Coverage of every face in a disc plane (a plane whose root is a group's).
+  const auto assemble_start = std::chrono::steady_clock::now();
+  std::unordered_map<int, int> group_of_root;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    group_of_root.emplace(plane_ids.find(groups[g].plane_id), static_cast<int>(g));
+  }
+  const auto groupOf = [&](int root) {
+    const auto it = group_of_root.find(root);
+    return it == group_of_root.end() ? -1 : it->second;
+  };
+  std::vector<std::vector<Cover>> cover(pieces.size());
+  tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
+    Piece& piece = pieces[i];
+    cover[i].assign(piece.shape.faces.size(), Cover::None);
+    std::vector<Vec3> loop;
+    for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+      if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
+      const int g = groupOf(planes[i][f]);
+      if (g < 0) continue;
+      faceLoop(piece, static_cast<int>(f), loop);
+      int disc = -1;
+      cover[i][f] = coverage(loop, groups[g], polygons, tol, &disc);
+      if (cover[i][f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
+    }
+  });
+
+  // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
+  const std::vector<PieceContact> contacts =
+      findContactsByPlane(pieces, planes, tol.distance, tol.area);
+  std::vector<FaceSource> sources(contacts.size());
+  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
+    const PieceContact& c = contacts[k];
+    const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
+    const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
+    const Cover ca = cover[c.piece_a][c.face_a];
+    const Cover cb = cover[c.piece_b][c.face_b];
+    const int g = groupOf(planes[c.piece_a][c.face_a]);
+    if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
+        b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
+      // Not a disc plane: the face labels decide.
+      sources[k] = a.kind == FaceKind::Fictitious ? b : a;
+      return;
+    }
+    if (ca == Cover::Whole || cb == Cover::Whole) {
+      sources[k] = ca == Cover::Whole ? a : b;
+    } else if (ca == Cover::None || cb == Cover::None) {
+      sources[k] = {FaceKind::Fictitious, -1};
+    } else {
+      // Both partly covered: the coverage of their overlap decides.
+      thread_local std::vector<Vec3> la, lb, shared;
+      faceLoop(pieces[c.piece_a], c.face_a, la);
+      faceLoop(pieces[c.piece_b], c.face_b, lb);
+      const Vec3 normal = geometry::faceNormal(pieces[c.piece_a].shape, c.face_a);
+      faceOverlap(la, lb, normal, shared);
+      int disc = -1;
+      const bool whole =
+          shared.size() >= 3 && coverage(shared, groups[g], polygons, tol, &disc) == Cover::Whole;
+      sources[k] = whole ? FaceSource{FaceKind::Disc, disc} : FaceSource{FaceKind::Fictitious, -1};
+    }
+  });
+  AssemblyReport assembly;
+  BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
+  counters.inconsistent_contacts = assembly.inconsistent_contacts;
+  counters.assemble_seconds = secondsSince(assemble_start);
+  if (report) *report = counters;
+  return model;
+}
+
+}  // namespace
+
+BlockModel cutFast(const CutInput& input, const FastCutOptions& options, FastCutReport* report) {
+  if (input.domain_pieces.empty()) throw std::invalid_argument("cutFast: no domain piece");
+  if (input.network == nullptr) throw std::invalid_argument("cutFast: no fracture network");
+  if (input.disc_segments < 3) throw std::invalid_argument("cutFast: disc_segments < 3");
+  const CutTolerances tol = cutTolerances(input.domain_box);
+  checkStructuresOutsideRock(input, tol);
+  if (options.strategy == FastStrategy::EdgePlanes) return cutEdgePlanes(input, tol, report);
+  return cutFullPlanes(input, options, tol, report);
+}
+
+BlockModel cutFast(const CutInput& input, FastCutReport* report) {
+  return cutFast(input, FastCutOptions{}, report);
 }
 
 }  // namespace rockmass::blocks

@@ -85,21 +85,27 @@ bool sameLoop(const std::vector<Vec3>& points, std::uint32_t a_begin, std::uint3
 
 }  // namespace
 
-double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+void faceOverlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal,
+                 std::vector<Vec3>& out) {
   // Two buffers swapped between clips: no allocation once they have grown.
-  thread_local std::vector<Vec3> clipped, next;
-  clipped.assign(a.begin(), a.end());
+  thread_local std::vector<Vec3> next;
+  out.assign(a.begin(), a.end());
   // b runs clockwise about `normal`: walking it backwards, its inside is on the left.
   const std::size_t n = b.size();
-  for (std::size_t k = 0; k < n && clipped.size() >= 3; ++k) {
+  for (std::size_t k = 0; k < n && out.size() >= 3; ++k) {
     const Vec3& p = b[(k + 1) % n];
     const Vec3& q = b[k];
     const Vec3 inward = normal.cross(q - p);
     const double length = inward.norm();
     if (length == 0.0) continue;
-    clipPolygon(clipped, Plane::through(p, inward / length), next);
-    std::swap(clipped, next);
+    clipPolygon(out, Plane::through(p, inward / length), next);
+    std::swap(out, next);
   }
+}
+
+double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+  thread_local std::vector<Vec3> clipped;
+  faceOverlap(a, b, normal, clipped);
   return clipped.size() >= 3 ? geometry::polygonArea(clipped) : 0.0;
 }
 
@@ -240,6 +246,26 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
     }
     return true;
   };
+  // True when an edge line of face e has every point of face x on its outer side or within
+  // `tolerance` of it: the faces share at most a strip of that width (area below min_area),
+  // decided without constructing points (most candidate pairs only touch along an edge).
+  const auto separated = [&](const Face& e, const Face& x) {
+    const std::uint32_t n = e.end - e.begin;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const Vec3& p = points[e.begin + k];
+      const Vec3& q = points[e.begin + (k + 1 == n ? 0 : k + 1)];
+      const Vec3 inward = e.normal.cross(q - p);
+      const double length = inward.norm();
+      if (length == 0.0) continue;
+      const Vec3 unit = inward / length;
+      bool outside = true;
+      for (std::uint32_t j = x.begin; j < x.end && outside; ++j) {
+        outside = unit.dot(points[j] - p) <= tolerance;
+      }
+      if (outside) return true;
+    }
+    return false;
+  };
   const auto loopOf = [&](const Face& f, std::vector<Vec3>& out) {
     out.assign(points.begin() + f.begin, points.begin() + f.end);
   };
@@ -284,7 +310,7 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
         // The common case: both sides of one cut, neither split further since. Shared points
         // are bitwise equal (the splitter computes each crossing point once).
         area = geometry::polygonArea(loop_a);
-      } else {
+      } else if (!separated(a, b) && !separated(b, a)) {
         loopOf(b, loop_b);
         area = faceOverlapArea(loop_a, loop_b, a.normal);
       }

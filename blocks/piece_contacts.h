@@ -36,6 +36,12 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const std::vector<std::vector<int>>& planes,
                                               double tolerance, double min_area);
 
+/// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
+/// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into
+/// `out` (counter-clockwise about `normal`; fewer than 3 points when they do not overlap).
+void faceOverlap(const std::vector<geometry::Vec3>& a, const std::vector<geometry::Vec3>& b,
+                 const geometry::Vec3& normal, std::vector<geometry::Vec3>& out);
+
 /// Overlap area (m2) of two convex planar faces given counter-clockwise about `normal` (for
 /// `a`) and about -normal (for `b`), assumed coplanar.
 double faceOverlapArea(const std::vector<geometry::Vec3>& a, const std::vector<geometry::Vec3>& b,

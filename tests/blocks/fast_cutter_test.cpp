@@ -113,10 +113,17 @@ struct Cut {
   FastCutReport report;
 };
 
-Cut cut(const FractureNetwork& network, int segments = 24) {
+Cut cut(const FractureNetwork& network, int segments = 24, FastCutOptions options = {}) {
   Cut c;
-  c.model = cutFast(boxCutInput(network, segments), &c.report);
+  c.model = cutFast(boxCutInput(network, segments), options, &c.report);
   return c;
+}
+
+/// The edge-plane strategy (every face wholly inside or outside its disc).
+FastCutOptions edgePlanes() {
+  FastCutOptions options;
+  options.strategy = FastStrategy::EdgePlanes;
+  return options;
 }
 
 TEST(FastCutter, ThreePersistentOrthogonalPlanes) {
@@ -144,8 +151,9 @@ TEST(FastCutter, SmallDiscLeavesOneBlockWithACrack) {
   // A disc of radius 2 in the middle of the cube crosses nothing: one block of 1000 m3,
   // whose inside carries the crack on both sides: disc faces of total area 2 x the
   // 24-gon's area.
+  // (EdgePlanes: the crack is peeled out of the cube, so its faces exist.)
   const FractureNetwork network = cubeNetwork({circle({5, 5, 5}, Vec3(1, 2, 3), 2.0)});
-  const Cut c = cut(network);
+  const Cut c = cut(network, 24, edgePlanes());
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 1u);
   EXPECT_NEAR(c.model.blocks[0].mass.volume, 1000.0, 1e-9);
@@ -160,6 +168,22 @@ TEST(FastCutter, SmallDiscLeavesOneBlockWithACrack) {
   }
   const double polygon = geometry::polygonArea(network.discs[0].outline(24));
   EXPECT_NEAR(crack, 2.0 * polygon, 1e-9 * polygon);  // round-off of the split sections
+  EXPECT_TRUE(c.model.adjacency.empty());
+}
+
+TEST(FastCutter, FullPlanesSmallDiscLeavesOneBlock) {
+  // FullPlanes, like the exact cutter, splits the cube by the disc's whole plane; neither
+  // half-face is wholly covered by the disc, so both stay fictitious and the halves glue:
+  // one block of 1000 m3, no disc face, no adjacency.
+  const FractureNetwork network = cubeNetwork({circle({5, 5, 5}, Vec3(1, 2, 3), 2.0)});
+  const Cut c = cut(network);
+  expectSoundModel(c.model, c.report);
+  ASSERT_EQ(c.model.blocks.size(), 1u);
+  EXPECT_NEAR(c.model.blocks[0].mass.volume, 1000.0, 1e-9);  // round-off only
+  EXPECT_EQ(c.model.blocks[0].pieces.size(), 2u);            // one full-plane split
+  for (const Piece& p : c.model.blocks[0].pieces) {
+    for (const FaceSource& s : p.face_sources) EXPECT_NE(s.kind, FaceKind::Disc);
+  }
   EXPECT_TRUE(c.model.adjacency.empty());
 }
 
@@ -236,7 +260,7 @@ TEST(FastCutter, TwoCoplanarOverlappingDiscs) {
   // plane; each crack face keeps the first disc that made it.
   const FractureNetwork network =
       cubeNetwork({rectangleZ(-1, 7, -1, 11, 5), rectangleZ(3, 11, -1, 11, 5)});
-  const Cut c = cut(network);
+  const Cut c = cut(network, 24, edgePlanes());
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 2u);
   EXPECT_NEAR(c.model.blocks[0].mass.volume, 500.0, 1e-9);
@@ -245,6 +269,23 @@ TEST(FastCutter, TwoCoplanarOverlappingDiscs) {
   for (const Adjacency& a : c.model.adjacency) area[a.source.id] += a.area;
   EXPECT_NEAR(area[1], 70.0, 1e-9);  // x in [0, 7]
   EXPECT_NEAR(area[2], 30.0, 1e-9);  // x in [7, 10]
+}
+
+TEST(FastCutter, FullPlanesTwoCoplanarOverlappingDiscs) {
+  // FullPlanes: the two rectangles form one group; the section z = 5 (100 m2) is covered by
+  // their union only, so the peeled coverage test (not the one-polygon fast path) decides
+  // it is wholly covered: two halves of 500 m3 touching over 100 m2, labelled with the disc
+  // holding the face's centre (5, 5): the first.
+  const FractureNetwork network =
+      cubeNetwork({rectangleZ(-1, 7, -1, 11, 5), rectangleZ(3, 11, -1, 11, 5)});
+  const Cut c = cut(network);
+  expectSoundModel(c.model, c.report);
+  ASSERT_EQ(c.model.blocks.size(), 2u);
+  EXPECT_NEAR(c.model.blocks[0].mass.volume, 500.0, 1e-9);
+  EXPECT_NEAR(c.model.blocks[1].mass.volume, 500.0, 1e-9);
+  ASSERT_EQ(c.model.adjacency.size(), 1u);
+  EXPECT_NEAR(c.model.adjacency[0].area, 100.0, 1e-9);  // the whole section, round-off
+  EXPECT_EQ(c.model.adjacency[0].source, (FaceSource{FaceKind::Disc, 1}));
 }
 
 TEST(FastCutter, TwoDiscsOneNanometreApart) {
