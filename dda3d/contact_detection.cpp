@@ -254,13 +254,20 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
 }  // namespace
 
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
+  // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
+  const Vec3 at_centroid = displacementMatrix(block.centroid, block.centroid) * d;
+  Eigen::Matrix3d jacobian;
+  for (int k = 0; k < 3; ++k) {
+    jacobian.col(k) =
+        displacementMatrix(block.centroid + Vec3::Unit(k), block.centroid) * d - at_centroid;
+  }
   double largest = 0.0;
   for (const Polyhedron& piece : block.pieces) {
     for (const Vec3& v : piece.vertices) {
-      largest = std::max(largest, (displacementMatrix(v, block.centroid) * d).norm());
+      largest = std::max(largest, (at_centroid + jacobian * (v - block.centroid)).squaredNorm());
     }
   }
-  return largest;
+  return std::sqrt(largest);
 }
 
 double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits) {
