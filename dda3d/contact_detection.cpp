@@ -132,17 +132,24 @@ bool overlaps(const Box& x, const Box& y) {
   return (x.min.array() <= y.max.array()).all() && (y.min.array() <= x.max.array()).all();
 }
 
+/// How far from a piece the narrow phase looks (m).
+struct Range {
+  double gap;    ///< largest open gap recorded: the gap that can close within the step
+  double depth;  ///< deepest penetration recorded
+  double larger() const { return std::max(gap, depth); }
+};
+
 /// Vertices of `a` against faces of `b`.
-void vertexToFace(const PieceView& a, const PieceView& b, double range, double tolerance,
+void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                   const PreviousFace& previous_face, std::vector<Contact>& out) {
-  const Box reach = b.box.enlarged(range);
+  const Box reach = b.box.enlarged(range.gap);
   for (std::size_t v = 0; v < a.shape->vertices.size(); ++v) {
     const Vec3& p = a.shape->vertices[v];
     if (!reach.contains(p)) continue;
     double outside = -std::numeric_limits<double>::infinity();
     for (const Plane& plane : b.planes)
       outside = std::max(outside, plane.normal.dot(p) - plane.offset);
-    if (outside > range) continue;
+    if (outside > range.gap) continue;
     const bool is_outside = outside > tolerance;
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
     int best = -1;
@@ -150,7 +157,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, double range, double t
     for (std::size_t f = 0; f < b.planes.size(); ++f) {
       const Plane& plane = b.planes[f];
       const double gap = plane.normal.dot(p) - plane.offset;
-      if (gap < -range || (is_outside && gap <= tolerance)) continue;
+      if (gap < -range.depth || (is_outside && gap <= tolerance)) continue;
       const Vec3 foot = p - gap * plane.normal;
       if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot, tolerance)) continue;
       bool cone_ok = true;  // i's body near the vertex stays on the outer side of f
@@ -193,15 +200,15 @@ void vertexToFace(const PieceView& a, const PieceView& b, double range, double t
 }
 
 /// Crossing edges of `a` and `b`.
-void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tolerance,
+void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                 std::vector<Contact>& out) {
-  const Box reach_b = b.box.enlarged(range);
+  const Box reach_b = b.box.enlarged(range.larger());
   for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
     const Vec3& a0 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][0])];
     const Vec3& a1 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][1])];
     const Box edge_box = segmentBox(a0, a1);
     if (!overlaps(edge_box, reach_b)) continue;
-    const Box edge_reach = edge_box.enlarged(range);
+    const Box edge_reach = edge_box.enlarged(range.larger());
     const Vec3 u = a1 - a0;
     for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
       const Vec3& b0 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])];
@@ -222,7 +229,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
       }
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
-      if ((pc - qc).norm() > range) continue;
+      if ((pc - qc).norm() > range.larger()) continue;
       // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
       // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
       // edges penetrate.
@@ -245,7 +252,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
       c.normal = n;
       c.gap0 = n.dot(pc - qc);
       c.foot = pc - c.gap0 * n;
-      if (c.gap0 < -range) continue;
+      if (c.gap0 < -range.depth || c.gap0 > range.gap) continue;
       out.push_back(c);
     }
   }
@@ -272,7 +279,8 @@ double largestVertexDisplacement(const BlockState& block, const BlockVector& d) 
 
 double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits) {
   if (block.fixed) return 0.0;
-  const double by_velocity = largestVertexDisplacement(block, block.velocity) * dt;
+  const double by_velocity =
+      largestVertexDisplacement(block, block.velocity) * dt + 0.5 * limits.acceleration * dt * dt;
   const double by_last_step = largestVertexDisplacement(block, block.last_displacement) *
                               (last_dt > 0.0 ? dt / last_dt : 1.0);
   return std::min(limits.cap, std::max(limits.floor, 2.0 * std::max(by_velocity, by_last_step)));
@@ -291,7 +299,7 @@ std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
 }
 
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
-                                  const std::vector<double>& reach,
+                                  const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face) {
   const std::vector<PiecePair> pairs = broadPhase(blocks, reach);
   // Per-piece data, built once for the pieces that take part in some pair.
@@ -309,13 +317,14 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   for (const PiecePair& pair : pairs) {
     const PieceView& a = viewOf(pair.block_a, pair.piece_a);
     const PieceView& b = viewOf(pair.block_b, pair.piece_b);
-    const double range = reach[static_cast<std::size_t>(pair.block_a)] +
-                         reach[static_cast<std::size_t>(pair.block_b)];
+    const double gap = reach[static_cast<std::size_t>(pair.block_a)] +
+                       reach[static_cast<std::size_t>(pair.block_b)];
     const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
     // Farther apart than the range: nothing below can be recorded (a vertex's foot may sit a
     // round-off margin outside its face, which the doubled range covers).
-    const double apart = 2.0 * range + tolerance;
+    const double apart = 2.0 * gap + tolerance;
     if (separatedBeyond(a, b, apart) || separatedBeyond(b, a, apart)) continue;
+    const Range range{gap, depth};
     vertexToFace(a, b, range, tolerance, previous_face, out);
     vertexToFace(b, a, range, tolerance, previous_face, out);
     edgeToEdge(a, b, range, tolerance, out);

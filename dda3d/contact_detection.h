@@ -22,16 +22,17 @@ double largestVertexDisplacement(const BlockState& block, const BlockVector& d);
 /// Limits of a block's step reach (m), from the step control (formulation, "Step control":
 /// a step moves no vertex farther than g2 l0).
 struct ReachLimits {
-  double floor = 0.0;  ///< reach of a block at rest (m)
-  double cap = 0.0;    ///< the step control's own limit, 1.5 g2 l0 (m)
+  double floor = 0.0;         ///< reach of a block at rest (m)
+  double cap = 0.0;           ///< the step control's own limit, 1.5 g2 l0 (m)
+  double acceleration = 0.0;  ///< of the body force, |g| (m/s2)
 };
 
 /// How far any vertex of `block` may move in a step of `dt` (s): twice the larger of the
-/// displacement its velocity gives over dt and its last step's displacement scaled from
-/// `last_dt` to dt (0: not scaled), clamped to [limits.floor, limits.cap]; 0 for a fixed
-/// block. A step that moves a block farther is redone with a smaller dt, so contacts
-/// between pieces farther apart than the sum of their blocks' reaches cannot form within
-/// the step.
+/// free flight over dt (its velocity times dt plus 1/2 |g| dt^2) and its last step's
+/// displacement scaled from `last_dt` to dt (0: not scaled), clamped to [limits.floor,
+/// limits.cap]; 0 for a fixed block. A step that moves a block farther is redone with a smaller dt,
+/// so contacts between pieces farther apart than the sum of their blocks' reaches cannot form
+/// within the step.
 double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits);
 
 /// Piece boxes grown by their block's `reach` (one per block, m), intersected by
@@ -44,14 +45,15 @@ using PreviousFace =
     std::function<int(int block_i, int piece_i, int vertex, int block_j, int piece_j)>;
 
 /// All contact entries for the coming step. Broad phase with the blocks' `reach` (m), then
-/// for every candidate pair the narrow phase with range reach_a + reach_b (the largest gap
-/// that can close, and the deepest penetration recorded): vertices of a against faces of b
-/// and the reverse, and the crossing edges. `previous_face` keeps the reference face of a
-/// vertex that persists (the face it entered through). Per-piece world-space data (face
-/// planes, boxes) is computed once per call. Geometry fields are set, states are not; the
-/// order is that of the sorted pairs, so deterministic.
+/// for every candidate pair the narrow phase: open gaps up to reach_a + reach_b (the largest
+/// gap that can close within the step) and penetrations up to `depth` (m, independent of
+/// the motion: a vertex that sank in stays a contact however slowly it moves); vertices of
+/// a against faces of b and the reverse, and the crossing edges. `previous_face` keeps the
+/// reference face of a vertex that persists (the face it entered through). Per-piece world-space
+/// data (face planes, boxes) is computed once per call. Geometry fields are set, states are not;
+/// the order is that of the sorted pairs, so deterministic.
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
-                                  const std::vector<double>& reach,
+                                  const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face);
 
 }  // namespace rockmass::dda3d

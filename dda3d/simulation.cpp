@@ -295,11 +295,14 @@ void Simulation::detectContacts() {
   // the step control's limit 1.5 g2 l0; step() redoes a step that moves a block farther, so
   // a gap wider than the two blocks' reaches cannot close within it.
   const double g2_l0 = settings_.max_displacement_ratio * half_domain_;
-  const ReachLimits limits{kRestingReachRatio * g2_l0, kAcceptedDisplacementRatio * g2_l0};
+  const ReachLimits limits{kRestingReachRatio * g2_l0, kAcceptedDisplacementRatio * g2_l0,
+                           model_.gravity.norm()};
   reach_.resize(blocks_.size());
   for (std::size_t b = 0; b < blocks_.size(); ++b)
     reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
-  std::vector<Contact> detected = findContacts(blocks_, reach_, previous_face);
+  // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
+  std::vector<Contact> detected =
+      findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face);
   std::vector<std::pair<int, int>> pairs;
   for (Contact& c : detected) {
     const auto found = previous.find(keyOf(c));

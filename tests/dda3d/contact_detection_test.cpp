@@ -156,6 +156,10 @@ TEST(SearchDistance, IsTwiceThePredictedStepDisplacementWithinItsLimits) {
   b.velocity.setZero();
   b.last_displacement.head<3>() = Vec3(0.0, 0.0, -3e-3);
   EXPECT_NEAR(stepReach(b, 0.5 * dt, dt, limits), 2.0 * 1.5e-3, 1e-15);
+  // Free flight under gravity from rest: 1/2 g dt^2 = 4.905 um, reach twice that.
+  b.last_displacement.setZero();
+  const ReachLimits falling{1e-6, 0.05, 9.81};
+  EXPECT_NEAR(stepReach(b, dt, dt, falling), 9.81 * dt * dt, 1e-18);
   // Never above the step control's own limit; a fixed block does not move.
   b.velocity.head<3>() = Vec3(100.0, 0.0, 0.0);
   EXPECT_EQ(stepReach(b, dt, dt, limits), limits.cap);
