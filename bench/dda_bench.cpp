@@ -1,13 +1,17 @@
 // DDA engine speed and accuracy against time.
-// BM_Pile/SOLVER/N: N rigid cubes dropped on a fixed slab, for each solver of
-// --dda_solvers=LIST (cholmod, eigen, pcg = the Auto tolerance, pcg:TOL; default
+// BM_Pile/SOLVER/N: N rigid cubes dropped on a fixed slab, timed over 10 steps while the
+// layers land (--dda_warmup=N untimed steps first, default 60), for each
+// solver of --dda_solvers=LIST (cholmod, eigen, pcg = the Auto tolerance, pcg:TOL; default
 // "pcg,cholmod"; direct solvers up to 1000 blocks); block-steps per second, the share of each
 // phase (counters) and, after the run, the fitted growth exponent of the time per step.
+// BM_PileSettling/SOLVER/1000: a 1000-cube pile from release to 0.6 s, every step timed
+// (steps/s of a whole settling run), with the first solver of the list.
 // BM_SlidingAccuracy: error of the sliding-block displacement at 0.3 s against 1/2 g (sin theta -
 // cos theta tan phi) t^2, for a time step and a penalty factor; the solver is the third argument (0
 // Eigen LDLT, 1 CHOLMOD, 2 PCG when built).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -25,17 +29,20 @@ namespace {
 using namespace rockmass::dda3d;
 using rockmass::geometry::Vec3;
 
-DdaModel pile(int blocks) {
+/// `blocks` unit cubes in staggered layers with `gap` (m) between neighbours and layers,
+/// 0.05 m above a fixed slab.
+DdaModel pile(int blocks, double gap = 0.2) {
   DdaModel model;
   scenes::setRock(model, 30.0);
   const int side = static_cast<int>(std::ceil(std::sqrt(blocks / 8.0)));
-  const double width = 1.2 * side + 0.6;
+  const double pitch = 1.0 + gap;
+  const double width = pitch * side + 0.6;
   model.blocks.push_back(scenes::boxBlock({-1, -1, -1}, {width + 1, width + 1, 0}, 0, true));
   for (int k = 0; k < blocks; ++k) {
     const int per_layer = side * side;
     const int layer = k / per_layer, row = (k / side) % side, column = k % side;
     const double shift = layer % 2 == 0 ? 0.0 : 0.3;
-    const Vec3 low(0.1 + 1.2 * column + shift, 0.1 + 1.2 * row, 0.05 + 1.2 * layer);
+    const Vec3 low(0.1 + pitch * column + shift, 0.1 + pitch * row, 0.05 + pitch * layer);
     model.blocks.push_back(scenes::boxBlock(low, low + Vec3(1, 1, 1), 0, false));
   }
   model.gravity = Vec3(0, 0, -9.81);
@@ -68,8 +75,19 @@ SolverSpec parseSolver(const std::string& text, const DdaSettings& defaults) {
   return spec;
 }
 
-constexpr int kWarmUpSteps = 60;  ///< 0.12 s: the bottom layer lands, the rest falls onto it
-constexpr int kTimedSteps = 10;   ///< impacts and settling: contacts open, close, slide
+/// Untimed steps before the timed ones (--dda_warmup=N): 60 steps of 2 ms = 0.12 s, the
+/// bottom layer has landed and the others land during the timed steps. Later, fully dynamic
+/// piles hit the scheme's velocity sawtooth (docs/dda3d.md, known limits): dt collapses.
+int warm_up_steps = 60;
+constexpr int kTimedSteps = 10;  ///< impacts and settling: contacts open, close, slide
+/// BM_PileSettling: a compact pile (2 cm gaps: every layer has landed by ~0.15 s), run from
+/// release to kSettlingTime (s).
+constexpr double kSettlingGap = 0.02;
+constexpr double kSettlingTime = 0.3;
+/// BM_PileSettling: velocity share carried between steps; below 1 it damps the scheme's
+/// sawtooth (docs/dda3d.md), which fully dynamic lets grow in a stack.
+constexpr double kSettlingDynamicRatio = 0.98;
+constexpr int kSettlingBlocks = 1000;  ///< BM_PileSettling's pile
 
 DdaSettings pileSettings() {
   DdaSettings settings;
@@ -78,7 +96,20 @@ DdaSettings pileSettings() {
   return settings;
 }
 
-/// One pile run: kWarmUpSteps untimed, then kTimedSteps timed. Counters: block-steps/s,
+/// Counters with each phase's share of the engine's own timers: contact detection,
+/// assembly (block terms and contact terms), factorization (PCG: preconditioner set-up),
+/// solve, open-close (contact state updates and step checks), block update.
+void setPhaseShares(benchmark::State& state, const PhaseTimings& t) {
+  const double total = t.total();
+  state.counters["detect"] = t.detect_contacts / total;
+  state.counters["assemble"] = (t.assemble_block_terms + t.assemble_contacts) / total;
+  state.counters["factorize"] = t.factorize / total;
+  state.counters["solve"] = t.solve / total;
+  state.counters["open_close"] = t.update_states / total;
+  state.counters["update"] = t.update_blocks / total;
+}
+
+/// One pile run: warm_up_steps untimed, then kTimedSteps timed. Counters: block-steps/s,
 /// steps/s, the share of each phase of the engine's own timers, contacts, open-close
 /// iterations per step.
 void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
@@ -89,7 +120,7 @@ void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
   for (auto _ : state) {
     state.PauseTiming();
     Simulation sim(pile(blocks), settings);
-    for (int k = 0; k < kWarmUpSteps; ++k) sim.step();
+    for (int k = 0; k < warm_up_steps; ++k) sim.step();
     const PhaseTimings before = sim.timings();
     state.ResumeTiming();
     for (int k = 0; k < kTimedSteps; ++k) iterations += sim.step().iterations;
@@ -104,18 +135,51 @@ void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
     timings.update_blocks += t.update_blocks - before.update_blocks;
     state.counters["contacts"] = sim.contactCounts().total;
   }
-  const double total = timings.total();
   state.counters["block_steps_per_s"] =
       benchmark::Counter(static_cast<double>(blocks) * steps, benchmark::Counter::kIsRate);
   state.counters["steps_per_s"] =
       benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
   state.counters["iter_per_step"] = static_cast<double>(iterations) / steps;
-  state.counters["detect"] = timings.detect_contacts / total;
-  state.counters["assemble"] = (timings.assemble_block_terms + timings.assemble_contacts) / total;
-  state.counters["factorize"] = timings.factorize / total;
-  state.counters["solve"] = timings.solve / total;
-  state.counters["states_update"] = (timings.update_states + timings.update_blocks) / total;
+  setPhaseShares(state, timings);
   state.counters["steps"] = steps;
+}
+
+/// A pile of `blocks` cubes from release until kSettlingTime, all of it timed: steps/s of a
+/// whole settling run (free fall, impacts layer by layer, settling), and the largest block
+/// speed at the end against the largest during the run (how far it has settled).
+void pileSettling(benchmark::State& state, const SolverOptions& solver, int blocks) {
+  DdaSettings settings = pileSettings();
+  settings.solver = solver;
+  settings.dynamic_ratio = kSettlingDynamicRatio;
+  int steps = 0, iterations = 0;
+  double peak_speed = 0.0, final_speed = 0.0;
+  PhaseTimings timings;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Simulation sim(pile(blocks, kSettlingGap), settings);
+    state.ResumeTiming();
+    while (sim.time() < kSettlingTime * (1.0 - 1e-12)) {
+      iterations += sim.step().iterations;
+      ++steps;
+      state.PauseTiming();
+      final_speed = 0.0;
+      for (const BlockState& b : sim.blocks())
+        final_speed = std::max(final_speed, b.velocity.head<3>().norm());
+      peak_speed = std::max(peak_speed, final_speed);
+      state.ResumeTiming();
+    }
+    timings = sim.timings();
+    state.counters["contacts"] = sim.contactCounts().total;
+  }
+  state.counters["block_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(blocks) * steps, benchmark::Counter::kIsRate);
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["iter_per_step"] = static_cast<double>(iterations) / steps;
+  state.counters["steps"] = steps;
+  state.counters["peak_speed"] = peak_speed;
+  state.counters["final_speed"] = final_speed;
+  setPhaseShares(state, timings);
 }
 
 void BM_SlidingAccuracy(benchmark::State& state) {
@@ -161,28 +225,29 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
   return sxy / sxx;
 }
 
-/// Removes --dda_solvers=LIST from argv; returns LIST (default "pcg,cholmod").
-std::string takeSolverFlag(int& argc, char** argv) {
-  std::string list = "pcg,cholmod";
-  const std::string flag = "--dda_solvers=";
+/// Removes --NAME=VALUE from argv; returns VALUE, or `fallback` when absent.
+std::string takeFlag(int& argc, char** argv, const std::string& name, const std::string& fallback) {
+  std::string value = fallback;
+  const std::string flag = "--" + name + "=";
   int out = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg.rfind(flag, 0) == 0) {
-      list = arg.substr(flag.size());
+      value = arg.substr(flag.size());
     } else {
       argv[out++] = argv[i];
     }
   }
   argc = out;
-  return list;
+  return value;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<SolverSpec> solvers;
-  std::stringstream list(takeSolverFlag(argc, argv));
+  std::stringstream list(takeFlag(argc, argv, "dda_solvers", "pcg,cholmod"));
+  warm_up_steps = std::stoi(takeFlag(argc, argv, "dda_warmup", std::to_string(warm_up_steps)));
   for (std::string item; std::getline(list, item, ',');) {
     solvers.push_back(parseSolver(item, pileSettings()));
   }
@@ -198,6 +263,16 @@ int main(int argc, char** argv) {
           ->Iterations(1);
     }
   }
+  const SolverOptions settling_solver = solvers.empty() ? SolverOptions{} : solvers[0].options;
+  const std::string settling_name = "BM_PileSettling/" +
+                                    (solvers.empty() ? std::string("cholmod") : solvers[0].label) +
+                                    "/" + std::to_string(kSettlingBlocks);
+  benchmark::RegisterBenchmark(settling_name.c_str(),
+                               [settling_solver](benchmark::State& state) {
+                                 pileSettling(state, settling_solver, kSettlingBlocks);
+                               })
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   rockmass::bench::RecordingReporter reporter;
@@ -206,22 +281,26 @@ int main(int argc, char** argv) {
   std::printf(
       "\nPiles (rigid cubes, %d timed steps after %d untimed; CPU time; phase shares from the\n"
       "engine's timers):\n",
-      kTimedSteps, kWarmUpSteps);
-  std::printf("  %-12s %6s %10s %9s %8s %7s %7s %7s %7s %7s %7s\n", "solver", "blocks", "blk-st/s",
-              "steps/s", "contacts", "it/st", "detect", "assem", "factor", "solve", "update");
+      kTimedSteps, warm_up_steps);
+  const auto printRow = [](const std::string& label, int blocks, const rockmass::bench::Record& r) {
+    const auto& c = r.counters;
+    std::printf("  %-12s %6d %10.0f %9.2f %8.0f %6.2f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
+                label.c_str(), blocks, c.at("block_steps_per_s"), c.at("steps_per_s"),
+                c.at("contacts"), c.at("iter_per_step"), c.at("detect"), c.at("assemble"),
+                c.at("factorize"), c.at("solve"), c.at("open_close"), c.at("update"));
+  };
+  std::printf("  %-12s %6s %10s %9s %8s %6s %7s %7s %7s %7s %7s %7s\n", "solver", "blocks",
+              "blk-st/s", "steps/s", "contacts", "it/st", "detect", "assem", "factor", "solve",
+              "op-cl", "update");
   for (const SolverSpec& spec : solvers) {
     std::vector<double> n, seconds_per_step;
     for (int blocks : sizes) {
       const rockmass::bench::Record* record =
           reporter.find("BM_Pile/" + spec.label + "/" + std::to_string(blocks));
       if (!record) continue;
-      const auto& c = record->counters;
-      std::printf("  %-12s %6d %10.0f %9.2f %8.0f %7.2f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
-                  spec.label.c_str(), blocks, c.at("block_steps_per_s"), c.at("steps_per_s"),
-                  c.at("contacts"), c.at("iter_per_step"), c.at("detect"), c.at("assemble"),
-                  c.at("factorize"), c.at("solve"), c.at("states_update"));
+      printRow(spec.label, blocks, *record);
       n.push_back(blocks);
-      seconds_per_step.push_back(record->cpu_time / 1e3 / c.at("steps"));  // ms -> s
+      seconds_per_step.push_back(record->cpu_time / 1e3 / record->counters.at("steps"));  // ms
     }
     if (n.size() >= 2) {
       std::printf("  %-12s growth exponent of the time per step: fit %.2f", spec.label.c_str(),
@@ -233,6 +312,15 @@ int main(int argc, char** argv) {
       }
       std::printf("\n");
     }
+  }
+  if (const rockmass::bench::Record* settling = reporter.find(settling_name)) {
+    std::printf(
+        "\nSettling pile (%d cubes, 2 cm gaps, dynamic ratio %.2f, release to %.1f s, all steps\n"
+        "timed): %.1f "
+        "steps/s, largest block speed at the end %.3g m/s (peak %.3g m/s during the run):\n",
+        kSettlingBlocks, kSettlingDynamicRatio, kSettlingTime, settling->counters.at("steps_per_s"),
+        settling->counters.at("final_speed"), settling->counters.at("peak_speed"));
+    printRow(solvers.empty() ? "cholmod" : solvers[0].label, kSettlingBlocks, *settling);
   }
   if (solvers.size() >= 2) {
     std::printf("\nTime per step relative to %s (same run):\n", solvers[0].label.c_str());

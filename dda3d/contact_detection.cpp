@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
+#include <utility>
 
 namespace rockmass::dda3d {
 
@@ -71,14 +71,15 @@ double tributaryArea(const Polyhedron& piece, const PieceTopology& topology,
   return area;
 }
 
+/// World-space data of one piece for the narrow phase, built once per detection.
 struct PieceView {
-  int block;
-  int piece;
-  const Polyhedron& shape;
-  const PieceTopology& topology;
+  int block = -1;
+  int piece = -1;
+  const Polyhedron* shape = nullptr;
+  const PieceTopology* topology = nullptr;
   std::vector<Plane> planes;
   Box box;
-  Vec3 centroid;
+  Vec3 centroid = Vec3::Zero();
 };
 
 PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
@@ -89,24 +90,66 @@ PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
   centroid /= static_cast<double>(shape.vertices.size());
   return {block,
           piece,
-          shape,
-          b.topology[static_cast<std::size_t>(piece)],
+          &shape,
+          &b.topology[static_cast<std::size_t>(piece)],
           facePlanes(shape),
           geometry::bounds(shape),
           centroid};
 }
 
+/// Lowest and highest height n . (v - origin) of `vertices` (m).
+std::pair<double, double> heightRange(const std::vector<Vec3>& vertices, const Vec3& n,
+                                      const Vec3& origin) {
+  double low = std::numeric_limits<double>::infinity();
+  double high = -low;
+  for (const Vec3& v : vertices) {
+    const double h = n.dot(v - origin);
+    low = std::min(low, h);
+    high = std::max(high, h);
+  }
+  return {low, high};
+}
+
+/// True when a face plane of `b` has every vertex of `a` more than `distance` (m) on its
+/// outer side: a and b are then farther apart than `distance` (b lies on the inner side).
+bool separatedBeyond(const PieceView& a, const PieceView& b, double distance) {
+  for (const Plane& plane : b.planes) {
+    if (heightRange(a.shape->vertices, plane.normal, plane.normal * plane.offset).first >
+        distance) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Box of the segment p q.
+Box segmentBox(const Vec3& p, const Vec3& q) {
+  return {p.cwiseMin(q), p.cwiseMax(q)};
+}
+
+/// True when the closed boxes x and y share a point.
+bool overlaps(const Box& x, const Box& y) {
+  return (x.min.array() <= y.max.array()).all() && (y.min.array() <= x.max.array()).all();
+}
+
+/// How far from a piece the narrow phase looks (m).
+struct Range {
+  double gap;    ///< largest open gap recorded: the gap that can close within the step
+  double depth;  ///< deepest penetration recorded
+  double larger() const { return std::max(gap, depth); }
+};
+
 /// Vertices of `a` against faces of `b`.
-void vertexToFace(const PieceView& a, const PieceView& b, double range, double tolerance,
+void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                   const PreviousFace& previous_face, std::vector<Contact>& out) {
-  const Box reach = b.box.enlarged(range);
-  for (std::size_t v = 0; v < a.shape.vertices.size(); ++v) {
-    const Vec3& p = a.shape.vertices[v];
+  const Box reach = b.box.enlarged(range.gap);
+  for (std::size_t v = 0; v < a.shape->vertices.size(); ++v) {
+    const Vec3& p = a.shape->vertices[v];
     if (!reach.contains(p)) continue;
     double outside = -std::numeric_limits<double>::infinity();
     for (const Plane& plane : b.planes)
       outside = std::max(outside, plane.normal.dot(p) - plane.offset);
-    if (outside > range) continue;
+    if (outside > range.gap) continue;
     const bool is_outside = outside > tolerance;
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
     int best = -1;
@@ -114,12 +157,12 @@ void vertexToFace(const PieceView& a, const PieceView& b, double range, double t
     for (std::size_t f = 0; f < b.planes.size(); ++f) {
       const Plane& plane = b.planes[f];
       const double gap = plane.normal.dot(p) - plane.offset;
-      if (gap < -range || (is_outside && gap <= tolerance)) continue;
+      if (gap < -range.depth || (is_outside && gap <= tolerance)) continue;
       const Vec3 foot = p - gap * plane.normal;
-      if (!insideFace(b.shape, b.shape.faces[f], plane.normal, foot, tolerance)) continue;
+      if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot, tolerance)) continue;
       bool cone_ok = true;  // i's body near the vertex stays on the outer side of f
-      for (int w : a.topology.neighbours[v]) {
-        const Vec3 edge = a.shape.vertices[static_cast<std::size_t>(w)] - p;
+      for (int w : a.topology->neighbours[v]) {
+        const Vec3 edge = a.shape->vertices[static_cast<std::size_t>(w)] - p;
         if (plane.normal.dot(edge) < -kConeSlack * edge.norm()) cone_ok = false;
       }
       if (!cone_ok) continue;
@@ -151,27 +194,26 @@ void vertexToFace(const PieceView& a, const PieceView& b, double range, double t
     c.normal = plane.normal;
     c.gap0 = plane.normal.dot(p) - plane.offset;
     c.foot = p - c.gap0 * plane.normal;
-    c.area = tributaryArea(a.shape, a.topology, a.planes, static_cast<int>(v), plane.normal);
+    c.area = tributaryArea(*a.shape, *a.topology, a.planes, static_cast<int>(v), plane.normal);
     out.push_back(c);
   }
 }
 
 /// Crossing edges of `a` and `b`.
-void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tolerance,
+void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                 std::vector<Contact>& out) {
-  const Box reach_b = b.box.enlarged(range);
-  for (std::size_t ea = 0; ea < a.topology.edges.size(); ++ea) {
-    const Vec3& a0 = a.shape.vertices[static_cast<std::size_t>(a.topology.edges[ea][0])];
-    const Vec3& a1 = a.shape.vertices[static_cast<std::size_t>(a.topology.edges[ea][1])];
-    const Box edge_box{a0.cwiseMin(a1), a0.cwiseMax(a1)};
-    if ((edge_box.min.array() > reach_b.max.array()).any() ||
-        (edge_box.max.array() < reach_b.min.array()).any()) {
-      continue;
-    }
+  const Box reach_b = b.box.enlarged(range.larger());
+  for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
+    const Vec3& a0 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][0])];
+    const Vec3& a1 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][1])];
+    const Box edge_box = segmentBox(a0, a1);
+    if (!overlaps(edge_box, reach_b)) continue;
+    const Box edge_reach = edge_box.enlarged(range.larger());
     const Vec3 u = a1 - a0;
-    for (std::size_t eb = 0; eb < b.topology.edges.size(); ++eb) {
-      const Vec3& b0 = b.shape.vertices[static_cast<std::size_t>(b.topology.edges[eb][0])];
-      const Vec3& b1 = b.shape.vertices[static_cast<std::size_t>(b.topology.edges[eb][1])];
+    for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
+      const Vec3& b0 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])];
+      const Vec3& b1 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])];
+      if (!overlaps(segmentBox(b0, b1), edge_reach)) continue;
       const Vec3 w = b1 - b0;
       const Vec3 cross = u.cross(w);
       const double cross_norm = cross.norm();
@@ -187,30 +229,17 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
       }
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
-      if ((pc - qc).norm() > range) continue;
+      if ((pc - qc).norm() > range.larger()) continue;
       // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
       // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
       // edges penetrate.
       Vec3 n = cross / cross_norm;
-      double low = std::numeric_limits<double>::infinity();
-      double high = -low;
-      for (const Vec3& v : b.shape.vertices) {
-        const double h = n.dot(v - qc);
-        low = std::min(low, h);
-        high = std::max(high, h);
-      }
+      const auto [low, high] = heightRange(b.shape->vertices, n, qc);
       if (high > tolerance) {
         if (low < -tolerance) continue;
         n = -n;
       }
-      bool supports_a = true;
-      for (const Vec3& v : a.shape.vertices) {
-        if (n.dot(v - pc) < -tolerance) {
-          supports_a = false;
-          break;
-        }
-      }
-      if (!supports_a) continue;
+      if (heightRange(a.shape->vertices, n, pc).first < -tolerance) continue;
       Contact c;
       c.kind = ContactKind::EdgeEdge;
       c.block_i = a.block;
@@ -223,7 +252,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
       c.normal = n;
       c.gap0 = n.dot(pc - qc);
       c.foot = pc - c.gap0 * n;
-      if (c.gap0 < -range) continue;
+      if (c.gap0 < -range.depth || c.gap0 > range.gap) continue;
       out.push_back(c);
     }
   }
@@ -231,70 +260,76 @@ void edgeToEdge(const PieceView& a, const PieceView& b, double range, double tol
 
 }  // namespace
 
-std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks, double range) {
-  struct Entry {
-    Box box;
-    int block, piece;
-  };
-  std::vector<Entry> entries;
-  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 high = -low;
-  for (std::size_t b = 0; b < blocks.size(); ++b) {
-    for (std::size_t p = 0; p < blocks[b].pieces.size(); ++p) {
-      const Box box = geometry::bounds(blocks[b].pieces[p]).enlarged(0.5 * range);
-      entries.push_back({box, static_cast<int>(b), static_cast<int>(p)});
-      low = low.cwiseMin(box.center());
-      high = high.cwiseMax(box.center());
+double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
+  // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
+  const Vec3 at_centroid = displacementMatrix(block.centroid, block.centroid) * d;
+  Eigen::Matrix3d jacobian;
+  for (int k = 0; k < 3; ++k) {
+    jacobian.col(k) =
+        displacementMatrix(block.centroid + Vec3::Unit(k), block.centroid) * d - at_centroid;
+  }
+  double largest = 0.0;
+  for (const Polyhedron& piece : block.pieces) {
+    for (const Vec3& v : piece.vertices) {
+      largest = std::max(largest, (at_centroid + jacobian * (v - block.centroid)).squaredNorm());
     }
   }
-  int axis = 0;
-  (high - low).maxCoeff(&axis);
-  std::sort(entries.begin(), entries.end(), [axis](const Entry& x, const Entry& y) {
-    if (x.box.min[axis] != y.box.min[axis]) return x.box.min[axis] < y.box.min[axis];
-    return std::tie(x.block, x.piece) < std::tie(y.block, y.piece);
-  });
-  std::vector<PiecePair> pairs;
-  std::vector<std::size_t> active;
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    const Entry& e = entries[k];
-    std::size_t kept = 0;
-    for (std::size_t a : active) {
-      const Entry& o = entries[a];
-      if (o.box.max[axis] < e.box.min[axis]) continue;  // left the sweep for good
-      active[kept++] = a;
-      if (o.block == e.block) continue;
-      if (blocks[static_cast<std::size_t>(o.block)].fixed &&
-          blocks[static_cast<std::size_t>(e.block)].fixed) {
-        continue;
-      }
-      if ((o.box.min.array() > e.box.max.array()).any() ||
-          (o.box.max.array() < e.box.min.array()).any()) {
-        continue;
-      }
-      PiecePair pair{o.block, o.piece, e.block, e.piece};
-      if (std::tie(pair.block_b, pair.piece_b) < std::tie(pair.block_a, pair.piece_a)) {
-        pair = {e.block, e.piece, o.block, o.piece};
-      }
-      pairs.push_back(pair);
-    }
-    active.resize(kept);
-    active.push_back(k);
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const PiecePair& x, const PiecePair& y) {
-    return std::tie(x.block_a, x.piece_a, x.block_b, x.piece_b) <
-           std::tie(y.block_a, y.piece_a, y.block_b, y.piece_b);
-  });
-  return pairs;
+  return std::sqrt(largest);
 }
 
-void narrowPhase(const std::vector<BlockState>& blocks, const PiecePair& pair, double range,
-                 const PreviousFace& previous_face, std::vector<Contact>& out) {
-  const PieceView a = view(blocks, pair.block_a, pair.piece_a);
-  const PieceView b = view(blocks, pair.block_b, pair.piece_b);
-  const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
-  vertexToFace(a, b, range, tolerance, previous_face, out);
-  vertexToFace(b, a, range, tolerance, previous_face, out);
-  edgeToEdge(a, b, range, tolerance, out);
+double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits) {
+  if (block.fixed) return 0.0;
+  const double by_velocity =
+      largestVertexDisplacement(block, block.velocity) * dt + 0.5 * limits.acceleration * dt * dt;
+  const double by_last_step = largestVertexDisplacement(block, block.last_displacement) *
+                              (last_dt > 0.0 ? dt / last_dt : 1.0);
+  return std::min(limits.cap, std::max(limits.floor, 2.0 * std::max(by_velocity, by_last_step)));
+}
+
+std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
+                                  const std::vector<double>& reach) {
+  std::vector<PieceBox> boxes;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    for (std::size_t p = 0; p < blocks[b].pieces.size(); ++p) {
+      boxes.push_back({geometry::bounds(blocks[b].pieces[p]).enlarged(reach[b]),
+                       static_cast<int>(b), static_cast<int>(p), blocks[b].fixed});
+    }
+  }
+  return overlappingPieces(boxes);
+}
+
+std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
+                                  const std::vector<double>& reach, double depth,
+                                  const PreviousFace& previous_face) {
+  const std::vector<PiecePair> pairs = broadPhase(blocks, reach);
+  // Per-piece data, built once for the pieces that take part in some pair.
+  std::vector<std::size_t> first_piece(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    first_piece[b + 1] = first_piece[b] + blocks[b].pieces.size();
+  std::vector<PieceView> views(first_piece.back());
+  const auto viewOf = [&](int block, int piece) -> const PieceView& {
+    PieceView& v =
+        views[first_piece[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece)];
+    if (v.shape == nullptr) v = view(blocks, block, piece);
+    return v;
+  };
+  std::vector<Contact> out;
+  for (const PiecePair& pair : pairs) {
+    const PieceView& a = viewOf(pair.block_a, pair.piece_a);
+    const PieceView& b = viewOf(pair.block_b, pair.piece_b);
+    const double gap = reach[static_cast<std::size_t>(pair.block_a)] +
+                       reach[static_cast<std::size_t>(pair.block_b)];
+    const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
+    // Farther apart than the range: nothing below can be recorded (a vertex's foot may sit a
+    // round-off margin outside its face, which the doubled range covers).
+    const double apart = 2.0 * gap + tolerance;
+    if (separatedBeyond(a, b, apart) || separatedBeyond(b, a, apart)) continue;
+    const Range range{gap, depth};
+    vertexToFace(a, b, range, tolerance, previous_face, out);
+    vertexToFace(b, a, range, tolerance, previous_face, out);
+    edgeToEdge(a, b, range, tolerance, out);
+  }
+  return out;
 }
 
 }  // namespace rockmass::dda3d

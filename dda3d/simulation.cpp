@@ -75,6 +75,24 @@ VoigtVector rotateVoigt(const VoigtVector& v, const Eigen::Matrix3d& r, double s
   return tensorToVoigt(r * voigtToTensor(v, shear_scale) * r.transpose(), shear_scale);
 }
 
+/// A step is accepted while no vertex moved farther than this many g2 l0 (step control).
+constexpr double kAcceptedDisplacementRatio = 1.5;
+/// Reach of a block at rest, in g2 l0: room for the step that starts it moving.
+constexpr double kRestingReachRatio = 0.1;
+
+/// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
+double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
+                  const Eigen::VectorXd& solution, const std::vector<double>& reach) {
+  double largest = 0.0;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    if (blocks[b].fixed) continue;
+    const double moved =
+        largestVertexDisplacement(blocks[b], system.unknowns(solution, blocks[b].dof_offset));
+    largest = std::max(largest, moved / reach[b]);
+  }
+  return largest;
+}
+
 void checkBlockIndex(const DdaModel& model, int block, const std::string& what) {
   if (block < 0 || block >= static_cast<int>(model.blocks.size())) {
     throw std::invalid_argument(what + " refers to block " + std::to_string(block) +
@@ -319,11 +337,18 @@ void Simulation::detectContacts() {
     const auto found = previous.find(ContactKey{0, bi, pi, v, bj, pj, -1});
     return found == previous.end() ? -1 : contacts_[static_cast<std::size_t>(found->second)].face;
   };
-  const double range = 3.0 * settings_.max_displacement_ratio * half_domain_;
-  std::vector<Contact> detected;
-  for (const PiecePair& pair : broadPhase(blocks_, range)) {
-    narrowPhase(blocks_, pair, range, previous_face, detected);
-  }
+  // Each block's reach: how far its vertices may move in this step, from its motion and
+  // the step control's limit 1.5 g2 l0; step() redoes a step that moves a block farther, so
+  // a gap wider than the two blocks' reaches cannot close within it.
+  const double g2_l0 = settings_.max_displacement_ratio * half_domain_;
+  const ReachLimits limits{kRestingReachRatio * g2_l0, kAcceptedDisplacementRatio * g2_l0,
+                           model_.gravity.norm()};
+  reach_.resize(blocks_.size());
+  for (std::size_t b = 0; b < blocks_.size(); ++b)
+    reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
+  // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
+  std::vector<Contact> detected =
+      findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face);
   std::vector<std::pair<int, int>> pairs;
   for (Contact& c : detected) {
     const auto found = previous.find(keyOf(c));
@@ -744,9 +769,14 @@ StepReport Simulation::step() {
     start = Clock::now();
     report.displacement_ratio = maxDisplacementRatio(solution);
     report.max_penetration = maxPenetration();
+    const double reach_ratio = reachRatio(blocks_, *system_, solution, reach_);
     timings_.update_states += secondsSince(start);
-    if (report.displacement_ratio > 1.5 && !last_chance && dt * 0.5 >= settings_.min_time_step) {
-      dt *= std::max(0.1, 0.9 / report.displacement_ratio);
+    const bool too_far =
+        report.displacement_ratio > kAcceptedDisplacementRatio || reach_ratio > 1.0;
+    if (too_far && !last_chance && dt * 0.5 >= settings_.min_time_step) {
+      const double over_limit =
+          report.displacement_ratio > kAcceptedDisplacementRatio ? report.displacement_ratio : 0.0;
+      dt *= std::max(0.1, 0.9 / std::max(over_limit, reach_ratio));
       ++report.redo_displacement;
       continue;
     }
@@ -756,7 +786,7 @@ StepReport Simulation::step() {
       ++report.redo_penetration;
       continue;
     }
-    report.forced = !settled || report.displacement_ratio > 1.5 || report.max_penetration > allowed;
+    report.forced = !settled || too_far || report.max_penetration > allowed;
     break;
   }
   start = Clock::now();

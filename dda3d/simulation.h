@@ -204,6 +204,9 @@ class Simulation {
   const std::vector<BlockState>& blocks() const { return blocks_; }
   /// Displacement of block b's centroid since time 0 (m).
   geometry::Vec3 centroidDisplacement(int b) const;
+  /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
+  /// the contact search distance of a pair is the sum of its two blocks' reaches (stepReach).
+  const std::vector<double>& contactReach() const { return reach_; }
   /// Contacts of the last accepted step, with states.
   const std::vector<Contact>& contacts() const { return contacts_; }
   ContactCounts contactCounts() const;
@@ -274,6 +277,7 @@ class Simulation {
   std::vector<MaterialPoint> monitor_points_, load_points_, fixed_points_;
   std::vector<MaterialPoint> bolt_a_, bolt_b_;
   std::vector<Contact> contacts_;
+  std::vector<double> reach_;  // per block, m (contactReach())
   std::unique_ptr<BlockSystem> system_;
   std::unique_ptr<LinearSolver> solver_;
   std::vector<BlockMatrix> base_k_;  // block terms per movable block

@@ -1,0 +1,209 @@
+// Contact detection: the broad phase against an all-pairs reference, and the search
+// distance (each block's step reach) against the displacement of the step.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+#include "dda3d/broad_phase.h"
+#include "dda3d/contact_detection.h"
+#include "dda3d/simulation.h"
+#include "dda_scenes.h"
+#include "geometry/random.h"
+
+namespace rockmass::dda3d {
+namespace {
+
+using geometry::Box;
+using geometry::Vec3;
+
+/// The definition the broad phase must meet, by brute force: closed boxes sharing a point,
+/// of different blocks, not both fixed; sorted.
+std::vector<PiecePair> allPairs(const std::vector<PieceBox>& boxes) {
+  std::vector<PiecePair> pairs;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+      const PieceBox& x = boxes[i];
+      const PieceBox& y = boxes[j];
+      if (x.block == y.block || (x.fixed && y.fixed)) continue;
+      if ((x.box.min.array() > y.box.max.array()).any() ||
+          (y.box.min.array() > x.box.max.array()).any()) {
+        continue;
+      }
+      PiecePair p{x.block, x.piece, y.block, y.piece};
+      if (std::tie(p.block_b, p.piece_b) < std::tie(p.block_a, p.piece_a)) {
+        p = {y.block, y.piece, x.block, x.piece};
+      }
+      pairs.push_back(p);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PiecePair& x, const PiecePair& y) {
+    return std::tie(x.block_a, x.piece_a, x.block_b, x.piece_b) <
+           std::tie(y.block_a, y.piece_a, y.block_b, y.piece_b);
+  });
+  return pairs;
+}
+
+/// `count` boxes with corners on a 0.25 m grid in a 6 m cube (exactly representable, so
+/// many boxes touch exactly: max of one == min of another), 1-3 pieces per block, every
+/// fifth block fixed. A quarter of the boxes are flat (zero extent along one axis) and one
+/// in twenty is a point.
+std::vector<PieceBox> randomBoxes(std::uint64_t seed, int count) {
+  geometry::Rng rng = geometry::makeRng(seed, 0);
+  const auto grid = [&rng](int cells) { return 0.25 * static_cast<double>(rng() % cells); };
+  std::vector<PieceBox> boxes;
+  int block = 0, piece = 0;
+  for (int k = 0; k < count; ++k) {
+    PieceBox b;
+    for (int axis = 0; axis < 3; ++axis) {
+      b.box.min[axis] = grid(24);
+      b.box.max[axis] = b.box.min[axis] + grid(5);  // 0 to 1 m
+    }
+    const unsigned kind = rng() % 20;
+    if (kind < 5) b.box.max[kind % 3] = b.box.min[kind % 3];  // flat
+    if (kind == 5) b.box.max = b.box.min;                     // a point
+    b.block = block;
+    b.piece = piece;
+    b.fixed = block % 5 == 0;
+    boxes.push_back(b);
+    if (rng() % 3 == 0) {
+      ++piece;  // the next box is another piece of the same block
+    } else {
+      ++block;
+      piece = 0;
+    }
+  }
+  return boxes;
+}
+
+TEST(BroadPhase, FindsExactlyTheAllPairsReferenceOnRandomBoxes) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const std::vector<PieceBox> boxes = randomBoxes(seed, 400);
+    const std::vector<PiecePair> reference = allPairs(boxes);
+    // The grid makes touching and degenerate overlaps frequent; check the sample has them,
+    // so that the comparison below covers them.
+    int touching = 0;
+    for (const PiecePair& p : reference) {
+      const auto boxOf = [&boxes](int block, int piece) {
+        for (const PieceBox& b : boxes) {
+          if (b.block == block && b.piece == piece) return b.box;
+        }
+        return Box{};
+      };
+      const Box x = boxOf(p.block_a, p.piece_a), y = boxOf(p.block_b, p.piece_b);
+      touching += ((x.max.array() == y.min.array()) || (y.max.array() == x.min.array())).any();
+    }
+    ASSERT_GT(touching, 20) << "seed " << seed;
+    ASSERT_GT(reference.size(), 200u) << "seed " << seed;
+    EXPECT_EQ(overlappingPieces(boxes), reference) << "seed " << seed;
+    // The order of the input does not change the (sorted) result.
+    std::vector<PieceBox> reversed(boxes.rbegin(), boxes.rend());
+    EXPECT_EQ(overlappingPieces(reversed), reference) << "seed " << seed;
+  }
+}
+
+TEST(BroadPhase, EdgeCasesOfTheInput) {
+  EXPECT_TRUE(overlappingPieces({}).empty());
+  // Two fixed blocks overlapping, and two pieces of one block: never pairs.
+  const Box unit{Vec3::Zero(), Vec3::Ones()};
+  EXPECT_TRUE(overlappingPieces({{unit, 0, 0, true}, {unit, 1, 0, true}}).empty());
+  EXPECT_TRUE(overlappingPieces({{unit, 3, 0, false}, {unit, 3, 1, false}}).empty());
+  // A point on a corner of a box touches it; a point just off does not.
+  const Box corner{Vec3::Ones(), Vec3::Ones()};
+  const Box off{Vec3::Constant(1.0 + 1e-12), Vec3::Constant(1.0 + 1e-12)};
+  EXPECT_EQ(overlappingPieces({{unit, 0, 0, true}, {corner, 1, 0, false}}),
+            (std::vector<PiecePair>{{0, 0, 1, 0}}));
+  EXPECT_TRUE(overlappingPieces({{unit, 0, 0, true}, {off, 1, 0, false}}).empty());
+}
+
+/// Two unit cubes 0.25 m apart along x.
+std::vector<BlockState> twoCubes() {
+  std::vector<BlockState> blocks(2);
+  blocks[0].pieces.push_back(geometry::boxPolyhedron({Vec3::Zero(), Vec3::Ones()}));
+  blocks[1].pieces.push_back(geometry::boxPolyhedron({Vec3(1.25, 0.0, 0.0), Vec3(2.25, 1.0, 1.0)}));
+  for (BlockState& b : blocks) {
+    b.topology.push_back(pieceTopology(b.pieces[0]));
+    b.updateMassProperties();
+  }
+  return blocks;
+}
+
+TEST(BroadPhase, GrowsEachPieceByItsBlocksReach) {
+  const std::vector<BlockState> blocks = twoCubes();
+  // Reaches summing exactly to the gap (binary fractions): the grown boxes touch.
+  EXPECT_EQ(broadPhase(blocks, {0.125, 0.125}).size(), 1u);
+  EXPECT_EQ(broadPhase(blocks, {0.0, 0.25}).size(), 1u);
+  EXPECT_TRUE(broadPhase(blocks, {0.125, 0.0625}).empty());
+}
+
+TEST(SearchDistance, IsTwiceThePredictedStepDisplacementWithinItsLimits) {
+  std::vector<BlockState> blocks = twoCubes();
+  BlockState& b = blocks[0];
+  const ReachLimits limits{1e-4, 0.05};
+  const double dt = 1e-3;
+  EXPECT_EQ(stepReach(b, dt, dt, limits), limits.floor);  // at rest
+  // Translation at 2 m/s: every vertex moves 2 mm in dt; reach = 2 x 2 mm.
+  b.velocity.head<3>() = Vec3(2.0, 0.0, 0.0);
+  EXPECT_NEAR(stepReach(b, dt, dt, limits), 4e-3, 1e-15);
+  // Spin at 3 rad/s about z through the centroid: the corners (sqrt(0.5) m off the axis)
+  // move fastest, 3 sqrt(0.5) m/s.
+  b.velocity.setZero();
+  b.velocity[5] = 3.0;
+  EXPECT_NEAR(stepReach(b, dt, dt, limits), 2.0 * 3.0 * std::sqrt(0.5) * dt, 1e-15);
+  // The last step's displacement, scaled to this dt (half the last one): 3 mm -> 1.5 mm.
+  b.velocity.setZero();
+  b.last_displacement.head<3>() = Vec3(0.0, 0.0, -3e-3);
+  EXPECT_NEAR(stepReach(b, 0.5 * dt, dt, limits), 2.0 * 1.5e-3, 1e-15);
+  // Free flight under gravity from rest: 1/2 g dt^2 = 4.905 um, reach twice that.
+  b.last_displacement.setZero();
+  const ReachLimits falling{1e-6, 0.05, 9.81};
+  EXPECT_NEAR(stepReach(b, dt, dt, falling), 9.81 * dt * dt, 1e-18);
+  // Never above the step control's own limit; a fixed block does not move.
+  b.velocity.head<3>() = Vec3(100.0, 0.0, 0.0);
+  EXPECT_EQ(stepReach(b, dt, dt, limits), limits.cap);
+  blocks[1].fixed = true;
+  EXPECT_EQ(stepReach(blocks[1], dt, dt, limits), 0.0);
+}
+
+// A cube at rest 3 mm above a fixed slab is pushed down by a point load that would move
+// it 5-10 mm in the first 10 ms step: within the step control's 1.5 g2 l0 = 22.5 mm, but
+// beyond its resting reach 0.1 g2 l0 = 1.5 mm, so the slab is not a contact candidate for
+// that step. The step must be redone with a smaller dt rather than let the cube pass into
+// the slab unseen; after every step the cube moved no farther than its reach.
+TEST(SearchDistance, AStepThatWouldOutrunTheReachIsRedone) {
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-1, -1, -1}, {2, 2, 0}, 0, true));
+  model.blocks.push_back(scenes::boxBlock({0, 0, 3e-3}, {1, 1, 1.003}, 0, false));
+  // d = F dt^2 / (2 m) = 5 mm for m = 2600 kg (a dt^2 / 2 ... a dt^2 by scheme).
+  model.point_loads.push_back({1, Vec3(0.5, 0.5, 0.5), Vec3(0.0, 0.0, -2.6e5)});
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 1e-2;
+  Simulation sim(model, settings);
+  ASSERT_NEAR(sim.halfDomainSize(), 1.5, 1e-12);
+  const double resting_reach = 0.1 * settings.max_displacement_ratio * sim.halfDomainSize();
+  const StepReport first = sim.step();
+  EXPECT_NEAR(sim.contactReach()[1], resting_reach, 1e-15);
+  EXPECT_GE(first.redo_displacement, 1) << "the 5 mm step must not be accepted";
+  const double allowed = settings.allowed_penetration_ratio * sim.halfDomainSize();
+  for (int k = 0; k < 40; ++k) {
+    const StepReport r = k == 0 ? first : sim.step();
+    const BlockState& cube = sim.blocks()[1];
+    EXPECT_LE(largestVertexDisplacement(cube, cube.last_displacement),
+              sim.contactReach()[1] * (1.0 + 1e-12))
+        << "step " << k;
+    double lowest = 1.0;
+    for (const Vec3& v : cube.pieces[0].vertices) lowest = std::min(lowest, v.z());
+    // Geometric penetration into the slab top (z = 0), whether or not a contact saw it.
+    ASSERT_LE(-lowest, allowed) << "step " << k;
+    ASSERT_FALSE(r.forced) << "step " << k;
+  }
+  // The load is resisted by the slab: the cube ends in contact.
+  EXPECT_GT(sim.contactCounts().total - sim.contactCounts().open, 0);
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
