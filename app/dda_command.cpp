@@ -41,6 +41,8 @@ dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOptions& opti
   settings.time_step = dda.time_step;
   settings.max_displacement_ratio = dda.max_displacement_ratio;
   settings.penalty = dda.penalty.value_or(0.0);
+  settings.integration = dda.bossak ? dda3d::TimeIntegration::Bossak : dda3d::TimeIntegration::Shi;
+  settings.spectral_radius = dda.spectral_radius;
   settings.solver.kind = options.solver == "pcg"       ? dda3d::SolverKind::Pcg
                          : options.solver == "eigen"   ? dda3d::SolverKind::Eigen
                          : options.solver == "cholmod" ? dda3d::SolverKind::Cholmod
@@ -222,6 +224,9 @@ int runDda(const DdaOptions& options) {
   summary.dynamic = dda.dynamic;
   summary.deformable = dda.deformable;
   summary.solver = sim.solverName();
+  const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
+  summary.time_integration = bossak ? "bossak" : "shi";
+  summary.spectral_radius = sim.settings().spectral_radius;
   summary.steps_requested = dda.steps;
   summary.time_step = dda.time_step;
   summary.duration = sim.time();
