@@ -217,6 +217,9 @@ int runDda(const DdaOptions& options) {
   summary.dynamic = dda.dynamic;
   summary.deformable = dda.deformable;
   summary.solver = sim.solverName();
+  const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
+  summary.time_integration = bossak ? "bossak" : "shi";
+  summary.spectral_radius = sim.settings().spectral_radius;
   summary.steps_requested = dda.steps;
   summary.time_step = dda.time_step;
   summary.duration = sim.time();

@@ -48,6 +48,9 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;
+  j["time_integration"] = {{"scheme", dda.time_integration}};
+  if (dda.time_integration == "bossak")
+    j["time_integration"]["spectral_radius"] = dda.spectral_radius;
   j["steps_requested"] = dda.steps_requested;
   j["steps_taken"] = dda.steps.size();
   j["time_step"] = dda.time_step;

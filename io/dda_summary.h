@@ -39,23 +39,27 @@ struct DdaMonitorResult {
 
 /// What the dda stage reports.
 struct DdaRunSummary {
-  int blocks = 0;           ///< block count
-  int fixed_blocks = 0;     ///< blocks held by supports.fixed
-  int pieces = 0;           ///< convex pieces
-  int unknowns = 0;         ///< 6 or 12 per block
-  bool dynamic = true;      ///< dynamic | static
-  bool deformable = true;   ///< deformable | rigid
-  std::string solver;       ///< backend name, e.g. "cholmod"
-  int steps_requested = 0;  ///< analysis.dda.steps
-  double time_step = 0.0;   ///< largest allowed Δt (s)
-  double duration = 0.0;    ///< simulated time reached (s)
-  double penalty = 0.0;     ///< contact normal penalty at the end (N/m)
+  int blocks = 0;          ///< block count
+  int fixed_blocks = 0;    ///< blocks held by supports.fixed
+  int pieces = 0;          ///< convex pieces
+  int unknowns = 0;        ///< 6 or 12 per block
+  bool dynamic = true;     ///< dynamic | static
+  bool deformable = true;  ///< deformable | rigid
+  std::string solver;      ///< backend name, e.g. "cholmod"
+  /// Time integration scheme: "bossak" (with spectral_radius) or "shi".
+  std::string time_integration = "bossak";
+  double spectral_radius = 0.0;  ///< Bossak's rho_inf in [0, 1] (unused for "shi")
+  int steps_requested = 0;       ///< analysis.dda.steps
+  double time_step = 0.0;        ///< largest allowed Δt (s)
+  double duration = 0.0;         ///< simulated time reached (s)
+  double penalty = 0.0;          ///< contact normal penalty at the end (N/m)
   std::vector<DdaMonitorResult> monitors;
   std::vector<DdaStepRecord> steps;
 };
 
 /// summary.json of a dda run: keys command, ..., effects, blocks, fixed_blocks, pieces,
-/// unknowns, mode, kinematics, solver, steps_requested, steps_taken, time_step, duration,
+/// unknowns, mode, kinematics, solver, time_integration{scheme, spectral_radius (bossak
+/// only)}, steps_requested, steps_taken, time_step, duration,
 /// penalty, monitors[], steps{time, time_step, contacts, open, sliding, locked, iterations,
 /// retries, max_displacement, max_penetration} (one array entry per
 /// step), then timings (run.timings plus dda_phases: totals per phase, and dda_steps: per

@@ -809,8 +809,8 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c) {
-  const Cursor m =
-      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty"});
+  const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
+                          "penalty", "time_integration"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -826,6 +826,17 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
   if (const auto penalty = m.get("penalty"); penalty && !penalty->is("auto")) {
     if (!penalty->isNumber()) penalty->failExpected("'auto' or a number > 0");
     dda.penalty = penalty->number(kPositive);
+  }
+  if (const auto integration = m.get("time_integration")) {
+    const Cursor t = integration->map({"scheme", "spectral_radius"});
+    dda.bossak = t.valueOr("scheme", dda.bossak, [](const Cursor& v) {
+      return v.choice("scheme", {"bossak", "shi"}) == 0;
+    });
+    if (const auto radius = t.get("spectral_radius")) {
+      // Shi's scheme has no parameter: a spectral radius with it would be silently ignored.
+      if (!dda.bossak) radius->fail("only with scheme: bossak (Shi's scheme has no parameter)");
+      dda.spectral_radius = radius->number({.low = 0, .high = 1});
+    }
   }
   return dda;
 }

@@ -130,6 +130,12 @@ struct DdaAnalysis {
   double time_step = 0.002;               ///< s, the largest allowed
   double max_displacement_ratio = 0.001;  ///< of the domain size, per step
   std::optional<double> penalty;          ///< N/m; none means auto
+  /// time_integration.scheme: true for bossak (the Bossak alpha scheme, the default), false
+  /// for shi (Shi's Newmark beta = 1/2, gamma = 1; docs/dda3d.md, "Time integration").
+  bool bossak = true;
+  /// time_integration.spectral_radius: the Bossak scheme's high-frequency spectral radius
+  /// rho_inf in [0, 1] (0 damps the stiff contact modes within two steps, 1 keeps them).
+  double spectral_radius = 0.0;
 };
 
 /// analysis.overload

@@ -23,6 +23,8 @@ dda3d::DdaSettings ddaSettings(const DdaAnalysis& dda) {
   settings.time_step = dda.time_step;
   settings.max_displacement_ratio = dda.max_displacement_ratio;
   settings.penalty = dda.penalty.value_or(0.0);
+  settings.integration = dda.bossak ? dda3d::TimeIntegration::Bossak : dda3d::TimeIntegration::Shi;
+  settings.spectral_radius = dda.spectral_radius;
   settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
   return settings;
 }

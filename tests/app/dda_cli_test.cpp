@@ -236,6 +236,36 @@ TEST_F(DdaCli, FramesDebugDumpAndTheSameBytesTwice) {
   EXPECT_EQ(a.dump(), b.dump());
 }
 
+TEST_F(DdaCli, TimeIntegrationFromTheScene) {
+  std::string shi = kScene;
+  shi.insert(shi.find("    penalty: 1.0e8\n"), "    time_integration: {scheme: shi}\n");
+  const fs::path shi_scene = test::writeFile(dir.path() / "shi.yaml", shi);
+  std::string output;
+  ASSERT_EQ(test::runRockmass("dda " + shi_scene.string() + " -o " + (dir.path() / "s").string(),
+                              &output),
+            0)
+      << output;
+  const nlohmann::json summary =
+      nlohmann::json::parse(test::readFile(dir.path() / "s" / "summary.json"));
+  // The engine ran Shi's scheme (the summary reads it back from the engine's settings).
+  EXPECT_EQ(summary["time_integration"], nlohmann::json({{"scheme", "shi"}}));
+  // A static analysis converges to the same equilibrium with either scheme (tolerance as in
+  // StackSettlesOnItsContactSprings).
+  const auto [top, middle] = stackSettlement(springsPerInterface(summary), /*top_load=*/0.0);
+  EXPECT_NEAR(-summary["monitors"][0]["uz"].get<double>(), top, 1e-3 * top);
+  EXPECT_NEAR(-summary["monitors"][1]["uz"].get<double>(), middle, 1e-3 * middle);
+
+  std::string bad = kScene;
+  bad.insert(bad.find("    penalty: 1.0e8\n"), "    time_integration: {spectral_radius: 2}\n");
+  const fs::path bad_scene = test::writeFile(dir.path() / "bad_rho.yaml", bad);
+  EXPECT_EQ(test::runRockmass("dda " + bad_scene.string() + " -o " + dir.path().string(), &output),
+            2);
+  EXPECT_NE(output.find("bad_rho.yaml:28:41: analysis.dda.time_integration.spectral_radius: "
+                        "expected a number in [0, 1], got 2"),
+            std::string::npos)
+      << output;
+}
+
 TEST_F(DdaCli, BadInputExitsWithTwo) {
   std::string output;
   std::string lost = kScene;

@@ -254,6 +254,13 @@ TEST(DdaSummary, StepStatisticsAndTimingsApart) {
   const nlohmann::json j = nlohmann::json::parse(formatDdaSummary(run, dda));
   EXPECT_EQ(j["blocks"], 3);
   EXPECT_EQ(j["steps_taken"], 2);
+  // The default scheme with its spectral radius; Shi's scheme has no parameter.
+  EXPECT_EQ(j["time_integration"],
+            nlohmann::json({{"scheme", "bossak"}, {"spectral_radius", 0.0}}));
+  DdaRunSummary shi = dda;
+  shi.time_integration = "shi";
+  EXPECT_EQ(nlohmann::json::parse(formatDdaSummary(run, shi))["time_integration"],
+            nlohmann::json({{"scheme", "shi"}}));
   EXPECT_EQ(j["steps"]["contacts"], nlohmann::json::array({8, 9}));
   EXPECT_EQ(j["steps"]["iterations"], nlohmann::json::array({3, 3}));
   EXPECT_EQ(j["monitors"][0]["u"], 0.004);

@@ -458,6 +458,49 @@ TEST(SceneDefaults, GravityVectorAndAutoPenalty) {
   EXPECT_FALSE(scene.analysis.dda->penalty.has_value());
   EXPECT_TRUE(scene.analysis.dda->dynamic);
   EXPECT_EQ(scene.analysis.dda->steps, 1000);
+  // Default time integration: Bossak with rho_inf = 0 (docs/dda3d.md, "Time integration").
+  EXPECT_TRUE(scene.analysis.dda->bossak);
+  EXPECT_EQ(scene.analysis.dda->spectral_radius, 0.0);
+}
+
+TEST(SceneDdaTimeIntegration, SchemeAndSpectralRadius) {
+  const auto dda = [](const std::string& integration) {
+    return *parseScene(
+                valid_head + "analysis:\n  dda:\n    time_integration: " + integration + "\n",
+                "ti.yaml")
+                .analysis.dda;
+  };
+  const DdaAnalysis bossak = dda("{scheme: bossak, spectral_radius: 0.5}");
+  EXPECT_TRUE(bossak.bossak);
+  EXPECT_EQ(bossak.spectral_radius, 0.5);
+  EXPECT_EQ(dda("{spectral_radius: 1}").spectral_radius, 1.0);  // bossak is the default scheme
+  const DdaAnalysis shi = dda("{scheme: shi}");
+  EXPECT_FALSE(shi.bossak);
+  EXPECT_EQ(shi.spectral_radius, 0.0);
+  EXPECT_TRUE(dda("{}").bossak);  // an empty map keeps the defaults
+}
+
+TEST(SceneDdaTimeIntegration, BadValuesNameTheKey) {
+  const auto error = [](const std::string& integration) {
+    return errorOf(valid_head + "analysis:\n  dda:\n    time_integration: " + integration + "\n");
+  };
+  EXPECT_EQ(error("{scheme: newmark}"),
+            "bad.yaml:5:32: analysis.dda.time_integration.scheme: unknown scheme 'newmark'; "
+            "expected one of: bossak, shi");
+  EXPECT_EQ(error("{spectral_radius: 1.5}"),
+            "bad.yaml:5:41: analysis.dda.time_integration.spectral_radius: expected a number in "
+            "[0, 1], got 1.5");
+  EXPECT_EQ(error("{spectral_radius: -0.1}"),
+            "bad.yaml:5:41: analysis.dda.time_integration.spectral_radius: expected a number in "
+            "[0, 1], got -0.1");
+  EXPECT_EQ(error("{scheme: shi, spectral_radius: 0.5}"),
+            "bad.yaml:5:54: analysis.dda.time_integration.spectral_radius: only with scheme: "
+            "bossak (Shi's scheme has no parameter)");
+  EXPECT_EQ(error("{rho_inf: 0.5}"),
+            "bad.yaml:5:24: analysis.dda.time_integration: unknown key 'rho_inf'; expected one "
+            "of: scheme, spectral_radius");
+  EXPECT_EQ(error("bossak"),
+            "bad.yaml:5:23: analysis.dda.time_integration: expected a map, got 'bossak'");
 }
 
 /// The example of scene-format.md with a few values changed to exercise every form.
