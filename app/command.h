@@ -52,5 +52,6 @@ Command addDfnCommand(CLI::App& app);
 Command addRqdCommand(CLI::App& app);
 Command addBlocksCommand(CLI::App& app);
 Command addDdaCommand(CLI::App& app);
+Command addRunCommand(CLI::App& app);
 
 }  // namespace rockmass::app

@@ -16,10 +16,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", rockmass::io::version());
   app.require_subcommand(1);
   const std::vector<rockmass::app::Command> commands = {
-      rockmass::app::addDfnCommand(app),
-      rockmass::app::addBlocksCommand(app),
-      rockmass::app::addRqdCommand(app),
-      rockmass::app::addDdaCommand(app),
+      rockmass::app::addDfnCommand(app), rockmass::app::addBlocksCommand(app),
+      rockmass::app::addRqdCommand(app), rockmass::app::addDdaCommand(app),
+      rockmass::app::addRunCommand(app),
   };
 
   try {
