@@ -7,6 +7,7 @@
 
 #include "app/command.h"
 #include "app/scene_blocks.h"
+#include "app/stages.h"
 #include "io/atomic_file.h"
 #include "io/block_mesh.h"
 #include "io/block_output.h"
@@ -15,9 +16,24 @@
 
 namespace rockmass::app {
 
-namespace {
-
 namespace fs = std::filesystem;
+
+io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter) {
+  io::CutInfo info;
+  info.cutter = cutter;
+  info.disc_segments = cut.input.disc_segments;
+  info.pieces = cut.pieces;
+  info.inconsistent_contacts = cut.inconsistent_contacts;
+  return info;
+}
+
+void writeBlocksFiles(const fs::path& out, const io::Scene& scene,
+                      const blocks::BlockModel& model) {
+  io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
+  io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
+}
+
+namespace {
 
 /// Options of `rockmass blocks` beyond the common ones.
 struct BlocksOptions {
@@ -30,24 +46,19 @@ int runBlocks(const BlocksOptions& options) {
   const io::Scene scene = loadScene(options.common, /*mesh_domain_supported=*/true);
   const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
   const fs::path out = prepareOutput(options.common.output);
+  const DfnStage dfn = runDfnStage(scene, options.common.scene);
 
   auto start = Clock::now();
-  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
-  const double dfn_seconds = secondsSince(start);
-
-  start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
-  const blocks::BlockModel& model = cut.model;
+  const SceneBlocks cut = cutSceneBlocks(scene, dfn.network, cutter, options.common.scene);
   const double cut_seconds = secondsSince(start);
-  std::fprintf(stderr, "blocks: %zu blocks (%d pieces), %s cutter (%.2f s)\n", model.blocks.size(),
-               cut.pieces, cutter.c_str(), cut_seconds);
+  std::fprintf(stderr, "blocks: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
+               cut.model.blocks.size(), cut.pieces, cutter.c_str(), cut_seconds);
 
   start = Clock::now();
-  io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
-  io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
+  writeBlocksFiles(out, scene, cut.model);
   if (const auto format = io::parseMeshFormat(options.mesh_format)) {
     io::writeFileAtomically(out / ("blocks." + io::meshExtension(*format)),
-                            io::formatBlockMesh(model, *format));
+                            io::formatBlockMesh(cut.model, *format));
   }
   io::RunInfo run;
   run.command = "blocks";
@@ -55,18 +66,14 @@ int runBlocks(const BlocksOptions& options) {
   run.name = scene.name;
   run.seed = scene.seed;
   run.stages = {"dfn", "cut"};
-  io::CutInfo info;
-  info.cutter = cutter;
-  info.disc_segments = cut.input.disc_segments;
-  info.pieces = cut.pieces;
-  info.inconsistent_contacts = cut.inconsistent_contacts;
-  run.timings = {{"dfn", dfn_seconds},
+  run.timings = {{"dfn", dfn.seconds},
                  {"cut", cut_seconds},
                  {"cut_split", cut.split_seconds},
                  {"cut_assemble", cut.assemble_seconds},
                  {"write", secondsSince(start)}};
   io::writeFileAtomically(out / "summary.json",
-                          io::formatBlocksSummary(run, network, model, info, scene.materials));
+                          io::formatBlocksSummary(run, dfn.network, cut.model,
+                                                  cutInfoOf(cut, cutter), scene.materials));
   std::fprintf(stderr, "blocks: wrote %s\n", out.string().c_str());
   return 0;
 }

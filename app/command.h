@@ -56,5 +56,6 @@ Command addBlocksCommand(CLI::App& app);
 Command addDdaCommand(CLI::App& app);
 Command addOverloadCommand(CLI::App& app);
 Command addStrengthCommand(CLI::App& app);
+Command addRunCommand(CLI::App& app);
 
 }  // namespace rockmass::app

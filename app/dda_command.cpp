@@ -10,6 +10,7 @@
 
 #include "app/command.h"
 #include "app/scene_blocks.h"
+#include "app/stages.h"
 #include "dda3d/simulation.h"
 #include "io/atomic_file.h"
 #include "io/dda_output.h"
@@ -20,22 +21,19 @@
 
 namespace rockmass::app {
 
-namespace {
-
 namespace fs = std::filesystem;
+
+namespace {
 
 /// Options of `rockmass dda` beyond the common ones.
 struct DdaOptions {
   CommonOptions common;
-  std::string cutter;             ///< "", "exact" or "fast" ("": the scene's choice)
-  std::string solver = "auto";    ///< auto | cholmod | eigen | pcg
-  double pcg_tolerance = 1e-10;   ///< relative residual of the pcg solver
-  int frame_every = 0;            ///< steps between VTU frames (0: about 50 frames per run)
-  std::optional<int> debug_step;  ///< dump K, F and the contacts of this step (1-based)
+  std::string cutter;      ///< "", "exact" or "fast" ("": the scene's choice)
+  DdaOverrides overrides;  ///< solver, frames, debug dump
 };
 
 /// Engine settings from analysis.dda and the command line.
-dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOptions& options) {
+dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOverrides& options) {
   dda3d::DdaSettings settings = io::ddaSettings(dda);
   settings.solver.kind = options.solver == "pcg"       ? dda3d::SolverKind::Pcg
                          : options.solver == "eigen"   ? dda3d::SolverKind::Eigen
@@ -132,53 +130,30 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
   return out;
 }
 
-int runDda(const DdaOptions& options) {
-  const io::Scene scene = loadScene(options.common);
-  if (!scene.analysis.dda) {
-    throw io::InputError(options.common.scene +
-                         ": analysis.dda: required by `rockmass dda` (steps, time_step, ...)");
-  }
+}  // namespace
+
+DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
+                     const DdaOverrides& options, const fs::path& out) {
   const io::DdaAnalysis& dda = *scene.analysis.dda;
-  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
-  const fs::path out = prepareOutput(options.common.output);
-  io::RunInfo run;
-  run.command = "dda";
-  run.scene = options.common.scene;
-  run.name = scene.name;
-  run.seed = scene.seed;
-  run.stages = {"dfn", "cut", "dda"};
-
-  auto start = Clock::now();
-  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
-  run.timings.emplace_back("dfn", secondsSince(start));
-
-  start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
-  const blocks::BlockModel& blocks = cut.model;
-  run.timings.emplace_back("cut", secondsSince(start));
-  std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)\n", blocks.blocks.size(),
-               cutter.c_str(), run.timings.back().second);
-
-  start = Clock::now();
+  const int steps = options.steps.value_or(dda.steps);
+  DdaStage stage;
   dda3d::DdaModel model = io::buildDdaModel(scene, blocks);
   int fixed_blocks = 0, pieces = 0;
   for (const dda3d::DdaBlock& b : model.blocks) {
     fixed_blocks += b.fixed;
     pieces += static_cast<int>(b.pieces.size());
   }
-  std::vector<std::string> monitor_names;
-  for (const dda3d::DdaMonitor& m : model.monitors) monitor_names.push_back(m.name);
+  for (const dda3d::DdaMonitor& m : model.monitors) stage.monitor_names.push_back(m.name);
   dda3d::Simulation sim(std::move(model), settingsOf(dda, options));
 
-  const int frame_every =
-      options.frame_every > 0 ? options.frame_every : std::max(1, dda.steps / 50);
+  const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   io::DdaFrameWriter frames(out, frame_every);
-  std::vector<io::MonitorSample> samples;
+  std::vector<io::MonitorSample>& samples = stage.samples;
   recordMonitors(sim, samples);
   frames.write(frameOf(sim, blocks, 0));
 
-  io::DdaRunSummary summary;
-  const double duration = dda.steps * dda.time_step;
+  io::DdaRunSummary& summary = stage.summary;
+  const double duration = steps * dda.time_step;
   // The last step may land a round-off short of the duration: no sliver step for it.
   const double end = duration * (1.0 - 1e-9);
   int step = 0;
@@ -205,11 +180,9 @@ int runDda(const DdaOptions& options) {
     }
   }
   frames.write(frameOf(sim, blocks, step));
-  run.timings.emplace_back("dda", secondsSince(start));
+  for (const io::PvdEntry& entry : frames.entries()) stage.frame_files.push_back(entry.file);
 
-  start = Clock::now();
-  io::writeFileAtomically(out / "history.csv", io::formatHistoryCsv(monitor_names, samples));
-  run.effects = sim.activeTerms().names();
+  stage.effects = sim.activeTerms().names();
   summary.blocks = static_cast<int>(blocks.blocks.size());
   summary.fixed_blocks = fixed_blocks;
   summary.pieces = pieces;
@@ -220,7 +193,7 @@ int runDda(const DdaOptions& options) {
   const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
   summary.time_integration = bossak ? "bossak" : "shi";
   summary.spectral_radius = sim.settings().spectral_radius;
-  summary.steps_requested = dda.steps;
+  summary.steps_requested = steps;
   summary.time_step = dda.time_step;
   summary.duration = sim.time();
   summary.penalty = sim.penalty();
@@ -230,10 +203,51 @@ int runDda(const DdaOptions& options) {
         {m.name, blocks.blocks[static_cast<std::size_t>(sim.model().monitors[k].block)].id,
          m.displacement});
   }
+  std::fprintf(stderr, "dda: %d steps to t = %.4g s\n", step, sim.time());
+  return stage;
+}
+
+void writeDdaFiles(const fs::path& out, const DdaStage& stage) {
+  io::writeFileAtomically(out / "history.csv",
+                          io::formatHistoryCsv(stage.monitor_names, stage.samples));
+}
+
+namespace {
+
+int runDda(const DdaOptions& options) {
+  const io::Scene scene = loadScene(options.common);
+  if (!scene.analysis.dda) {
+    throw io::InputError(options.common.scene +
+                         ": analysis.dda: required by `rockmass dda` (steps, time_step, ...)");
+  }
+  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+  const fs::path out = prepareOutput(options.common.output);
+  io::RunInfo run;
+  run.command = "dda";
+  run.scene = options.common.scene;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  run.stages = {"dfn", "cut", "dda"};
+
+  const DfnStage dfn = runDfnStage(scene, options.common.scene);
+  run.timings.emplace_back("dfn", dfn.seconds);
+
+  auto start = Clock::now();
+  const SceneBlocks cut = cutSceneBlocks(scene, dfn.network, cutter, options.common.scene);
+  run.timings.emplace_back("cut", secondsSince(start));
+  std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)\n", cut.model.blocks.size(),
+               cutter.c_str(), run.timings.back().second);
+
+  start = Clock::now();
+  const DdaStage stage = runDdaStage(scene, cut.model, options.overrides, out);
+  run.timings.emplace_back("dda", secondsSince(start));
+
+  start = Clock::now();
+  writeDdaFiles(out, stage);
+  run.effects = stage.effects;
   run.timings.emplace_back("write", secondsSince(start));
-  io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, summary));
-  std::fprintf(stderr, "dda: %d steps to t = %.4g s; wrote %s\n", step, sim.time(),
-               out.string().c_str());
+  io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, stage.summary));
+  std::fprintf(stderr, "dda: wrote %s\n", out.string().c_str());
   return 0;
 }
 
@@ -245,17 +259,17 @@ Command addDdaCommand(CLI::App& app) {
       "dda", "Cut the scene into blocks and run the 3D DDA of its analysis.dda section");
   addCommonOptions(*cli, options->common);
   addCutterOption(*cli, options->cutter);
-  cli->add_option("--solver", options->solver,
+  cli->add_option("--solver", options->overrides.solver,
                   "Linear solver: auto (default: cholmod below 500 movable blocks, else pcg "
                   "warm-started), cholmod, eigen, pcg")
       ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));
-  cli->add_option("--pcg-tolerance", options->pcg_tolerance,
+  cli->add_option("--pcg-tolerance", options->overrides.pcg_tolerance,
                   "Relative residual of the pcg solver (default 1e-10)")
       ->check(CLI::PositiveNumber);
-  cli->add_option("--frame-every", options->frame_every,
+  cli->add_option("--frame-every", options->overrides.frame_every,
                   "Steps between VTU frames (default: steps / 50)")
       ->check(CLI::PositiveNumber);
-  cli->add_option("--debug-step", options->debug_step,
+  cli->add_option("--debug-step", options->overrides.debug_step,
                   "Dump K, F (Matrix Market) and the contacts (CSV) of step N: debug_step<N>_*")
       ->check(CLI::PositiveNumber);
   return {cli, [options] { return runDda(*options); }};

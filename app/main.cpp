@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       rockmass::app::addDdaCommand(app),
       rockmass::app::addOverloadCommand(app),
       rockmass::app::addStrengthCommand(app),
+      rockmass::app::addRunCommand(app),
   };
   // clang-format on
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "app/stages.h"
 #include "io/atomic_file.h"
 #include "io/borehole_file.h"
 #include "io/input_error.h"
@@ -25,21 +26,14 @@
 
 namespace rockmass::app {
 
-namespace {
-
 namespace fs = std::filesystem;
 
-/// Options of `rockmass rqd` beyond the common ones; each overrides the scene.
+namespace {
+
+/// Options of `rockmass rqd`: the common ones and the overrides of analysis.rqd.
 struct RqdOptions {
   CommonOptions common;
-  std::optional<int> directions;                  ///< directions of every ball
-  std::optional<std::vector<double>> thresholds;  ///< thresholds (m)
-  std::string form = "exact";                     ///< exact | triangulated
-  int segments = 24;                              ///< fan segments per disc (triangulated)
-  std::optional<double> radius;                   ///< surface radius of every ball (m)
-  std::optional<double> merge_distance;           ///< m
-  std::optional<double> grid_spacing;             ///< RQD/P32 volume cell size (m)
-  bool no_grid = false;                           ///< skip the volume even if the scene has one
+  RqdOverrides overrides;
 };
 
 /// Reports progress of a long evaluation on stderr, at most once a second.
@@ -58,8 +52,8 @@ class ProgressReporter {
 };
 
 /// The scene's analysis.rqd with the command-line overrides applied and checked.
-io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOptions& options) {
-  const std::string& file = options.common.scene;
+io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOverrides& options,
+                            const std::string& file) {
   if (!scene.analysis.rqd) {
     throw io::InputError(file +
                          ": analysis.rqd: missing; the rqd command needs it (balls, "
@@ -114,6 +108,13 @@ io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOptions& options) {
   if (rqd.balls.empty() && rqd.boreholes_file.empty() && !rqd.grid_spacing) {
     throw io::InputError(file +
                          ": analysis.rqd: nothing to compute; give balls, boreholes or a grid");
+  }
+  if (options.grid_directions) {
+    if (*options.grid_directions < 1) {
+      throw io::InputError("--grid-directions: expected an integer >= 1, got " +
+                           std::to_string(*options.grid_directions));
+    }
+    rqd.grid_direction_count = *options.grid_directions;
   }
   return rqd;
 }
@@ -185,14 +186,45 @@ std::vector<io::BallReport> evaluateBalls(const rqd::ScanlineScene& scene,
 }
 
 /// The holes and the measured log of the scene, read and checked (before any work is done).
-io::BoreholeReport readBoreholeFiles(const io::Scene& scene, const io::RqdAnalysis& settings) {
+/// With `hole_domain` (run --quick), the holes are read against that larger domain and then
+/// cut where they leave the scene's domain: a hole whose collar lies outside is dropped,
+/// and so are the measured intervals that reach beyond the cut.
+io::BoreholeReport readBoreholeFiles(const io::Scene& scene, const io::RqdAnalysis& settings,
+                                     const std::optional<geometry::Box>& hole_domain) {
   io::BoreholeReport report;
-  report.holes = io::readBoreholes(settings.boreholes_file, scene.dfn.domain);
+  report.holes = io::readBoreholes(settings.boreholes_file, hole_domain.value_or(scene.dfn.domain));
   if (!settings.measured_file.empty()) {
     report.measured = io::readMeasuredLog(settings.measured_file, report.holes);
     report.measured_file = settings.measured_file.filename().string();
     report.measured_threshold = settings.measured_threshold;
   }
+  if (!hole_domain) return report;
+  const geometry::Box& box = scene.dfn.domain;
+  std::vector<rqd::Borehole> kept;
+  std::vector<int> index(report.holes.size(), -1);
+  for (std::size_t h = 0; h < report.holes.size(); ++h) {
+    rqd::Borehole hole = report.holes[h];
+    if (!box.contains(hole.collar)) continue;
+    const geometry::Vec3 d = hole.direction();
+    double inside = hole.length;  // distance to the box's exit along the hole
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d[axis] > 0.0) inside = std::min(inside, (box.max[axis] - hole.collar[axis]) / d[axis]);
+      if (d[axis] < 0.0) inside = std::min(inside, (box.min[axis] - hole.collar[axis]) / d[axis]);
+    }
+    if (!(inside > settings.run_length)) continue;  // not even one full core run left
+    hole.length = inside;
+    index[h] = static_cast<int>(kept.size());
+    kept.push_back(hole);
+  }
+  std::vector<rqd::LoggedInterval> measured;
+  for (rqd::LoggedInterval entry : report.measured) {
+    const int h = index[static_cast<std::size_t>(entry.hole)];
+    if (h < 0 || entry.interval.to > kept[static_cast<std::size_t>(h)].length) continue;
+    entry.hole = h;
+    measured.push_back(entry);
+  }
+  report.holes = std::move(kept);
+  report.measured = std::move(measured);
   return report;
 }
 
@@ -253,66 +285,65 @@ io::CalibrationReport calibrate(const io::Scene& scene, const io::RqdAnalysis& s
   return report;
 }
 
-int runRqd(const RqdOptions& options) {
-  const io::Scene scene = loadScene(options.common);
-  const io::RqdAnalysis settings = rqdSettings(scene, options);
-  const rqd::DiscForm form =
-      options.form == "triangulated" ? rqd::DiscForm::Triangulated : rqd::DiscForm::ExactEllipse;
-  std::optional<io::BoreholeReport> boreholes;
-  if (!settings.boreholes_file.empty()) boreholes = readBoreholeFiles(scene, settings);
-  std::optional<rqd::VolumeSpec> grid;
-  if (settings.grid_spacing) {
-    grid = volumeSpec(scene, settings);
+}  // namespace
+
+RqdPlan planRqd(const io::Scene& scene, const RqdOverrides& overrides,
+                const std::string& scene_path) {
+  RqdPlan plan;
+  plan.settings = rqdSettings(scene, overrides, scene_path);
+  if (!plan.settings.boreholes_file.empty()) {
+    plan.boreholes = readBoreholeFiles(scene, plan.settings, overrides.hole_domain);
+  }
+  if (plan.settings.grid_spacing) {
+    plan.grid = volumeSpec(scene, plan.settings);
     try {  // before any work: a bad grid fails at once
-      rqd::validateVolumeSpec(*grid, scene.dfn.domain);
+      rqd::validateVolumeSpec(*plan.grid, scene.dfn.domain);
     } catch (const std::invalid_argument& error) {
-      throw gridError(options.common.scene, error);
+      throw gridError(scene_path, error);
     }
   }
-  const fs::path out = prepareOutput(options.common.output);
+  return plan;
+}
 
+RqdStage runRqdStage(const io::Scene& scene, const std::string& scene_path,
+                     const geometry::FractureNetwork& network, RqdPlan plan,
+                     const RqdOverrides& overrides) {
+  const io::RqdAnalysis& settings = plan.settings;
+  const rqd::DiscForm form =
+      overrides.form == "triangulated" ? rqd::DiscForm::Triangulated : rqd::DiscForm::ExactEllipse;
+  RqdStage stage;
   auto start = Clock::now();
-  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
-  const double dfn_seconds = secondsSince(start);
-  std::fprintf(stderr, "rqd: %zu discs (%.2f s)\n", network.discs.size(), dfn_seconds);
-
-  start = Clock::now();
-  io::RqdReport report;
+  io::RqdReport& report = stage.report;
   report.discs = network.discs.size();
-  report.form = options.form;
-  report.segments = options.segments;
+  report.form = overrides.form;
+  report.segments = overrides.segments;
   report.merge_distance = settings.merge_distance;
   report.thresholds = settings.thresholds;
-  const rqd::ScanlineScene ray_scene(network, form, options.segments);
+  const rqd::ScanlineScene ray_scene(network, form, overrides.segments);
   report.balls = evaluateBalls(ray_scene, scene, settings);
-  if (boreholes) {
-    evaluateBoreholes(ray_scene, settings, *boreholes);
-    report.boreholes = std::move(boreholes);
+  if (plan.boreholes) {
+    evaluateBoreholes(ray_scene, settings, *plan.boreholes);
+    report.boreholes = std::move(plan.boreholes);
   }
-  const double rqd_seconds = secondsSince(start);
-
-  io::RunInfo run;
-  run.command = "rqd";
-  run.scene = options.common.scene;
-  run.name = scene.name;
-  run.seed = scene.seed;
-  run.stages = {"dfn", "rqd"};
-  run.timings = {{"dfn", dfn_seconds}, {"rqd", rqd_seconds}};
+  stage.stages.push_back("rqd");
+  stage.timings.emplace_back("rqd", secondsSince(start));
   if (settings.calibration) {
     start = Clock::now();
     report.calibration =
-        calibrate(scene, settings, *report.boreholes, form, options.segments, options.common.scene);
-    run.stages.push_back("calibration");
-    run.timings.emplace_back("calibration", secondsSince(start));
+        calibrate(scene, settings, *report.boreholes, form, overrides.segments, scene_path);
+    stage.stages.push_back("calibration");
+    stage.timings.emplace_back("calibration", secondsSince(start));
   }
-  if (grid) {
+  if (plan.grid) {
     start = Clock::now();
-    report.grid = computeGrid(ray_scene, network, *grid, options.common.scene);
-    run.stages.push_back("grid");
-    run.timings.emplace_back("grid", secondsSince(start));
+    report.grid = computeGrid(ray_scene, network, *plan.grid, scene_path);
+    stage.stages.push_back("grid");
+    stage.timings.emplace_back("grid", secondsSince(start));
   }
+  return stage;
+}
 
-  start = Clock::now();
+void writeRqdFiles(const fs::path& out, const io::RqdReport& report) {
   if (!report.balls.empty()) {
     io::writeFileAtomically(out / "rqd_balls.csv", io::formatRqdBallsCsv(report.balls));
     std::map<int, std::vector<std::array<int, 3>>> triangles;  // per direction count
@@ -329,8 +360,36 @@ int runRqd(const RqdOptions& options) {
     io::writeFileAtomically(out / "boreholes.csv", io::formatBoreholesCsv(*report.boreholes));
   }
   if (report.grid) io::writeRqdVdb(out / "rqd.vdb", *report.grid);
+}
+
+namespace {
+
+int runRqd(const RqdOptions& options) {
+  const io::Scene scene = loadScene(options.common);
+  RqdPlan plan = planRqd(scene, options.overrides, options.common.scene);
+  const fs::path out = prepareOutput(options.common.output);
+
+  auto start = Clock::now();
+  const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
+  const double dfn_seconds = secondsSince(start);
+  std::fprintf(stderr, "rqd: %zu discs (%.2f s)\n", network.discs.size(), dfn_seconds);
+
+  RqdStage stage =
+      runRqdStage(scene, options.common.scene, network, std::move(plan), options.overrides);
+  io::RunInfo run;
+  run.command = "rqd";
+  run.scene = options.common.scene;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  run.stages = {"dfn"};
+  run.stages.insert(run.stages.end(), stage.stages.begin(), stage.stages.end());
+  run.timings = {{"dfn", dfn_seconds}};
+  run.timings.insert(run.timings.end(), stage.timings.begin(), stage.timings.end());
+
+  start = Clock::now();
+  writeRqdFiles(out, stage.report);
   run.timings.emplace_back("write", secondsSince(start));
-  io::writeFileAtomically(out / "summary.json", io::formatRqdSummary(run, report));
+  io::writeFileAtomically(out / "summary.json", io::formatRqdSummary(run, stage.report));
   std::fprintf(stderr, "rqd: wrote %s\n", out.string().c_str());
   return 0;
 }
@@ -343,24 +402,28 @@ Command addRqdCommand(CLI::App& app) {
       "rqd",
       "RQD balls, virtual boreholes, intensity calibration and RQD/P32 volume (analysis.rqd)");
   addCommonOptions(*cli, options->common);
-  cli->add_option("--directions", options->directions,
+  cli->add_option("--directions", options->overrides.directions,
                   "Directions of every RQD ball (overrides balls[].directions, >= 4)");
-  cli->add_option("--thresholds", options->thresholds,
+  cli->add_option("--thresholds", options->overrides.thresholds,
                   "RQD thresholds in m, increasing, comma-separated (overrides thresholds)")
       ->delimiter(',');
-  cli->add_option("--form", options->form, "Disc form for ray casting")
+  cli->add_option("--form", options->overrides.form, "Disc form for ray casting")
       ->check(CLI::IsMember({"exact", "triangulated"}));
-  cli->add_option("--segments", options->segments, "Fan segments per disc (triangulated form)")
+  cli->add_option("--segments", options->overrides.segments,
+                  "Fan segments per disc (triangulated form)")
       ->check(CLI::Range(3, 1024));
-  cli->add_option("--ball-radius", options->radius,
+  cli->add_option("--ball-radius", options->overrides.radius,
                   "Surface radius at RQD 100 of every ball, m (default: half its length)");
-  cli->add_option("--merge-distance", options->merge_distance,
+  cli->add_option("--merge-distance", options->overrides.merge_distance,
                   "Hits closer than this are one fracture, m (default 0.001)");
   CLI::Option* grid_spacing =
-      cli->add_option("--grid-spacing", options->grid_spacing,
+      cli->add_option("--grid-spacing", options->overrides.grid_spacing,
                       "Cell size of the RQD/P32 volume rqd.vdb, m (overrides grid.spacing; adds "
                       "a grid over the domain when the scene has none)");
-  cli->add_flag("--no-grid", options->no_grid,
+  cli->add_option("--grid-directions", options->overrides.grid_directions,
+                  "Scanline axes per cell of the RQD/P32 volume (overrides grid.direction_count)")
+      ->check(CLI::PositiveNumber);
+  cli->add_flag("--no-grid", options->overrides.no_grid,
                 "Skip the RQD/P32 volume even if the scene has analysis.rqd.grid")
       ->excludes(grid_spacing);
   return {cli, [options] { return runRqd(*options); }};

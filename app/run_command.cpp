@@ -1,0 +1,472 @@
+// rockmass run: every stage the scene's `analysis` section names, in order DFN -> blocks ->
+// RQD -> DDA -> overload / strength reduction, and nothing else; one summary.json for the
+// whole run, the vertical section through the block model, and the figures.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/command.h"
+#include "app/scene_blocks.h"
+#include "app/stages.h"
+#include "geometry/plane_section.h"
+#include "io/atomic_file.h"
+#include "io/block_output.h"
+#include "io/dda_summary.h"
+#include "io/input_error.h"
+#include "io/rqd_output.h"
+#include "io/run_summary.h"
+#include "io/section_output.h"
+#include "io/summary.h"
+
+namespace rockmass::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Options of `rockmass run` beyond the common ones.
+struct RunOptions {
+  CommonOptions common;
+  bool quick = false;           ///< the smaller test run (see quickScene)
+  std::string cutter;           ///< "", "exact" or "fast" ("": the scene's choice)
+  std::string section;          ///< "", "none" or AXIS=VALUE, e.g. y=10
+  std::string solver = "auto";  ///< DDA linear solver
+  bool no_figures = false;      ///< skip the matplotlib figures
+  std::string figure_scripts = ROCKMASS_FIGURE_SCRIPTS;  ///< folder of the figure scripts
+  std::string python = "/usr/bin/python3";               ///< interpreter of the figures
+};
+
+// -------------------------------------------------------------------------------------------
+// run --quick
+
+/// Fraction of the domain depth that the quick box keeps (from the top).
+constexpr double kQuickDepthFraction = 1.0 / 6.0;
+/// DDA steps of a quick run (at most).
+constexpr int kQuickDdaSteps = 10;
+/// RQD directions of every ball and scanline axes per grid cell of a quick run (at most).
+constexpr int kQuickBallDirections = 200;
+constexpr int kQuickGridDirections = 20;
+
+/// The quick box: in plan, the structures' footprint (the union of their plan bounding
+/// boxes, clipped to the domain) or, without structures, the central half of the domain in
+/// x and y; in depth, the top sixth of the domain (at least 1 m).
+geometry::Box quickBox(const io::Scene& scene) {
+  const geometry::Box& domain = scene.dfn.domain;
+  geometry::Box box = domain;
+  if (scene.structures.empty()) {
+    for (int axis = 0; axis < 2; ++axis) {
+      box.min[axis] = domain.min[axis] + 0.25 * domain.size()[axis];
+      box.max[axis] = domain.max[axis] - 0.25 * domain.size()[axis];
+    }
+  } else {
+    box.min.head<2>().setConstant(std::numeric_limits<double>::infinity());
+    box.max.head<2>().setConstant(-std::numeric_limits<double>::infinity());
+    for (const io::StructureSpec& s : scene.structures) {
+      // Prism: the profile's first coordinate runs across the sweep axis.
+      const int across = s.prism_sweep == 'x' ? 1 : 0;
+      const int along = 1 - across;
+      for (const geometry::Vec2& p : s.prism_profile) {
+        box.min[across] = std::min(box.min[across], p.x());
+        box.max[across] = std::max(box.max[across], p.x());
+      }
+      box.min[along] = std::min({box.min[along], s.prism_from, s.prism_to});
+      box.max[along] = std::max({box.max[along], s.prism_from, s.prism_to});
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+      box.min[axis] = std::max(box.min[axis], domain.min[axis]);
+      box.max[axis] = std::min(box.max[axis], domain.max[axis]);
+      if (!(box.max[axis] > box.min[axis])) {  // footprint outside the domain in plan
+        box.min[axis] = domain.min[axis];
+        box.max[axis] = domain.max[axis];
+      }
+    }
+  }
+  box.min.z() = domain.max.z() - std::max(1.0, kQuickDepthFraction * domain.size().z());
+  box.min.z() = std::max(box.min.z(), domain.min.z());
+  return box;
+}
+
+/// The point of `box` shrunk by 5% of its size on every side nearest to p.
+geometry::Vec3 clampInto(const geometry::Box& box, const geometry::Vec3& p) {
+  const geometry::Vec3 inset = 0.05 * box.size();
+  return p.cwiseMax(box.min + inset).cwiseMin(box.max - inset);
+}
+
+/// Describes a point for the notes.
+std::string pointText(const geometry::Vec3& p) {
+  return "(" + io::formatDouble(p.x()) + ", " + io::formatDouble(p.y()) + ", " +
+         io::formatDouble(p.z()) + ")";
+}
+
+/// The quick variant of a scene: the quick box as domain; monitors, RQD ball centres and
+/// point loads outside it moved to the nearest point of the box shrunk by 5%; at most
+/// kQuickBallDirections ball directions and kQuickGridDirections grid axes; at most
+/// kQuickDdaSteps DDA steps (see quickSteps). Returns what it moved, for the summary.
+std::vector<std::string> makeQuick(io::Scene& scene) {
+  std::vector<std::string> notes;
+  const geometry::Box box = quickBox(scene);
+  scene.dfn.domain = box;
+  for (io::Monitor& m : scene.monitors) {
+    if (box.contains(m.point)) continue;
+    const geometry::Vec3 moved = clampInto(box, m.point);
+    notes.push_back("quick: monitor " + m.name + " moved from " + pointText(m.point) + " to " +
+                    pointText(moved));
+    m.point = moved;
+  }
+  for (io::PointLoad& load : scene.loads.point_loads) {
+    if (box.contains(load.point)) continue;
+    load.point = clampInto(box, load.point);
+  }
+  if (scene.analysis.rqd) {
+    io::RqdAnalysis& rqd = *scene.analysis.rqd;
+    for (io::RqdBall& ball : rqd.balls) {
+      ball.directions = std::min(ball.directions, kQuickBallDirections);
+      const geometry::Vec3 inset = 0.05 * box.size();
+      if (((ball.center - box.min).array() > inset.array()).all() &&
+          ((box.max - ball.center).array() > inset.array()).all()) {
+        continue;
+      }
+      const geometry::Vec3 moved = clampInto(box, ball.center);
+      notes.push_back("quick: RQD ball " + ball.name + " moved from " + pointText(ball.center) +
+                      " to " + pointText(moved));
+      ball.center = moved;
+    }
+    rqd.grid_direction_count = std::min(rqd.grid_direction_count, kQuickGridDirections);
+    rqd.grid_region.reset();  // the grid covers the (quick) domain
+  }
+  return notes;
+}
+
+// -------------------------------------------------------------------------------------------
+// Section plane
+
+/// The section plane: `option` AXIS=VALUE (x, y or z; VALUE in m), or by default the
+/// domain's mid-plane normal to the sweep axis of the first structure (else of the first
+/// interlayer, else y): a vertical section across the dam, as Figure 5 of the paper.
+std::pair<geometry::SectionPlane, std::string> sectionPlane(const io::Scene& scene,
+                                                            const std::string& option) {
+  int axis = 1;
+  double offset = 0.0;
+  if (option.empty()) {
+    char sweep = 'y';
+    if (!scene.structures.empty() && scene.structures.front().mesh.empty()) {
+      sweep = scene.structures.front().prism_sweep;
+    } else if (!scene.dfn.interlayers.empty()) {
+      sweep = scene.dfn.interlayers.front().sweep;
+    }
+    axis = sweep == 'x' ? 0 : 1;
+    offset = scene.dfn.domain.center()[axis];
+  } else {
+    const std::size_t eq = option.find('=');
+    const std::string name = option.substr(0, eq);
+    if (eq == std::string::npos || (name != "x" && name != "y" && name != "z")) {
+      throw io::InputError(
+          "--section: expected AXIS=VALUE with AXIS x, y or z (e.g. y=10) or "
+          "none, got '" +
+          option + "'");
+    }
+    axis = name[0] - 'x';
+    try {
+      std::size_t used = 0;
+      offset = std::stod(option.substr(eq + 1), &used);
+      if (used != option.size() - eq - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw io::InputError("--section: expected a number after '" + name + "=', got '" +
+                           option.substr(eq + 1) + "'");
+    }
+    const geometry::Box& d = scene.dfn.domain;
+    if (!(offset > d.min[axis] && offset < d.max[axis])) {
+      throw io::InputError("--section: " + option + " lies outside the domain (" + name + " from " +
+                           io::formatDouble(d.min[axis]) + " to " + io::formatDouble(d.max[axis]) +
+                           ")");
+    }
+  }
+  const std::string label =
+      std::string(1, static_cast<char>('x' + axis)) + "=" + io::formatDouble(offset);
+  return {geometry::axisPlane(axis, offset), label};
+}
+
+// -------------------------------------------------------------------------------------------
+// Stage plan
+
+/// Which stages run, checked before any work: a stage whose input is missing is an
+/// io::InputError naming the scene key to add.
+struct StagePlan {
+  bool cut = false;
+  bool rqd = false;
+  bool dda = false;
+  bool overload = false;
+  bool strength_reduction = false;
+  std::string cutter;  ///< when cut
+};
+
+/// True when the scene has something that cuts the domain into more than one block.
+bool hasCuttingFeatures(const io::Scene& scene) {
+  return !scene.dfn.joint_sets.empty() || !scene.dfn.faults.empty() ||
+         !scene.dfn.interlayers.empty() || !scene.dfn.polygon_sets.empty() ||
+         !scene.structures.empty();
+}
+
+StagePlan planStages(const io::Scene& scene, const RunOptions& options) {
+  const std::string& file = options.common.scene;
+  const io::Analysis& a = scene.analysis;
+  StagePlan plan;
+  plan.rqd = a.rqd.has_value();
+  plan.dda = a.dda.has_value();
+  plan.overload = a.overload.has_value();
+  plan.strength_reduction = a.strength_reduction.has_value();
+  if (plan.dda && !a.blocks && !hasCuttingFeatures(scene)) {
+    throw io::InputError(file +
+                         ": analysis.dda: the DDA needs blocks, and the scene has neither "
+                         "analysis.blocks nor joint_sets, faults, interlayers, fractures or "
+                         "structures to cut them; add analysis.blocks (e.g. `blocks: {cutter: "
+                         "fast}`) or the discontinuities that make the blocks");
+  }
+  if (plan.overload && !plan.dda) {
+    throw io::InputError(file +
+                         ": analysis.overload: the overload analysis runs the DDA under growing "
+                         "loads; add analysis.dda (mode, steps, time_step)");
+  }
+  if (plan.strength_reduction && !plan.dda) {
+    throw io::InputError(file +
+                         ": analysis.strength_reduction: strength reduction runs the DDA with "
+                         "reduced joint strength; add analysis.dda (mode, steps, time_step)");
+  }
+  plan.cut = a.blocks.has_value() || plan.dda;
+  if (plan.cut) plan.cutter = chooseCutter(scene, options.cutter, file);
+  return plan;
+}
+
+/// Quotes a path for the shell.
+std::string shellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+/// Runs scripts/figures/make_figures.py on the output folder; returns the PNG names it
+/// reports ("figure: NAME" lines). A missing python or matplotlib is a warning.
+std::vector<std::string> makeFigures(const RunOptions& options, const fs::path& out,
+                                     std::vector<std::string>& warnings) {
+  const std::string check = shellQuote(options.python) + " -c 'import matplotlib' >/dev/null 2>&1";
+  if (std::system(check.c_str()) != 0) {
+    warnings.push_back("figures: " + options.python +
+                       " with matplotlib is not available; no figures were drawn");
+    std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
+    return {};
+  }
+  const fs::path script = fs::path(options.figure_scripts) / "make_figures.py";
+  if (!fs::exists(script)) {
+    warnings.push_back("figures: " + script.string() + " not found; no figures were drawn");
+    std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
+    return {};
+  }
+  const std::string command = shellQuote(options.python) + " " + shellQuote(script.string()) + " " +
+                              shellQuote(out.string()) + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("figures: cannot start " + options.python);
+  std::vector<std::string> figures;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) {
+    std::string line(buffer);
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    std::fprintf(stderr, "run: %s\n", line.c_str());
+    if (line.rfind("figure: ", 0) == 0) figures.push_back(line.substr(8));
+  }
+  if (pclose(pipe) != 0) {
+    warnings.push_back("figures: make_figures.py failed (see the messages above)");
+  }
+  std::sort(figures.begin(), figures.end());
+  return figures;
+}
+
+/// An empty RunInfo of `command` for a stage's own summary (its header is dropped when the
+/// stage summaries are merged; only its extra timings are kept).
+io::RunInfo stageRun(const io::RunInfo& run, io::Timings timings) {
+  io::RunInfo info = run;
+  info.timings = std::move(timings);
+  return info;
+}
+
+int runAll(const RunOptions& options) {
+  const std::string& scene_path = options.common.scene;
+  io::Scene scene = loadScene(options.common);
+  const geometry::Box full_domain = scene.dfn.domain;
+  io::RunReport report;
+  report.quick = options.quick;
+  if (options.quick) report.warnings = makeQuick(scene);
+  report.domain = scene.dfn.domain;
+  const StagePlan plan = planStages(scene, options);
+
+  // Everything the stages read is checked before any work is done.
+  RqdOverrides rqd_overrides;
+  if (options.quick) rqd_overrides.hole_domain = full_domain;
+  std::optional<RqdPlan> rqd_plan;
+  if (plan.rqd) rqd_plan = planRqd(scene, rqd_overrides, scene_path);
+  std::optional<std::pair<geometry::SectionPlane, std::string>> section;
+  if (plan.cut && options.section != "none") section = sectionPlane(scene, options.section);
+  DdaOverrides dda_overrides;
+  dda_overrides.solver = options.solver;
+  if (options.quick && plan.dda) {
+    dda_overrides.steps = std::min(scene.analysis.dda->steps, kQuickDdaSteps);
+  }
+  const fs::path out = prepareOutput(options.common.output);
+
+  io::RunInfo run;
+  run.command = "run";
+  run.scene = scene_path;
+  run.name = scene.name;
+  run.seed = scene.seed;
+  std::vector<io::StageSummary> parts;
+  double write_seconds = 0.0;
+  const auto timedWrite = [&](const auto& write) {
+    const auto start = Clock::now();
+    write();
+    write_seconds += secondsSince(start);
+  };
+
+  // DFN: always (every other stage is built on the network).
+  const DfnStage dfn = runDfnStage(scene, scene_path);
+  run.stages.push_back("dfn");
+  run.timings.emplace_back("dfn", dfn.seconds);
+  timedWrite([&] { writeDfnFiles(out, scene, dfn.network); });
+  report.files.insert(report.files.end(), {"fractures.csv", "fractures.fab", "fractures.vtu"});
+  parts.push_back({"dfn", io::formatDfnSummary(stageRun(run, {}), dfn.network, dfn.stats)});
+
+  // Blocks (and the section through them).
+  std::optional<SceneBlocks> cut;
+  if (plan.cut) {
+    auto start = Clock::now();
+    cut = cutSceneBlocks(scene, dfn.network, plan.cutter, scene_path);
+    const double cut_seconds = secondsSince(start);
+    std::fprintf(stderr, "run: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
+                 cut->model.blocks.size(), cut->pieces, plan.cutter.c_str(), cut_seconds);
+    run.stages.push_back("cut");
+    run.timings.emplace_back("cut", cut_seconds);
+    report.cutter = plan.cutter;
+    timedWrite([&] { writeBlocksFiles(out, scene, cut->model); });
+    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu"});
+    parts.push_back(
+        {"cut", io::formatBlocksSummary(stageRun(run, {{"cut_split", cut->split_seconds},
+                                                       {"cut_assemble", cut->assemble_seconds}}),
+                                        dfn.network, cut->model, cutInfoOf(*cut, plan.cutter),
+                                        scene.materials)});
+    if (section) {
+      start = Clock::now();
+      const int segments = cut->input.disc_segments;
+      const io::Section s =
+          io::sectionOf(cut->model, dfn.network, section->first, section->second, segments);
+      run.timings.emplace_back("section", secondsSince(start));
+      timedWrite([&] {
+        io::writeFileAtomically(out / "section.csv",
+                                io::formatSectionCsv(s, dfn.network, scene.materials));
+        io::writeFileAtomically(out / "section.svg",
+                                io::formatSectionSvg(s, dfn.network, scene.materials));
+      });
+      report.section = section->second;
+      report.files.insert(report.files.end(), {"section.csv", "section.svg"});
+      std::fprintf(stderr, "run: section %s: %zu piece polygons, %zu traces\n",
+                   section->second.c_str(), s.polygons.size(), s.traces.size());
+    }
+  }
+
+  // RQD.
+  if (plan.rqd) {
+    RqdStage stage =
+        runRqdStage(scene, scene_path, dfn.network, std::move(*rqd_plan), rqd_overrides);
+    run.stages.insert(run.stages.end(), stage.stages.begin(), stage.stages.end());
+    run.timings.insert(run.timings.end(), stage.timings.begin(), stage.timings.end());
+    timedWrite([&] { writeRqdFiles(out, stage.report); });
+    if (!stage.report.balls.empty()) {
+      report.files.push_back("rqd_balls.csv");
+      for (const io::BallReport& ball : stage.report.balls) {
+        for (const double t : ball.result.thresholds) {
+          report.files.push_back(io::ballPlyName(ball.name, t));
+        }
+      }
+    }
+    if (stage.report.boreholes) report.files.push_back("boreholes.csv");
+    if (stage.report.grid) report.files.push_back("rqd.vdb");
+    parts.push_back({"rqd", io::formatRqdSummary(stageRun(run, {}), stage.report)});
+  }
+
+  // DDA.
+  if (plan.dda) {
+    const auto start = Clock::now();
+    const DdaStage stage = runDdaStage(scene, cut->model, dda_overrides, out);
+    run.stages.push_back("dda");
+    run.timings.emplace_back("dda", secondsSince(start));
+    run.effects = stage.effects;
+    timedWrite([&] { writeDdaFiles(out, stage); });
+    report.files.insert(report.files.end(), {"history.csv", "dda.pvd"});
+    report.files.insert(report.files.end(), stage.frame_files.begin(), stage.frame_files.end());
+    parts.push_back({"dda", io::formatDdaSummary(stageRun(run, {}), stage.summary)});
+  }
+
+  // ===== Overload and strength reduction: the one place where they are wired. =====
+  // When runOverload(...) / runStrengthReduction(...) land (branch water-overload), call them
+  // here on the DDA settings and the blocks above, append "overload" / "strength_reduction"
+  // to run.stages and run.timings, add overload.csv to report.files and their summaries to
+  // `parts` (with `safety_factor`). Until then the run says so instead of inventing numbers.
+  if (plan.overload) {
+    report.unavailable.emplace_back("overload", "not available in this build");
+    std::fprintf(stderr, "run: analysis.overload: not available in this build\n");
+  }
+  if (plan.strength_reduction) {
+    report.unavailable.emplace_back("strength_reduction", "not available in this build");
+    std::fprintf(stderr, "run: analysis.strength_reduction: not available in this build\n");
+  }
+  // ===== end of overload / strength reduction =====
+
+  std::sort(report.files.begin(), report.files.end());
+  report.files.push_back("summary.json");
+  run.timings.emplace_back("write", write_seconds);
+  io::writeFileAtomically(out / "summary.json", io::formatRunSummary(run, parts, report));
+
+  if (!options.no_figures) {
+    const auto start = Clock::now();
+    report.figures = makeFigures(options, out, report.warnings);
+    run.timings.emplace_back("figures", secondsSince(start));
+    io::writeFileAtomically(out / "summary.json", io::formatRunSummary(run, parts, report));
+  }
+  double total = 0.0;
+  for (const auto& [stage, seconds] : run.timings) total += seconds;
+  std::fprintf(stderr, "run: %zu stages in %.1f s; wrote %s\n", run.stages.size(), total,
+               out.string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command addRunCommand(CLI::App& app) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* cli = app.add_subcommand(
+      "run",
+      "Run every stage the scene's analysis section names (DFN, blocks, RQD, DDA, overload, "
+      "strength reduction), the section and the figures");
+  addCommonOptions(*cli, options->common);
+  cli->add_flag("--quick", options->quick,
+                "Smaller domain (structure footprint, top sixth of the depth), at most 10 DDA "
+                "steps, 200 RQD ball directions, 20 grid axes");
+  addCutterOption(*cli, options->cutter);
+  cli->add_option("--section", options->section,
+                  "Section plane AXIS=VALUE, e.g. y=10 (default: the domain's mid-plane "
+                  "normal to the structure's sweep axis), or none");
+  cli->add_option("--solver", options->solver, "DDA linear solver: auto, cholmod, eigen, pcg")
+      ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));
+  cli->add_flag("--no-figures", options->no_figures, "Do not draw the PNG figures");
+  cli->add_option("--figure-scripts", options->figure_scripts,
+                  "Folder of make_figures.py (default: the source tree's scripts/figures)");
+  cli->add_option("--python", options->python,
+                  "Python interpreter with matplotlib for the figures (default /usr/bin/python3)");
+  return {cli, [options] { return runAll(*options); }};
+}
+
+}  // namespace rockmass::app

@@ -1,0 +1,50 @@
+"""Shared helpers of the figure scripts: reading rockmass CSV/JSON outputs and saving PNGs.
+
+Every figure script reads only the files `rockmass` writes (the contract in
+shared/docs/scene-format.md and docs/scene-reference.md), never the program's memory.
+"""
+import csv
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported for the scripts)
+
+
+def read_rows(path, columns):
+    """Rows of a CSV file as dicts; exits with file:line when a needed column is missing."""
+    rows = []
+    with open(path, newline="") as f:
+        reader = csv.DictReader(f)
+        missing = [c for c in columns if c not in (reader.fieldnames or [])]
+        if missing:
+            sys.exit(f"{path}:1: expected the columns {', '.join(columns)}; missing "
+                     f"{', '.join(missing)}")
+        for row in reader:
+            rows.append(row)
+    return rows
+
+
+def number(row, key, path, line):
+    """A float field; exits with file:line when it is not a number."""
+    try:
+        return float(row[key])
+    except (TypeError, ValueError):
+        sys.exit(f"{path}:{line}: {key}: expected a number, got {row.get(key)!r}")
+
+
+def read_summary(path):
+    """summary.json as a dict, or {} when the file does not exist."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except FileNotFoundError:
+        return {}
+
+
+def save(fig, path):
+    """Saves a figure as PNG without a timestamp (same inputs, same bytes)."""
+    fig.savefig(path, dpi=120, metadata={"Software": None})
+    plt.close(fig)

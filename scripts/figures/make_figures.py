@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Draws every figure whose input exists in a rockmass output folder (`rockmass run` calls it).
+
+Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
+
+| figure | script | input |
+|---|---|---|
+| stereonet.png (poles per set) | stereonet.py | fractures.csv |
+| rqd_threshold.png (Figure 6b) | rqd_threshold.py | rqd_balls.csv, boreholes.csv |
+| rqd_ball_maps.png (RQD-ball contours) | rqd_ball_maps.py | rqd_balls.csv |
+| block_volumes.png (Figure 7) | block_volumes.py | blocks.csv, summary.json |
+| histories.png (Figure 8) | histories.py | history.csv |
+| overload_curve.png (Figure 10) | overload_curve.py | overload.csv, summary.json |
+| section.png (Figure 5) | section.py | section.csv |
+
+Prints `figure: NAME` for every PNG written; a script that fails is reported and the others
+still run (exit status 1 then).
+"""
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def jobs(out):
+    """(png, script, arguments) for the inputs present in `out`."""
+    has = lambda name: os.path.exists(os.path.join(out, name))  # noqa: E731
+    path = lambda name: os.path.join(out, name)  # noqa: E731
+    result = []
+    if has("fractures.csv"):
+        result.append(("stereonet.png", "stereonet.py", [path("fractures.csv")]))
+    rqd_inputs = []
+    if has("rqd_balls.csv"):
+        rqd_inputs += ["--balls", path("rqd_balls.csv")]
+    if has("boreholes.csv"):
+        rqd_inputs += ["--boreholes", path("boreholes.csv")]
+    if rqd_inputs:
+        result.append(("rqd_threshold.png", "rqd_threshold.py", rqd_inputs))
+    if has("rqd_balls.csv"):
+        result.append(("rqd_ball_maps.png", "rqd_ball_maps.py", [path("rqd_balls.csv")]))
+    if has("blocks.csv"):
+        result.append(("block_volumes.png", "block_volumes.py",
+                       [path("blocks.csv"), "--summary", path("summary.json")]))
+    if has("history.csv"):
+        result.append(("histories.png", "histories.py", [path("history.csv")]))
+    if has("overload.csv"):
+        result.append(("overload_curve.png", "overload_curve.py",
+                       [path("overload.csv"), "--summary", path("summary.json")]))
+    if has("section.csv"):
+        result.append(("section.png", "section.py", [path("section.csv")]))
+    return result
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__.splitlines()[2])
+    out = sys.argv[1]
+    failed = False
+    for png, script, arguments in jobs(out):
+        command = [sys.executable, os.path.join(HERE, script), *arguments, "-o",
+                   os.path.join(out, png)]
+        done = subprocess.run(command, capture_output=True, text=True)
+        if done.returncode == 0 and os.path.exists(os.path.join(out, png)):
+            print(f"figure: {png}", flush=True)
+        else:
+            failed = True
+            message = (done.stderr or done.stdout).strip().splitlines()
+            print(f"{script} failed: {message[-1] if message else done.returncode}", flush=True)
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()

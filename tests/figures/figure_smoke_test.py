@@ -1,0 +1,136 @@
+#!/usr/bin/python3
+"""Smoke test of one figure script: runs it on a tiny generated input and checks that the
+PNG exists, is a valid PNG (signature, IHDR chunk with its CRC, IEND at the end) of a
+sensible size (at least 200 x 200 pixels, more than 5 kB: a figure with content, not an
+empty canvas).
+
+Usage: figure_smoke_test.py SCRIPTS_DIR NAME   (NAME: a script of scripts/figures without .py,
+or make_figures). Exits 77 (CTest SKIP_RETURN_CODE) when matplotlib is missing.
+"""
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+try:
+    import matplotlib  # noqa: F401
+except ImportError:
+    print("matplotlib is not installed: skipped")
+    sys.exit(77)
+
+
+def write(path, header, rows):
+    with open(path, "w") as f:
+        f.write(header + "\n")
+        for row in rows:
+            f.write(",".join(str(x) for x in row) + "\n")
+
+
+def fibonacci(n):
+    """n unit vectors spread over the sphere."""
+    out = []
+    for i in range(n):
+        z = 1 - 2 * (i + 0.5) / n
+        r = math.sqrt(1 - z * z)
+        phi = i * math.pi * (3 - math.sqrt(5))
+        out.append((r * math.cos(phi), r * math.sin(phi), z))
+    return out
+
+
+def make_inputs(d):
+    """Tiny versions of every rockmass output the scripts read."""
+    write(os.path.join(d, "fractures.csv"),
+          "id,set,cx,cy,cz,dip_direction,dip,a,b,major_x,major_y,major_z",
+          [(i + 1, "J1" if i % 2 else "J2", 0, 0, 0, (37 * i) % 360, 20 + (13 * i) % 60, 1, 1,
+            1, 0, 0) for i in range(60)])
+    balls = []
+    for ball in ("heel", "toe"):
+        for (x, y, z) in fibonacci(60):
+            for t in (0.1, 1, 3, 5):
+                balls.append((ball, x, y, z, t, max(0.0, 100 - t * (15 + 10 * abs(z)))))
+    write(os.path.join(d, "rqd_balls.csv"), "ball,dir_x,dir_y,dir_z,threshold,rqd", balls)
+    write(os.path.join(d, "boreholes.csv"), "borehole,from,to,threshold,rqd",
+          [(h, 3 * k, 3 * k + 3, t, max(0, 95 - 12 * t - k)) for h in ("ZK1", "ZK2")
+           for k in range(4) for t in (0.1, 1, 3, 5)])
+    write(os.path.join(d, "blocks.csv"), "id,volume,cx,cy,cz,material,pieces",
+          [(i + 1, 5.0 * (1 + (i * 7919) % 97) ** 1.3, 0, 0, 0, "rock", 1) for i in range(200)])
+    with open(os.path.join(d, "summary.json"), "w") as f:
+        json.dump({"weibull": {"shape": 0.9, "scale": 150.0}, "safety_factor": 3.5}, f)
+    write(os.path.join(d, "history.csv"), "time,monitor,ux,uy,uz,vx,vy,vz,u",
+          [(0.01 * s, m, 0.001 * s * (i + 1), 0, -0.0005 * s, 0.1, 0, -0.05, 0.001 * s)
+           for s in range(50) for i, m in enumerate(("P1", "P2"))])
+    write(os.path.join(d, "overload.csv"), "factor,monitor,ux,uy,uz,u",
+          [(k, m, 0.01 * k ** 2 * (i + 1), 0, -0.002 * k, 0.01 * k ** 2)
+           for k in (1, 2, 3, 4, 5) for i, m in enumerate(("P1", "P2"))])
+    rows = [("block", 1, "rock", 0, v, u, w, u, 1, w, src) for v, (u, w, src) in
+            enumerate([(0, -3, "boundary:4"), (2, -3, "boundary:1"), (2, -1, "disc:1"),
+                       (0, -1, "boundary:0")])]
+    rows += [("block", 2, "concrete", 0, v, u, w, u, 1, w, src) for v, (u, w, src) in
+             enumerate([(0, -1, "disc:1"), (2, -1, "fictitious"), (1, 0, "boundary:5")])]
+    rows += [("joint", 3, "J1", 0, 0, 0.2, -2.5, 0.2, 1, -2.5, "cutting"),
+             ("joint", 3, "J1", 0, 1, 1.5, -1.2, 1.5, 1, -1.2, "cutting"),
+             ("fault", 1, "F1", 0, 0, 0, -1, 0, 1, -1, "cutting"),
+             ("fault", 1, "F1", 0, 1, 2, -1, 2, 1, -1, "cutting"),
+             ("interlayer", 4, "P1", 0, 0, 0, -2, 0, 1, -2, "cutting"),
+             ("interlayer", 4, "P1", 0, 1, 2, -2.2, 2, 1, -2.2, "cutting")]
+    write(os.path.join(d, "section.csv"), "kind,id,label,part,vertex,u,v,x,y,z,source", rows)
+
+
+COMMANDS = {
+    "stereonet": lambda d: ["fractures.csv"],
+    "rqd_threshold": lambda d: ["--balls", "rqd_balls.csv", "--boreholes", "boreholes.csv"],
+    "rqd_ball_maps": lambda d: ["rqd_balls.csv"],
+    "block_volumes": lambda d: ["blocks.csv", "--summary", "summary.json"],
+    "histories": lambda d: ["history.csv"],
+    "overload_curve": lambda d: ["overload.csv", "--summary", "summary.json"],
+    "section": lambda d: ["section.csv"],
+}
+
+
+def check_png(path):
+    """Fails unless `path` is a well-formed PNG of a sensible size."""
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", f"{path}: not a PNG signature"
+    length, kind = struct.unpack(">I4s", data[8:16])
+    assert kind == b"IHDR" and length == 13, f"{path}: first chunk is not IHDR"
+    body = data[16:29]
+    crc, = struct.unpack(">I", data[29:33])
+    assert zlib.crc32(b"IHDR" + body) == crc, f"{path}: IHDR CRC mismatch"
+    width, height = struct.unpack(">II", body[:8])
+    assert width >= 200 and height >= 200, f"{path}: {width} x {height} pixels is too small"
+    assert data[-12:] == b"\x00\x00\x00\x00IEND\xaeB`\x82", f"{path}: no IEND chunk at the end"
+    assert len(data) > 5000, f"{path}: {len(data)} bytes is an empty canvas"
+    return width, height, len(data)
+
+
+def main():
+    scripts, name = os.path.abspath(sys.argv[1]), sys.argv[2]
+    with tempfile.TemporaryDirectory() as d:
+        make_inputs(d)
+        if name == "make_figures":
+            done = subprocess.run([sys.executable, os.path.join(scripts, "make_figures.py"), d],
+                                  capture_output=True, text=True)
+            print(done.stdout, done.stderr)
+            assert done.returncode == 0, "make_figures.py failed"
+            reported = [line[8:] for line in done.stdout.splitlines()
+                        if line.startswith("figure: ")]
+            assert len(reported) == len(COMMANDS), f"expected {len(COMMANDS)} figures: {reported}"
+            for png in reported:
+                print(png, check_png(os.path.join(d, png)))
+            return
+        out = os.path.join(d, name + ".png")
+        done = subprocess.run([sys.executable, os.path.join(scripts, name + ".py"),
+                               *COMMANDS[name](d), "-o", out], capture_output=True, text=True,
+                              cwd=d)
+        print(done.stdout, done.stderr)
+        assert done.returncode == 0, f"{name}.py exited with {done.returncode}"
+        print(name, check_png(out))
+
+
+if __name__ == "__main__":
+    main()
