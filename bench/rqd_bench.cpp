@@ -164,6 +164,21 @@ void BM_EmbreeTriangulated(benchmark::State& state) {
 BENCHMARK(BM_EmbreeExact)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_EmbreeTriangulated)->Arg(1000)->Arg(10000)->Arg(100000);
 
+/// The triangulated form at 10^4 discs for other outline resolutions (segments per disc).
+void BM_EmbreeTriangulatedSegments(benchmark::State& state) {
+  const ScanlineScene& s = scene(10000, DiscForm::Triangulated, static_cast<int>(state.range(0)));
+  std::vector<ScanlineHit> hits;
+  std::int64_t total = 0;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Segment& segment = segments()[i++ % kSegmentCount];
+    s.hits(segment.start, segment.end, hits);
+    total += static_cast<std::int64_t>(hits.size());
+  }
+  setRayCounters(state, total);
+}
+BENCHMARK(BM_EmbreeTriangulatedSegments)->Arg(8)->Arg(12)->Arg(16)->Arg(32);
+
 // ---- 2. Multi-hit rays per core with RQD evaluation -------------------------------------
 
 /// The reference for section 2: the plainest correct all-hits loop on Embree alone, no
@@ -504,6 +519,13 @@ int main(int argc, char** argv) {
       if (t.count(brute) && t.count(embree)) {
         std::printf("  %-30s %8.1fx\n", embree.c_str(), t.at(brute) / t.at(embree));
       }
+    }
+  }
+  for (const char* segments : {"8", "12", "16", "32"}) {
+    const std::string name = std::string("BM_EmbreeTriangulatedSegments/") + segments;
+    if (t.count("BM_BruteForce/10000") && t.count(name)) {
+      std::printf("  %-30s %8.1fx  (triangulated, %s segments, 10^4 discs)\n", name.c_str(),
+                  t.at("BM_BruteForce/10000") / t.at(name), segments);
     }
   }
   std::printf(
