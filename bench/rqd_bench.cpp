@@ -187,7 +187,8 @@ BENCHMARK(BM_EmbreeTriangulatedSegments)->Arg(8)->Arg(12)->Arg(16)->Arg(32);
 /// every hit; then the buffer is sorted by distance). Float throughout, default scene flags
 /// and build quality, no double-precision re-evaluation, no merging of repeated hits.
 /// Two of Embree's own primitives for the discs of the same network:
-/// - Triangles: each ellipse's 24-gon fanned from its centre (the triangulated form's mesh);
+/// - Triangles: each ellipse's 24-gon fanned from its centre (the triangulated form's
+///   triangles, as a plain triangle mesh rather than its robust quads);
 /// - OrientedDiscs: RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT, a circle of the same area
 ///   (radius sqrt(a b)) in the disc's plane, Embree's built-in disc primitive.
 class PlainEmbreeScene {
