@@ -21,19 +21,24 @@ namespace {
 /// Progress is reported about this many times per call.
 constexpr std::size_t kProgressReports = 20;
 
+/// Buffers one thread reuses from segment to segment (no allocation per segment once grown).
+struct SegmentBuffers {
+  std::vector<ScanlineHit> hits;
+  std::vector<double> positions;
+};
+
 /// RQD of one segment for every threshold, written to `out`.
 void evaluateSegment(const ScanlineScene& scene, const Segment& segment,
                      std::span<const double> thresholds, double merge_distance,
-                     std::span<double> out) {
+                     std::span<double> out, SegmentBuffers& buffers) {
   const double length = (segment.end - segment.start).norm();
   if (!(length > 0.0)) throw std::invalid_argument("an RQD scanline must have a length > 0");
-  const std::vector<ScanlineHit> hits = scene.hits(segment.start, segment.end);
-  std::vector<double> positions(hits.size());
+  scene.hits(segment.start, segment.end, buffers.hits);
+  buffers.positions.resize(buffers.hits.size());
   // hits() reports t in the closed [0, L]; clamp the last ulp of rounding in |end - start|.
-  std::transform(hits.begin(), hits.end(), positions.begin(),
+  std::transform(buffers.hits.begin(), buffers.hits.end(), buffers.positions.begin(),
                  [&](const ScanlineHit& h) { return std::clamp(h.t, 0.0, length); });
-  const std::vector<double> values = rqd(positions, length, thresholds, merge_distance);
-  std::copy(values.begin(), values.end(), out.begin());
+  rqd(buffers.positions, length, thresholds, out, merge_distance);
 }
 
 }  // namespace
@@ -68,9 +73,10 @@ std::vector<double> segmentRqd(const ScanlineScene& scene, std::span<const Segme
   const std::size_t step = std::max<std::size_t>(1, segments.size() / kProgressReports);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
+                      SegmentBuffers buffers;
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         evaluateSegment(scene, segments[i], thresholds, merge_distance,
-                                        std::span<double>(result).subspan(i * k, k));
+                                        std::span<double>(result).subspan(i * k, k), buffers);
                       }
                       if (!progress) return;
                       const std::size_t before = done.fetch_add(range.size());

@@ -80,8 +80,10 @@ void rqd(std::span<const double> hits, double length, std::span<const double> th
   requireValidScanline(hits, length, merge_distance);
   std::fill(out.begin(), out.end(), 0.0);
   forEachPiece(hits, length, merge_distance, [&](double piece) {
+    // Branch-free (a select, not a jump): whether a piece passes a threshold is as good as
+    // random, and adding 0.0 leaves the non-negative sums unchanged bit for bit.
     for (std::size_t i = 0; i < thresholds.size(); ++i) {
-      if (piece >= thresholds[i]) out[i] += piece;
+      out[i] += piece >= thresholds[i] ? piece : 0.0;
     }
   });
   // The pieces sum to the length up to rounding: keep RQD within [0, 100]; one intact piece
