@@ -632,6 +632,7 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     solution = guess.size() == system_->rhs().size()
                    ? solver_->solveWithGuess(system_->rhs(), guess)
                    : solver_->solve(system_->rhs());
+    solver_iterations_ += solver_->stats().iterations;
     timings_.solve += secondsSince(start);
     start = Clock::now();
     const bool finite = solution.allFinite();
@@ -780,6 +781,7 @@ StepReport Simulation::step() {
   StepReport report;
   Clock::time_point start = Clock::now();
   const int patterns_before = pattern_changes_;
+  solver_iterations_ = 0;
   detectContacts();
   timings_.detect_contacts += secondsSince(start);
   const std::vector<Contact> at_start = contacts_;
@@ -844,6 +846,7 @@ StepReport Simulation::step() {
   report.time_step = dt;
   report.penalty = penalty_;
   report.pattern_changes = pattern_changes_ - patterns_before;
+  report.solver_iterations = solver_iterations_;
   report.contacts = contactCounts();
   return report;
 }

@@ -141,6 +141,9 @@ struct StepReport {
   double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)
   double penalty = 0.0;             ///< N/m, normal penalty used
   int pattern_changes = 0;          ///< symbolic analyses redone
+  /// Iterative-solver (PCG) iterations summed over every solve of the step, redone attempts
+  /// included (0 for direct solvers).
+  int solver_iterations = 0;
   ContactCounts contacts;
 };
 
@@ -292,6 +295,7 @@ class Simulation {
   ActiveTerms active_;
   PhaseTimings timings_;
   int pattern_changes_ = 0;
+  int solver_iterations_ = 0;  ///< PCG iterations of the current step
   /// The last accepted step's solution and dt: scaled by dt / last_dt_, the first guess of
   /// an iterative solve (the dynamic predictor d ~ v dt).
   Eigen::VectorXd last_solution_;
