@@ -47,7 +47,10 @@ struct Contact {
   geometry::Vec3 slide_direction = geometry::Vec3::Zero();
   double normal_force = 0.0;  ///< N, compression positive, from the last solve
   double gap = 0.0;           ///< d after the last solve (m)
-  int flips = 0;              ///< locked <-> sliding changes in the current step (reset every step)
+  /// Length of the rigid part of the slip in the last solve while sliding (m); 0 unknown.
+  /// Sets the friction's transverse tangent stiffness f N / slip (docs/dda3d.md).
+  double slip_length = 0.0;
+  int flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
 };
 
 }  // namespace rockmass::dda3d

@@ -1,6 +1,7 @@
 #include "dda3d/contact_detection.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -122,6 +123,52 @@ bool separatedBeyond(const PieceView& a, const PieceView& b, double distance) {
   return false;
 }
 
+/// Two faces count as touching face to face when their outward normals are opposite within
+/// this cosine (1 deg; blocks strained by 1e-3 tilt their faces by well under that).
+constexpr double kFaceToFaceCosine = 0.99985;
+
+/// The faces of `piece` on both ends of edge `e` (the faces around both vertices).
+std::vector<int> edgeFaces(const PieceTopology& topology, const std::array<int, 2>& edge) {
+  std::vector<int> faces;
+  for (int f : topology.vertex_faces[static_cast<std::size_t>(edge[0])]) {
+    const std::vector<int>& other = topology.vertex_faces[static_cast<std::size_t>(edge[1])];
+    if (std::find(other.begin(), other.end(), f) != other.end()) faces.push_back(f);
+  }
+  return faces;
+}
+
+/// True when edge `ea` of a and edge `eb` of b lie in faces that touch face to face (opposite
+/// normals, planes within `distance` m) and their crossing `pc` lies within `distance` of an
+/// end of either edge. The face-to-face contact there is carried by the vertex-to-face
+/// entries of those corners (formulation doc, "Point-to-face contact": face-face contact is
+/// its vertex entries); an edge-to-edge entry would count the same support twice, and as the
+/// blocks strain its crossing slides in and out of the edge ends, so it appears already
+/// penetrating by the faces' spring compression (the deformable column, docs/dda3d.md).
+bool crossingCarriedByFaceContact(const PieceView& a, const PieceView& b, std::size_t ea,
+                                  std::size_t eb, const Vec3& pc, double distance) {
+  const std::array<int, 2>& edge_a = a.topology->edges[ea];
+  const std::array<int, 2>& edge_b = b.topology->edges[eb];
+  bool touching = false;
+  for (int fa : edgeFaces(*a.topology, edge_a)) {
+    const Plane& pa = a.planes[static_cast<std::size_t>(fa)];
+    for (int fb : edgeFaces(*b.topology, edge_b)) {
+      const Plane& pb = b.planes[static_cast<std::size_t>(fb)];
+      if (pa.normal.dot(pb.normal) < -kFaceToFaceCosine &&
+          std::abs(pa.offset + pb.offset) <= distance) {
+        touching = true;
+      }
+    }
+  }
+  if (!touching) return false;
+  for (const Polyhedron* shape : {a.shape, b.shape}) {
+    const std::array<int, 2>& edge = shape == a.shape ? edge_a : edge_b;
+    for (int v : edge) {
+      if ((shape->vertices[static_cast<std::size_t>(v)] - pc).norm() <= distance) return true;
+    }
+  }
+  return false;
+}
+
 /// Box of the segment p q.
 Box segmentBox(const Vec3& p, const Vec3& q) {
   return {p.cwiseMin(q), p.cwiseMax(q)};
@@ -136,6 +183,8 @@ bool overlaps(const Box& x, const Box& y) {
 struct Range {
   double gap;    ///< largest open gap recorded: the gap that can close within the step
   double depth;  ///< deepest penetration recorded
+  /// How far outside its face a persisting vertex contact's foot may be (m).
+  double keep_margin;
   double larger() const { return std::max(gap, depth); }
 };
 
@@ -157,9 +206,17 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     for (std::size_t f = 0; f < b.planes.size(); ++f) {
       const Plane& plane = b.planes[f];
       const double gap = plane.normal.dot(p) - plane.offset;
-      if (gap < -range.depth || (is_outside && gap <= tolerance)) continue;
+      // The face a vertex used last step keeps it while the vertex stays within a margin of
+      // the face (outside a side plane or beyond the face's boundary): strain moves the
+      // coincident corners of stacked faces apart by ~1e-5 m, and dropping the entry there
+      // would hand the corner to an edge crossing (seen already penetrating) or to nothing.
+      const bool kept = static_cast<int>(f) == previous && outside <= range.keep_margin;
+      if (gap < -range.depth || (is_outside && gap <= tolerance && !kept)) continue;
       const Vec3 foot = p - gap * plane.normal;
-      if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot, tolerance)) continue;
+      if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot,
+                      kept ? range.keep_margin : tolerance)) {
+        continue;
+      }
       bool cone_ok = true;  // i's body near the vertex stays on the outer side of f
       for (int w : a.topology->neighbours[v]) {
         const Vec3 edge = a.shape->vertices[static_cast<std::size_t>(w)] - p;
@@ -230,6 +287,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
       if ((pc - qc).norm() > range.larger()) continue;
+      if (crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger())) continue;
       // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
       // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
       // edges penetrate.
@@ -324,7 +382,10 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
     // round-off margin outside its face, which the doubled range covers).
     const double apart = 2.0 * gap + tolerance;
     if (separatedBeyond(a, b, apart) || separatedBeyond(b, a, apart)) continue;
-    const Range range{gap, depth};
+    // A persisting vertex contact is kept up to 1e-4 of the pieces' size outside its face:
+    // far above the strain offsets of coincident corners, far below a step's motion.
+    const Range range{gap, depth,
+                      std::max(tolerance, 1e-4 * (a.box.diagonal() + b.box.diagonal()))};
     vertexToFace(a, b, range, tolerance, previous_face, out);
     vertexToFace(b, a, range, tolerance, previous_face, out);
     edgeToEdge(a, b, range, tolerance, out);

@@ -288,6 +288,15 @@ void Simulation::initialAccelerations() {
   }
   for (BlockState& block : blocks_) {
     if (block.fixed) continue;
+    if (settings_.mode == AnalysisMode::Static) {
+      // Static mode (Shi's dynamic ratio 0): every step starts from rest, so v0 = a0 = 0 at
+      // t = 0 as after every step (updateBlocks). The inertia term (1 - alpha_m) M /
+      // (beta dt^2) then only regularises the step; a stored a0 = g would add the load
+      // M (c2 g) to the first step for any rho_inf > 0 (c2 vanishes only at rho_inf = 0).
+      block.velocity.setZero();
+      block.acceleration.setZero();
+      continue;
+    }
     const BlockMatrix m = massMatrix(block);
     const BlockVector& f = force[static_cast<std::size_t>(block.dof_offset)];
     block.acceleration.setZero();
@@ -364,6 +373,7 @@ void Simulation::detectContacts() {
       const Vec3 slide = tangential(old.slide_direction, c.normal);
       c.slide_direction = slide.norm() > 0.0 ? Vec3(slide.normalized()) : Vec3(Vec3::Zero());
       c.normal_force = old.normal_force;
+      c.slip_length = old.slip_length;
     } else {
       // Touching within round-off counts as closed: an open contact only closes once it
       // penetrates past the hysteresis threshold.
@@ -440,8 +450,8 @@ void Simulation::assembleBlockTerms(double dt) {
   active_ |= step;
 }
 
-Vec3 Simulation::addContactTerms(const Contact& c) {
-  if (c.state == ContactState::Open) return Vec3::Zero();
+Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
+  if (c.state == ContactState::Open) return {};
   const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
@@ -457,13 +467,31 @@ Vec3 Simulation::addContactTerms(const Contact& c) {
       system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk));
     }
     active_.contact_shear = true;
-    return Vec3::Zero();
+    return {};
   }
   const double friction = jointOf(c).friction * std::max(0.0, c.normal_force);
   system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
   system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
   active_.friction = true;
-  return -friction * c.slide_direction;
+  AppliedFriction applied;
+  applied.force = -friction * c.slide_direction;
+  if (friction > 0.0 && c.slip_length > 0.0 && c.slide_direction.squaredNorm() > 0.0) {
+    // Consistent tangent of F = -f N s / |s| about the last slip s*: -f N / |s*| times the
+    // slip across s*. Without it the direction is explicit, and a slip across it (a yaw of a
+    // sliding block) is pushed back f N / |s*| per metre, one step late: with the small
+    // slips of a static step that over-corrects and grows by ~ -3 per step. Capped at the
+    // shear spring (a locked contact resists no more); rigid parts, as the direction. Only
+    // once a slip is known: a tangent about a guessed direction would hold a wrong one.
+    applied.transverse_stiffness =
+        std::min(penalty_ / settings_.shear_penalty_ratio, friction / c.slip_length);
+    applied.across = c.normal.cross(c.slide_direction).normalized();
+    DisplacementMatrix ri = ti, rj = tj;
+    ri.rightCols<kVoigtSize>().setZero();
+    rj.rightCols<kVoigtSize>().setZero();
+    system_->addSpring(i, ri.transpose() * applied.across, j, -rj.transpose() * applied.across,
+                       applied.transverse_stiffness, 0.0);
+  }
+  return applied;
 }
 
 BlockVector Simulation::unknownsOf(const Eigen::VectorXd& solution, int block) const {
@@ -529,6 +557,7 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
             c.state = ContactState::Sliding;
             c.bonded = false;
             c.slide_direction = shear.normalized();
+            c.slip_length = 0.0;  // not known yet: no transverse tangent
           }
         } else if (!frozen && rigid_slip.dot(c.slide_direction) < 0.0) {
           // Friction alone would drive it back: it sticks, its spring carrying the friction.
@@ -537,6 +566,7 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
           c.shear = (joint.friction * std::max(0.0, c.normal_force) / ks) * c.slide_direction;
         } else if (rigid_slip.norm() > 0.0) {
           c.slide_direction = rigid_slip.normalized();
+          c.slip_length = rigid_slip.norm();
         }
       }
     }
@@ -606,6 +636,7 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     solution = guess.size() == system_->rhs().size()
                    ? solver_->solveWithGuess(system_->rhs(), guess)
                    : solver_->solve(system_->rhs());
+    solver_iterations_ += solver_->stats().iterations;
     timings_.solve += secondsSince(start);
     start = Clock::now();
     const bool finite = solution.allFinite();
@@ -644,9 +675,19 @@ double Simulation::maxPenetration() const {
 void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) {
   // Friction: the forces applied in the last solve, -f N s on i and +f N s on j, did the work
   // -f N s . (u_i - u_j); the blocks lost that much.
+  // The transverse tangent springs of sliding contacts are friction too: the work against
+  // them, k x^2 (x the rigid slip across the direction), is dissipated, not stored; the
+  // numerical term below dots the whole matrix, so their 1/2 k x^2 is taken out of it.
+  double transverse = 0.0;
   for (std::size_t k = 0; k < contacts_.size() && k < applied_friction_.size(); ++k) {
-    if (applied_friction_[k].isZero(0.0)) continue;
-    friction_work_ -= applied_friction_[k].dot(relativeDisplacement(contacts_[k], solution));
+    const AppliedFriction& f = applied_friction_[k];
+    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) continue;
+    friction_work_ -= f.force.dot(relativeDisplacement(contacts_[k], solution));
+    if (f.transverse_stiffness > 0.0) {
+      const double x = f.across.dot(relativeDisplacement(contacts_[k], solution, true));
+      friction_work_ += f.transverse_stiffness * x * x;
+      transverse += 0.5 * f.transverse_stiffness * x * x;
+    }
   }
   // Springs at the start of the step, in the states the step ended with: the energy
   // 1/2 k (d0 + e^T D)^2 of every spring at D = 0. Where it differs from the springs' energy
@@ -691,7 +732,7 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
     // A dynamic ratio below 1 (or static mode) takes a share of the kinetic energy away.
     removed += (1.0 - ratio * ratio) * end_kinetic;
   }
-  numerical_dissipation_ += removed;
+  numerical_dissipation_ += removed - transverse;
 }
 
 void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
@@ -744,6 +785,7 @@ StepReport Simulation::step() {
   StepReport report;
   Clock::time_point start = Clock::now();
   const int patterns_before = pattern_changes_;
+  solver_iterations_ = 0;
   detectContacts();
   timings_.detect_contacts += secondsSince(start);
   const std::vector<Contact> at_start = contacts_;
@@ -808,6 +850,7 @@ StepReport Simulation::step() {
   report.time_step = dt;
   report.penalty = penalty_;
   report.pattern_changes = pattern_changes_ - patterns_before;
+  report.solver_iterations = solver_iterations_;
   report.contacts = contactCounts();
   return report;
 }

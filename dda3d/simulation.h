@@ -141,6 +141,9 @@ struct StepReport {
   double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)
   double penalty = 0.0;             ///< N/m, normal penalty used
   int pattern_changes = 0;          ///< symbolic analyses redone
+  /// Iterative-solver (PCG) iterations summed over every solve of the step, redone attempts
+  /// included (0 for direct solvers).
+  int solver_iterations = 0;
   ContactCounts contacts;
 };
 
@@ -233,9 +236,15 @@ class Simulation {
   void detectContacts();
   void assembleBlockTerms(double dt);
   int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
-  /// Adds c's springs or friction; returns the friction force applied to block i (N; zero
-  /// unless sliding).
-  geometry::Vec3 addContactTerms(const Contact& c);
+  /// Friction of one sliding contact in one assembly: the force -f N s on block i (N) and
+  /// the transverse tangent spring (stiffness N/m along the unit `across`, rigid parts).
+  struct AppliedFriction {
+    geometry::Vec3 force = geometry::Vec3::Zero();
+    double transverse_stiffness = 0.0;
+    geometry::Vec3 across = geometry::Vec3::Zero();
+  };
+  /// Adds c's springs or friction; returns the friction applied (zero unless sliding).
+  AppliedFriction addContactTerms(const Contact& c);
   /// The time integration's acceleration at t = 0: M a0 = loads + initial stress + bolt
   /// pretension (contacts and fixed points carry no force yet).
   void initialAccelerations();
@@ -269,8 +278,8 @@ class Simulation {
   double contact_changes_ = 0.0;
   double springs_after_step_ = 0.0;  ///< springEnergy() after the last accepted step
   NewmarkCoefficients scheme_;
-  /// Friction force on block i of each contact in the last assembly (aligned with contacts_).
-  std::vector<geometry::Vec3> applied_friction_;
+  /// Friction on block i of each contact in the last assembly (aligned with contacts_).
+  std::vector<AppliedFriction> applied_friction_;
   std::vector<BlockState> blocks_;
   std::vector<geometry::Vec3> initial_centroids_;
   std::vector<ElasticMatrix> elastic_;
@@ -286,6 +295,7 @@ class Simulation {
   ActiveTerms active_;
   PhaseTimings timings_;
   int pattern_changes_ = 0;
+  int solver_iterations_ = 0;  ///< PCG iterations of the current step
   /// The last accepted step's solution and dt: scaled by dt / last_dt_, the first guess of
   /// an iterative solve (the dynamic predictor d ~ v dt).
   Eigen::VectorXd last_solution_;

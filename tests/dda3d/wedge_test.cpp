@@ -155,5 +155,66 @@ TEST(Toppling, TallBlockToppleSquatBlockSlides) {
   }
 }
 
+TEST(StaticMode, WedgeAboveFsOneComesToRest) {
+  // Static mode (dynamic ratio 0, Shi): every step starts from rest, so a wedge whose
+  // block-theory FS = (N_A + N_B) tan phi / |w . s| is 1.5 (Goodman & Shi 1985, ch. 9) must
+  // settle onto its contact springs and stay: no contact opens, and after 20 steps (the
+  // springs take the load within a few) no step moves it by more than 1e-12 m (round-off of
+  // a 1e-9 m spring deflection).
+  const Vec3 g = kG * Vec3(std::sin(radians(35.0)), 0.0, -std::cos(radians(35.0)));
+  const scenes::Wedge probe = scenes::vGrooveWedge(50.0, 35.0, 0.0, g);
+  const scenes::TwoPlane t = scenes::twoPlane(probe.n_a, probe.n_b, g);
+  const double phi = degrees(std::atan(1.5 * t.drive / (t.n_a + t.n_b)));
+  const scenes::Wedge wedge = scenes::vGrooveWedge(50.0, 35.0, phi, g);
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  settings.mode = AnalysisMode::Static;
+  Simulation sim(wedge.model, settings);
+  for (int k = 0; k < 20; ++k) sim.step();
+  const Vec3 settled = sim.centroidDisplacement(2);
+  for (int k = 0; k < 200; ++k) {
+    const StepReport r = sim.step();
+    EXPECT_EQ(r.contacts.open, 0) << "step " << k;
+    EXPECT_LT(r.displacement_ratio * settings.max_displacement_ratio * sim.halfDomainSize(), 1e-12)
+        << "step " << k;
+  }
+  // Settling on springs of k ~ 4e11 N/m: the whole motion is of the order of m g / k.
+  EXPECT_LT(settled.norm(), 1e-7);
+  EXPECT_LT((sim.centroidDisplacement(2) - settled).norm(), 1e-12);
+}
+
+TEST(StaticMode, BlockOnASlopeAdvancesByHalfADtSquaredPerStep) {
+  // phi < theta in static mode: each step starts from rest, so a step of dt moves the block
+  // by a dt^2 / 2 with a = g (sin theta - cos theta tan phi) (each step a free start from
+  // rest under the net force). Criterion: after the first 3 steps (the contact springs take
+  // the load) every step advances down the slope (monotonic) by a dt^2 / 2 within 1%, for
+  // 300 steps, rigid and deformable. The explicit friction direction used to turn a
+  // round-off yaw into a growing oscillation (x -3 per step) and steps ~1.5 a dt^2 / 2.
+  constexpr double kTheta = 30.0, kPhi = 20.0;
+  for (Kinematics kinematics : {Kinematics::Rigid, Kinematics::Deformable}) {
+    DdaModel model;
+    scenes::setRock(model, kPhi);
+    model.blocks.push_back(scenes::boxBlock({-3, -2, -1}, {3, 2, 0}, 0, true));
+    model.blocks.push_back(scenes::boxBlock({-0.5, -0.5, 0}, {0.5, 0.5, 1}, 0, false));
+    model.gravity = kG * Vec3(std::sin(radians(kTheta)), 0.0, -std::cos(radians(kTheta)));
+    DdaSettings settings;
+    settings.kinematics = kinematics;
+    settings.mode = AnalysisMode::Static;
+    Simulation sim(model, settings);
+    const double a =
+        kG * (std::sin(radians(kTheta)) - std::cos(radians(kTheta)) * std::tan(radians(kPhi)));
+    double before = 0.0;
+    for (int k = 0; k < 300; ++k) {
+      const StepReport r = sim.step();
+      const double along = sim.centroidDisplacement(1).x();
+      if (k >= 3) {
+        const double expected = 0.5 * a * r.time_step * r.time_step;
+        EXPECT_NEAR(along - before, expected, 0.01 * expected) << "step " << k;
+      }
+      before = along;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rockmass::dda3d
