@@ -853,7 +853,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
 
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
   // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
-  const ContactDecision decide = [&](const PieceContact& c) -> FaceSource {
+  const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
     const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
     const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
     const Cover ca = cover[c.piece_a][c.face_a];
@@ -866,6 +866,9 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
     if (ca == Cover::Whole || cb == Cover::Whole) return ca == Cover::Whole ? a : b;
     if (ca == Cover::None || cb == Cover::None) return {FaceKind::Fictitious, -1};
+    // Both partly covered, and the two sides of one cut: the shared part is the face itself,
+    // partly covered, so the pieces glue.
+    if (same_loop) return {FaceKind::Fictitious, -1};
     // Both partly covered: the coverage of their overlap decides.
     thread_local std::vector<Vec3> la, lb, shared;
     faceLoop(pieces[c.piece_a], c.face_a, la);

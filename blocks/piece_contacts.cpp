@@ -454,7 +454,7 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
         const double area = geometry::polygonArea(loop);
         if (area <= min_area) continue;
         found[g].push_back(contactOf(a, b, area));
-        decided[g].push_back(decide(found[g].back()));
+        decided[g].push_back(decide(found[g].back(), true));
       }
     });
     UnionFind clusters(pieces.size());
@@ -479,7 +479,7 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
         const double area = overlapArea(a, b, loop_a, loop_b);
         if (area <= min_area) continue;
         found[g].push_back(contactOf(a, b, area));
-        decided[g].push_back(decide(found[g].back()));
+        decided[g].push_back(decide(found[g].back(), false));
         if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
       }
     });

@@ -29,8 +29,10 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
                                             double min_area);
 
 /// A cutter's decision on one contact: its source; FaceKind::Fictitious glues the two pieces
-/// into one block. Called concurrently from several threads.
-using ContactDecision = std::function<FaceSource(const PieceContact&)>;
+/// into one block. The flag is true when the two faces are the same loop (bitwise equal
+/// points, the two sides of one cut): their shared part is either face. Called concurrently
+/// from several threads.
+using ContactDecision = std::function<FaceSource(const PieceContact&, bool)>;
 
 /// The same contacts when the plane of every face is known: `planes[i][f]` is the id of
 /// the plane that face f of piece i lies in, equal for faces in one geometric plane (a
