@@ -8,37 +8,39 @@
 namespace rockmass::blocks {
 namespace {
 
-/// -1, 0 or +1: the side of the plane a vertex is on, ON within the tolerance.
-std::vector<std::int8_t> classify(const std::vector<Vec3>& points, const Plane& plane,
-                                  double tolerance, std::vector<double>& distances) {
-  std::vector<std::int8_t> sides(points.size());
+/// -1, 0 or +1: the side of the plane a vertex is on, ON within the tolerance (into
+/// `sides`), and the signed distances.
+void classify(const std::vector<Vec3>& points, const Plane& plane, double tolerance,
+              std::vector<std::int8_t>& sides, std::vector<double>& distances) {
+  sides.resize(points.size());
   distances.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double s = plane.distance(points[i]);
     distances[i] = s;
     sides[i] = s > tolerance ? 1 : (s < -tolerance ? -1 : 0);
   }
-  return sides;
 }
 
 /// Order of `points` (a convex polygon's vertices in any order, all in a plane with unit
 /// normal `normal`) counter-clockwise about `normal`: by angle about their mean, which lies
-/// inside the polygon, so points on a common edge still sort along it.
-std::vector<int> counterClockwise(const std::vector<Vec3>& points, const Vec3& normal) {
+/// inside the polygon, so points on a common edge still sort along it. Into `order` (a
+/// scratch buffer reused by the caller's thread).
+void counterClockwise(const std::vector<Vec3>& points, const Vec3& normal,
+                      std::vector<int>& order) {
   Vec3 center = Vec3::Zero();
   for (const Vec3& p : points) center += p;
   center /= static_cast<double>(points.size());
   const Vec3 u = normal.unitOrthogonal();
   const Vec3 w = normal.cross(u);
-  std::vector<double> angle(points.size());
+  thread_local std::vector<double> angle;
+  angle.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3 d = points[i] - center;
     angle[i] = std::atan2(d.dot(w), d.dot(u));
   }
-  std::vector<int> order(points.size());
+  order.resize(points.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
-  return order;
 }
 
 /// The point where edge (a, b) crosses the plane, from the signed distances of its ends
@@ -58,8 +60,10 @@ Vec3 crossingPoint(const Vec3& a, const Vec3& b, double sa, double sb) {
 std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, double tolerance,
                                       FaceSource cap) {
   const std::vector<Vec3>& vertices = piece.shape.vertices;
-  std::vector<double> s;
-  const std::vector<std::int8_t> side = classify(vertices, plane, tolerance, s);
+  // Scratch buffers reused by this thread's splits (no allocation once grown).
+  thread_local std::vector<double> s;
+  thread_local std::vector<std::int8_t> side;
+  classify(vertices, plane, tolerance, side, s);
   const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
   const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
   if (!has_below || !has_above) return std::nullopt;
@@ -67,9 +71,17 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   SplitPieces out;
   geometry::Polyhedron& below = out.below.shape;
   geometry::Polyhedron& above = out.above.shape;
-  std::vector<int> below_index(vertices.size(), -1), above_index(vertices.size(), -1);
-  std::vector<Vec3> cap_points;                // the new face: ON vertices, then crossing points
-  std::vector<std::pair<int, int>> cap_index;  // (below, above) index of each cap point
+  below.vertices.reserve(vertices.size() + 4);
+  above.vertices.reserve(vertices.size() + 4);
+  below.faces.reserve(piece.shape.faces.size() + 1);
+  above.faces.reserve(piece.shape.faces.size() + 1);
+  thread_local std::vector<int> below_index, above_index, order;
+  below_index.assign(vertices.size(), -1);
+  above_index.assign(vertices.size(), -1);
+  thread_local std::vector<Vec3> cap_points;  // the new face: ON vertices, then crossing points
+  thread_local std::vector<std::pair<int, int>> cap_index;  // (below, above) of each cap point
+  cap_points.clear();
+  cap_index.clear();
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (side[i] <= 0) {
       below_index[i] = static_cast<int>(below.vertices.size());
@@ -88,7 +100,8 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   struct Cut {
     int a, b, below, above;
   };
-  std::vector<Cut> cuts;
+  thread_local std::vector<Cut> cuts;
+  cuts.clear();
   const auto crossing = [&](int a, int b) -> const Cut& {
     const int lo = std::min(a, b), hi = std::max(a, b);
     for (const Cut& c : cuts) {
@@ -136,8 +149,10 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   if (cap_points.size() < 3) return std::nullopt;
   // The cap: counter-clockwise about +n seen from outside `below`; `above` gets the reverse
   // loop starting at the same vertex, so both fan it into the same triangles.
-  const std::vector<int> order = counterClockwise(cap_points, plane.normal);
+  counterClockwise(cap_points, plane.normal, order);
   std::vector<int> below_cap, above_cap;
+  below_cap.reserve(order.size());
+  above_cap.reserve(order.size());
   for (int k : order) below_cap.push_back(cap_index[k].first);
   above_cap.push_back(cap_index[order[0]].second);
   for (std::size_t k = order.size() - 1; k >= 1; --k)
@@ -153,8 +168,9 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
 
 Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
   const std::vector<Vec3>& vertices = piece.shape.vertices;
-  std::vector<double> s;
-  const std::vector<std::int8_t> side = classify(vertices, plane, tolerance, s);
+  thread_local std::vector<double> s;
+  thread_local std::vector<std::int8_t> side;
+  classify(vertices, plane, tolerance, side, s);
   const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
   const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
   Section section;
@@ -173,10 +189,11 @@ Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
         }
       }
     }
-    const std::vector<int> order = counterClockwise(section.polygon, plane.normal);
-    std::vector<Vec3> sorted;
-    for (int k : order) sorted.push_back(section.polygon[k]);
-    section.polygon = std::move(sorted);
+    thread_local std::vector<int> order;
+    thread_local std::vector<Vec3> unsorted;
+    counterClockwise(section.polygon, plane.normal, order);
+    unsorted.assign(section.polygon.begin(), section.polygon.end());
+    for (std::size_t k = 0; k < order.size(); ++k) section.polygon[k] = unsorted[order[k]];
     return section;
   }
   for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {

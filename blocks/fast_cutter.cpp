@@ -852,11 +852,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   });
 
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
-  const std::vector<PieceContact> contacts =
-      findContactsByPlane(pieces, planes, tol.distance, tol.area);
-  std::vector<FaceSource> sources(contacts.size());
-  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
-    const PieceContact& c = contacts[k];
+  // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
+  const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
     const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
     const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
     const Cover ca = cover[c.piece_a][c.face_a];
@@ -865,26 +862,27 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
         b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
       // Not a disc plane: the face labels decide.
-      sources[k] = a.kind == FaceKind::Fictitious ? b : a;
-      return;
+      return a.kind == FaceKind::Fictitious ? b : a;
     }
-    if (ca == Cover::Whole || cb == Cover::Whole) {
-      sources[k] = ca == Cover::Whole ? a : b;
-    } else if (ca == Cover::None || cb == Cover::None) {
-      sources[k] = {FaceKind::Fictitious, -1};
-    } else {
-      // Both partly covered: the coverage of their overlap decides.
-      thread_local std::vector<Vec3> la, lb, shared;
-      faceLoop(pieces[c.piece_a], c.face_a, la);
-      faceLoop(pieces[c.piece_b], c.face_b, lb);
-      const Vec3 normal = geometry::faceNormal(pieces[c.piece_a].shape, c.face_a);
-      faceOverlap(la, lb, normal, shared);
-      int disc = -1;
-      const bool whole =
-          shared.size() >= 3 && coverage(shared, groups[g], polygons, tol, &disc) == Cover::Whole;
-      sources[k] = whole ? FaceSource{FaceKind::Disc, disc} : FaceSource{FaceKind::Fictitious, -1};
-    }
-  });
+    if (ca == Cover::Whole || cb == Cover::Whole) return ca == Cover::Whole ? a : b;
+    if (ca == Cover::None || cb == Cover::None) return {FaceKind::Fictitious, -1};
+    // Both partly covered, and the two sides of one cut: the shared part is the face itself,
+    // partly covered, so the pieces glue.
+    if (same_loop) return {FaceKind::Fictitious, -1};
+    // Both partly covered: the coverage of their overlap decides.
+    thread_local std::vector<Vec3> la, lb, shared;
+    faceLoop(pieces[c.piece_a], c.face_a, la);
+    faceLoop(pieces[c.piece_b], c.face_b, lb);
+    const Vec3 normal = geometry::faceNormal(pieces[c.piece_a].shape, c.face_a);
+    faceOverlap(la, lb, normal, shared);
+    int disc = -1;
+    const bool whole =
+        shared.size() >= 3 && coverage(shared, groups[g], polygons, tol, &disc) == Cover::Whole;
+    return whole ? FaceSource{FaceKind::Disc, disc} : FaceSource{FaceKind::Fictitious, -1};
+  };
+  std::vector<FaceSource> sources;
+  const std::vector<PieceContact> contacts =
+      findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;

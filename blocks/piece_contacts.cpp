@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <tuple>
+#include <unordered_map>
 
 #include "blocks/convex_split.h"
+#include "blocks/union_find.h"
 #include "geometry/disc.h"
 
 namespace rockmass::blocks {
@@ -172,74 +175,196 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
   return contacts;
 }
 
-std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
-                                              const std::vector<std::vector<int>>& planes,
-                                              double tolerance, double min_area) {
-  // One flat table of faces in piece order (sequential memory access; built in parallel),
-  // their points in one array: no allocation per face.
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
-  }
-  const std::size_t face_count = first_face.back();
+namespace {
+
+/// The faces of all pieces in plane order, for findContactsByPlane: one flat table, the
+/// points of each face and the inward unit normals of its edges in two flat arrays.
+struct PlaneFaces {
   struct Face {
-    int plane, piece, face;
-    std::uint32_t begin, end;  ///< range in `points`
+    int piece, face;
+    std::uint32_t begin, end;  ///< range in `points` and `inward`
     Vec3 normal;
     double offset;
     geometry::Box box;
   };
-  std::vector<std::size_t> first_point(pieces.size() + 1, 0);
+  std::vector<Face> faces;  ///< grouped by plane; in a plane, in piece and face order
+  std::vector<Vec3> points;
+  std::vector<Vec3> inward;  ///< per point k: unit normal of edge k -> k+1 towards the
+                             ///< face's inside (zero for an edge of zero length)
+  std::vector<std::pair<std::size_t, std::size_t>> groups;  ///< [begin, end) of each plane
+                                                            ///< with two faces or more
+};
+
+PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vector<int>>& planes) {
+  // Faces in piece order: their plane ids and sizes.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    std::size_t n = 0;
-    for (const std::vector<int>& face : pieces[i].shape.faces) n += face.size();
-    first_point[i + 1] = first_point[i] + n;
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
   }
-  std::vector<Face> faces(face_count);
-  std::vector<Vec3> points(first_point.back());
+  const std::size_t count = first_face.back();
+  std::vector<int> plane(count);
+  std::vector<std::uint32_t> size(count);
+  int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+      plane[first_face[i] + f] = planes[i][f];
+      size[first_face[i] + f] = static_cast<std::uint32_t>(pieces[i].shape.faces[f].size());
+      lowest = std::min(lowest, planes[i][f]);
+      highest = std::max(highest, planes[i][f]);
+    }
+  }
+  // slot[k]: where face k (piece order) goes in plane order, ties in piece and face order
+  // (a counting sort by plane id when the ids are dense, else a stable sort).
+  std::vector<std::uint32_t> slot(count);
+  if (count > 0 &&
+      static_cast<long long>(highest) - lowest < 16LL * static_cast<long long>(count) + 4096) {
+    std::vector<std::uint32_t> start(static_cast<std::size_t>(highest - lowest) + 2, 0);
+    for (std::size_t k = 0; k < count; ++k) ++start[plane[k] - lowest + 1];
+    for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+    for (std::size_t k = 0; k < count; ++k) slot[k] = start[plane[k] - lowest]++;
+  } else {
+    std::vector<std::uint32_t> order(count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return plane[a] < plane[b]; });
+    for (std::size_t k = 0; k < count; ++k) slot[order[k]] = static_cast<std::uint32_t>(k);
+  }
+  std::vector<std::uint32_t> sorted_size(count), sorted_plane(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    sorted_size[slot[k]] = size[k];
+    sorted_plane[slot[k]] = static_cast<std::uint32_t>(plane[k] - lowest);
+  }
+  std::vector<std::uint32_t> first_point(count + 1, 0);
+  for (std::size_t k = 0; k < count; ++k) first_point[k + 1] = first_point[k] + sorted_size[k];
+
+  PlaneFaces out;
+  out.faces.resize(count);
+  out.points.resize(first_point.back());
+  out.inward.resize(first_point.back());
+  // Read the pieces in order (sequential), write each face to its slot.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         const geometry::Polyhedron& shape = pieces[i].shape;
-                        std::size_t at = first_point[i];
                         for (std::size_t f = 0; f < shape.faces.size(); ++f) {
-                          Face& d = faces[first_face[i] + f];
-                          d.plane = planes[i][f];
+                          const std::uint32_t k = slot[first_face[i] + f];
+                          PlaneFaces::Face& d = out.faces[k];
                           d.piece = static_cast<int>(i);
                           d.face = static_cast<int>(f);
-                          d.begin = static_cast<std::uint32_t>(at);
+                          d.begin = first_point[k];
+                          d.end = first_point[k + 1];
                           Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
                           const std::vector<int>& loop = shape.faces[f];
                           d.box = {shape.vertices[loop[0]], shape.vertices[loop[0]]};
-                          for (std::size_t k = 0; k < loop.size(); ++k) {
-                            const Vec3& p = shape.vertices[loop[k]];
-                            const Vec3& q = shape.vertices[loop[k + 1 == loop.size() ? 0 : k + 1]];
+                          std::uint32_t at = d.begin;
+                          for (std::size_t v = 0; v < loop.size(); ++v) {
+                            const Vec3& p = shape.vertices[loop[v]];
+                            const Vec3& q = shape.vertices[loop[v + 1 == loop.size() ? 0 : v + 1]];
                             newell += p.cross(q);
                             mean += p;
                             d.box.min = d.box.min.cwiseMin(p);
                             d.box.max = d.box.max.cwiseMax(p);
-                            points[at++] = p;
+                            out.points[at++] = p;
                           }
-                          d.end = static_cast<std::uint32_t>(at);
                           const double length = newell.norm();
                           d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
                           d.offset = d.normal.dot(mean / static_cast<double>(loop.size()));
+                          const std::uint32_t n = d.end - d.begin;
+                          for (std::uint32_t v = 0; v < n; ++v) {
+                            const Vec3& p = out.points[d.begin + v];
+                            const Vec3& q = out.points[d.begin + (v + 1 == n ? 0 : v + 1)];
+                            const Vec3 inward = d.normal.cross(q - p);
+                            const double edge = inward.norm();
+                            out.inward[d.begin + v] =
+                                edge == 0.0 ? Vec3(Vec3::Zero()) : Vec3(inward / edge);
+                          }
                         }
                       }
                     });
-  // Faces grouped by plane (ties in piece and face order: deterministic).
-  std::vector<std::uint32_t> order(face_count);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return faces[a].plane != faces[b].plane ? faces[a].plane < faces[b].plane : a < b;
-  });
-  std::vector<std::pair<std::size_t, std::size_t>> groups;  // [begin, end) in order
-  for (std::size_t b = 0; b < order.size();) {
+  for (std::size_t b = 0; b < count;) {
     std::size_t e = b + 1;
-    while (e < order.size() && faces[order[e]].plane == faces[order[b]].plane) ++e;
-    if (e - b >= 2) groups.emplace_back(b, e);
+    while (e < count && sorted_plane[e] == sorted_plane[b]) ++e;
+    if (e - b >= 2) out.groups.emplace_back(b, e);
     b = e;
   }
+  return out;
+}
+
+/// The candidate pairs of one plane group: faces along and against the group's first
+/// normal whose boxes (grown by `tolerance`) meet, in CGAL's report order.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> candidatePairs(const PlaneFaces& table,
+                                                                    std::size_t begin,
+                                                                    std::size_t end,
+                                                                    double tolerance) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
+  const Vec3 reference = table.faces[begin].normal;
+  std::vector<BoxWithIndex> front, back;
+  for (std::size_t k = begin; k < end; ++k) {
+    const PlaneFaces::Face& d = table.faces[k];
+    const geometry::Box b = d.box.enlarged(tolerance);
+    const BoxWithIndex box(
+        CGAL::Bbox_3(b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()),
+        static_cast<int>(k));
+    (d.normal.dot(reference) > 0.0 ? front : back).push_back(box);
+  }
+  if (front.empty() || back.empty()) return candidates;
+  const auto report = [&](const BoxWithIndex& a, const BoxWithIndex& b) {
+    candidates.emplace_back(a.info(), b.info());
+  };
+  if (front.size() == 1 || back.size() == 1) {
+    // One face against many: a plain loop beats the segment tree's set-up.
+    for (const BoxWithIndex& a : front) {
+      for (const BoxWithIndex& b : back) {
+        if (CGAL::do_overlap(a.bbox(), b.bbox())) report(a, b);
+      }
+    }
+  } else {
+    CGAL::box_intersection_d(front.begin(), front.end(), back.begin(), back.end(), report);
+  }
+  return candidates;
+}
+
+/// Union-find over the clusters one plane group meets (ids are cluster roots, any int).
+class LocalClusters {
+ public:
+  int find(int root) {
+    const auto it = index_.find(root);
+    if (it == index_.end()) return root;
+    int i = it->second;
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return label_[i];
+  }
+  void unite(int a, int b) {
+    const int ia = slot(a), ib = slot(b);
+    int ra = ia, rb = ib;
+    while (parent_[ra] != ra) ra = parent_[ra];
+    while (parent_[rb] != rb) rb = parent_[rb];
+    if (ra != rb) parent_[rb] = ra;
+  }
+
+ private:
+  int slot(int root) {
+    const auto [it, added] = index_.emplace(root, static_cast<int>(parent_.size()));
+    if (added) {
+      parent_.push_back(it->second);
+      label_.push_back(root);
+    }
+    return it->second;
+  }
+  std::unordered_map<int, int> index_;
+  std::vector<int> parent_, label_;
+};
+
+}  // namespace
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  const PlaneFaces table = planeFaces(pieces, planes);
+  using Face = PlaneFaces::Face;
+  const std::vector<Vec3>& points = table.points;
   const auto inPlaneOf = [&](const Face& a, const Face& b) {
     for (std::uint32_t k = b.begin; k < b.end; ++k) {
       if (std::abs(a.normal.dot(points[k]) - a.offset) > tolerance) return false;
@@ -250,14 +375,10 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
   // `tolerance` of it: the faces share at most a strip of that width (area below min_area),
   // decided without constructing points (most candidate pairs only touch along an edge).
   const auto separated = [&](const Face& e, const Face& x) {
-    const std::uint32_t n = e.end - e.begin;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const Vec3& p = points[e.begin + k];
-      const Vec3& q = points[e.begin + (k + 1 == n ? 0 : k + 1)];
-      const Vec3 inward = e.normal.cross(q - p);
-      const double length = inward.norm();
-      if (length == 0.0) continue;
-      const Vec3 unit = inward / length;
+    for (std::uint32_t k = e.begin; k < e.end; ++k) {
+      const Vec3& unit = table.inward[k];
+      if (unit.x() == 0.0 && unit.y() == 0.0 && unit.z() == 0.0) continue;
+      const Vec3& p = points[k];
       bool outside = true;
       for (std::uint32_t j = x.begin; j < x.end && outside; ++j) {
         outside = unit.dot(points[j] - p) <= tolerance;
@@ -269,68 +390,125 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
   const auto loopOf = [&](const Face& f, std::vector<Vec3>& out) {
     out.assign(points.begin() + f.begin, points.begin() + f.end);
   };
-  std::vector<std::vector<PieceContact>> found(groups.size());
-  tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-    const auto [begin, end] = groups[g];
-    const Vec3 reference = faces[order[begin]].normal;
-    std::vector<BoxWithIndex> front, back;  // faces along and against the reference normal
-    for (std::size_t k = begin; k < end; ++k) {
-      const Face& d = faces[order[k]];
-      const geometry::Box b = d.box.enlarged(tolerance);
-      const BoxWithIndex box(
-          CGAL::Bbox_3(b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()),
-          static_cast<int>(order[k]));
-      (d.normal.dot(reference) > 0.0 ? front : back).push_back(box);
-    }
-    if (front.empty() || back.empty()) return;
-    std::vector<std::pair<int, int>> candidates;
-    const auto report = [&](const BoxWithIndex& a, const BoxWithIndex& b) {
-      candidates.emplace_back(a.info(), b.info());
-    };
-    if (front.size() == 1 || back.size() == 1) {
-      // One face against many: a plain loop beats the segment tree's set-up.
-      for (const BoxWithIndex& a : front) {
-        for (const BoxWithIndex& b : back) {
-          if (CGAL::do_overlap(a.bbox(), b.bbox())) report(a, b);
+  const auto contactOf = [](const Face& a, const Face& b, double area) {
+    return a.piece < b.piece ? PieceContact{a.piece, a.face, b.piece, b.face, area}
+                             : PieceContact{b.piece, b.face, a.piece, a.face, area};
+  };
+  /// The overlap area of a candidate pair whose faces are not the same loop (0 when they
+  /// do not touch with area).
+  const auto overlapArea = [&](const Face& a, const Face& b, std::vector<Vec3>& loop_a,
+                               std::vector<Vec3>& loop_b) {
+    if (separated(a, b) || separated(b, a) || !inPlaneOf(a, b) || !inPlaneOf(b, a)) return 0.0;
+    loopOf(a, loop_a);
+    loopOf(b, loop_b);
+    return faceOverlapArea(loop_a, loop_b, a.normal);
+  };
+  /// Which of the pair tests to run: both sides of one cut (same loop) or the others.
+  const auto mirrored = [&](const Face& a, const Face& b) {
+    return sameLoop(points, a.begin, a.end, b.begin, b.end);
+  };
+  const auto viable = [&](const Face& a, const Face& b) {
+    return a.piece != b.piece && a.normal.dot(b.normal) <= -0.999;
+  };
+  const std::size_t group_count = table.groups.size();
+  std::vector<std::vector<PieceContact>> found(group_count);
+  std::vector<std::vector<FaceSource>> decided(group_count);
+
+  if (!decide) {
+    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
+      const auto [begin, end] = table.groups[g];
+      std::vector<Vec3> loop_a, loop_b;
+      for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
+        const Face& a = table.faces[ka];
+        const Face& b = table.faces[kb];
+        if (!viable(a, b)) continue;
+        double area = 0.0;
+        if (mirrored(a, b)) {
+          // The common case: both sides of one cut, neither split further since. Shared
+          // points are bitwise equal (the splitter computes each crossing point once).
+          if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
+          loopOf(a, loop_a);
+          area = geometry::polygonArea(loop_a);
+        } else {
+          area = overlapArea(a, b, loop_a, loop_b);
+        }
+        if (area > min_area) found[g].push_back(contactOf(a, b, area));
+      }
+    });
+  } else {
+    // Pass 1: the mirrored pairs (cheap), decided; the other candidates wait.
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> waiting(group_count);
+    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
+      const auto [begin, end] = table.groups[g];
+      std::vector<Vec3> loop;
+      for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
+        const Face& a = table.faces[ka];
+        const Face& b = table.faces[kb];
+        if (!viable(a, b)) continue;
+        if (!mirrored(a, b)) {
+          waiting[g].emplace_back(ka, kb);
+          continue;
+        }
+        if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
+        loopOf(a, loop);
+        const double area = geometry::polygonArea(loop);
+        if (area <= min_area) continue;
+        found[g].push_back(contactOf(a, b, area));
+        decided[g].push_back(decide(found[g].back(), true));
+      }
+    });
+    UnionFind clusters(pieces.size());
+    for (std::size_t g = 0; g < group_count; ++g) {
+      for (std::size_t k = 0; k < found[g].size(); ++k) {
+        if (decided[g][k].kind == FaceKind::Fictitious) {
+          clusters.unite(found[g][k].piece_a, found[g][k].piece_b);
         }
       }
-    } else {
-      CGAL::box_intersection_d(front.begin(), front.end(), back.begin(), back.end(), report);
     }
-    std::vector<Vec3> loop_a, loop_b;
-    for (const auto& [ka, kb] : candidates) {
-      const Face& a = faces[ka];
-      const Face& b = faces[kb];
-      if (a.piece == b.piece) continue;
-      if (a.normal.dot(b.normal) > -0.999) continue;
-      if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
-      loopOf(a, loop_a);
-      double area = 0.0;
-      if (sameLoop(points, a.begin, a.end, b.begin, b.end)) {
-        // The common case: both sides of one cut, neither split further since. Shared points
-        // are bitwise equal (the splitter computes each crossing point once).
-        area = geometry::polygonArea(loop_a);
-      } else if (!separated(a, b) && !separated(b, a)) {
-        loopOf(b, loop_b);
-        area = faceOverlapArea(loop_a, loop_b, a.normal);
+    std::vector<int> root(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) root[i] = clusters.find(static_cast<int>(i));
+    // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the group).
+    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
+      LocalClusters local;
+      std::vector<Vec3> loop_a, loop_b;
+      for (const auto& [ka, kb] : waiting[g]) {
+        const Face& a = table.faces[ka];
+        const Face& b = table.faces[kb];
+        const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
+        if (ra == rb) continue;
+        const double area = overlapArea(a, b, loop_a, loop_b);
+        if (area <= min_area) continue;
+        found[g].push_back(contactOf(a, b, area));
+        decided[g].push_back(decide(found[g].back(), false));
+        if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
       }
-      if (area <= min_area) continue;
-      if (a.piece < b.piece) {
-        found[g].push_back({a.piece, a.face, b.piece, b.face, area});
-      } else {
-        found[g].push_back({b.piece, b.face, a.piece, a.face, area});
-      }
-    }
-  });
-  std::vector<PieceContact> contacts;
-  for (const std::vector<PieceContact>& list : found) {
-    contacts.insert(contacts.end(), list.begin(), list.end());
+    });
   }
-  std::sort(contacts.begin(), contacts.end(), [](const PieceContact& x, const PieceContact& y) {
-    return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
-           std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
+  std::vector<PieceContact> contacts;
+  std::vector<FaceSource> contact_sources;
+  for (std::size_t g = 0; g < group_count; ++g) {
+    contacts.insert(contacts.end(), found[g].begin(), found[g].end());
+    contact_sources.insert(contact_sources.end(), decided[g].begin(), decided[g].end());
+  }
+  std::vector<std::uint32_t> order(contacts.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t i, std::uint32_t j) {
+    const PieceContact& x = contacts[i];
+    const PieceContact& y = contacts[j];
+    return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b, i) <
+           std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b, j);
   });
-  return contacts;
+  std::vector<PieceContact> sorted;
+  sorted.reserve(contacts.size());
+  for (std::uint32_t k : order) sorted.push_back(contacts[k]);
+  if (sources != nullptr) {
+    sources->clear();
+    if (decide) {
+      sources->reserve(order.size());
+      for (std::uint32_t k : order) sources->push_back(contact_sources[k]);
+    }
+  }
+  return sorted;
 }
 
 }  // namespace rockmass::blocks

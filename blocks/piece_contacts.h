@@ -3,6 +3,7 @@
 // block adjacency from the real ones.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -27,14 +28,30 @@ struct PieceContact {
 std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, double tolerance,
                                             double min_area);
 
+/// A cutter's decision on one contact: its source; FaceKind::Fictitious glues the two pieces
+/// into one block. The flag is true when the two faces are the same loop (bitwise equal
+/// points, the two sides of one cut): their shared part is either face. Called concurrently
+/// from several threads.
+using ContactDecision = std::function<FaceSource(const PieceContact&, bool)>;
+
 /// The same contacts when the plane of every face is known: `planes[i][f]` is the id of
 /// the plane that face f of piece i lies in, equal for faces in one geometric plane (a
 /// cutter knows it: the plane that made the face). Only faces with equal ids and opposite
 /// normals and bounding boxes (grown by `tolerance`, m) that meet are compared, so the search costs
 /// about the number of faces, not of piece pairs.
+///
+/// With `decide`, each contact found is decided at once (its source goes to `sources`, in
+/// the order of the result), and pairs of pieces already glued by earlier Fictitious
+/// decisions are not compared at all: first every pair of faces that are the two sides of
+/// one cut (bitwise the same loop: cheap), then, per plane, the other candidate pairs
+/// whose pieces are not yet in one cluster. The result then holds every contact between
+/// pieces that end in different clusters and enough gluing contacts to form the clusters
+/// (the same clusters as with all contacts); contacts inside a cluster may be missing.
 std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const std::vector<std::vector<int>>& planes,
-                                              double tolerance, double min_area);
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide = {},
+                                              std::vector<FaceSource>* sources = nullptr);
 
 /// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
 /// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into

@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "blocks/convex_split.h"
 #include "blocks/disc_scenes.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/union_find.h"
 #include "geometry/disc.h"
 #include "geometry/orientation.h"
 
@@ -393,6 +395,71 @@ TEST(FastCutter, RandomScenesConserveVolumeAndKeepProvenance) {
         }
       }
     }
+  }
+}
+
+TEST(FastCutter, ContactSearchWithDecisionsGluesTheSameClusters) {
+  // findContactsByPlane with a decision skips pairs of pieces glued already: the clusters
+  // and every contact between different clusters must be exactly those of the full search.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    DiscSceneSpec spec;
+    spec.discs = 25;
+    spec.seed = seed;
+    const FractureNetwork network = randomDiscNetwork(spec);
+    const Cut c = cut(network, 12);
+    std::vector<Piece> all;
+    for (const Block& b : c.model.blocks) all.insert(all.end(), b.pieces.begin(), b.pieces.end());
+    const CutTolerances tol = cutTolerances(network.domain);
+    // Plane ids: faces that touch share one (union over the brute-force contacts).
+    std::vector<std::size_t> first(all.size() + 1, 0);
+    for (std::size_t i = 0; i < all.size(); ++i)
+      first[i + 1] = first[i] + all[i].shape.faces.size();
+    UnionFind face_planes(first.back());
+    for (const PieceContact& k : findPieceContacts(all, tol.distance, tol.area)) {
+      face_planes.unite(static_cast<int>(first[k.piece_a] + k.face_a),
+                        static_cast<int>(first[k.piece_b] + k.face_b));
+    }
+    std::vector<std::vector<int>> planes(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      for (std::size_t f = 0; f < all[i].shape.faces.size(); ++f) {
+        planes[i].push_back(face_planes.find(static_cast<int>(first[i] + f)));
+      }
+    }
+    const ContactDecision decide = [&](const PieceContact& k, bool) {
+      const FaceSource& a = all[k.piece_a].face_sources[k.face_a];
+      return a.kind == FaceKind::Fictitious ? all[k.piece_b].face_sources[k.face_b] : a;
+    };
+    const std::vector<PieceContact> full = findContactsByPlane(all, planes, tol.distance, tol.area);
+    std::vector<FaceSource> sources;
+    const std::vector<PieceContact> decided =
+        findContactsByPlane(all, planes, tol.distance, tol.area, decide, &sources);
+    ASSERT_EQ(sources.size(), decided.size());
+    // Blocks of several pieces here: pairs glued through mirrored faces first have other
+    // contacts, which the search with decisions skips.
+    EXPECT_LT(decided.size(), full.size());
+    const auto clustersOf = [&](const std::vector<PieceContact>& contacts) {
+      UnionFind clusters(all.size());
+      for (const PieceContact& k : contacts) {
+        if (decide(k, false).kind == FaceKind::Fictitious) clusters.unite(k.piece_a, k.piece_b);
+      }
+      std::vector<int> root(all.size());
+      for (std::size_t i = 0; i < all.size(); ++i) root[i] = clusters.find(static_cast<int>(i));
+      return root;
+    };
+    const std::vector<int> root = clustersOf(full);
+    EXPECT_EQ(clustersOf(decided), root);
+    for (std::size_t k = 0; k < decided.size(); ++k)
+      EXPECT_EQ(sources[k], decide(decided[k], false));
+    const auto between = [&](const std::vector<PieceContact>& contacts) {
+      std::vector<std::tuple<int, int, int, int, double>> out;
+      for (const PieceContact& k : contacts) {
+        if (root[k.piece_a] != root[k.piece_b]) {
+          out.emplace_back(k.piece_a, k.face_a, k.piece_b, k.face_b, k.area);
+        }
+      }
+      return out;
+    };
+    EXPECT_EQ(between(decided), between(full));
   }
 }
 
