@@ -14,6 +14,7 @@
 
 #include "app/command.h"
 #include "app/scene_blocks.h"
+#include "app/stability.h"
 #include "app/stages.h"
 #include "geometry/plane_section.h"
 #include "io/atomic_file.h"
@@ -22,7 +23,9 @@
 #include "io/input_error.h"
 #include "io/rqd_output.h"
 #include "io/run_summary.h"
+#include "io/scene_model.h"
 #include "io/section_output.h"
+#include "io/stability_output.h"
 #include "io/summary.h"
 
 namespace rockmass::app {
@@ -53,6 +56,22 @@ constexpr int kQuickDdaSteps = 10;
 /// RQD directions of every ball and scanline axes per grid cell of a quick run (at most).
 constexpr int kQuickBallDirections = 200;
 constexpr int kQuickGridDirections = 20;
+/// Steps per run to equilibrium of a quick overload / strength-reduction run (at most).
+constexpr int kQuickEquilibriumSteps = 20;
+/// Factors of each quick overload / strength-reduction list (at most; evenly picked).
+constexpr std::size_t kQuickFactors = 4;
+/// Bisection tolerance of a quick overload / strength-reduction search (at least).
+constexpr double kQuickFactorTolerance = 0.25;
+
+/// At most kQuickFactors of `factors`, evenly spread over the list (first and last kept).
+std::vector<double> quickFactors(const std::vector<double>& factors) {
+  if (factors.size() <= kQuickFactors) return factors;
+  std::vector<double> kept;
+  for (std::size_t k = 0; k < kQuickFactors; ++k) {
+    kept.push_back(factors[k * (factors.size() - 1) / (kQuickFactors - 1)]);
+  }
+  return kept;
+}
 
 /// The quick box: in plan, the structures' footprint (the union of their plan bounding
 /// boxes, clipped to the domain) or, without structures, the central half of the domain in
@@ -141,7 +160,61 @@ std::vector<std::string> makeQuick(io::Scene& scene) {
     rqd.grid_direction_count = std::min(rqd.grid_direction_count, kQuickGridDirections);
     rqd.grid_region.reset();  // the grid covers the (quick) domain
   }
+  io::Analysis& a = scene.analysis;
+  if ((a.overload || a.strength_reduction) && a.dda) {
+    if (!a.equilibrium) a.equilibrium.emplace();
+    a.equilibrium->max_steps =
+        std::min(a.equilibrium->max_steps.value_or(a.dda->steps), kQuickEquilibriumSteps);
+  }
+  if (a.overload) {
+    a.overload->factors = quickFactors(a.overload->factors);
+    if (a.overload->tolerance > 0.0) {
+      a.overload->tolerance = std::max(a.overload->tolerance, kQuickFactorTolerance);
+    }
+  }
+  if (a.strength_reduction) {
+    a.strength_reduction->factors = quickFactors(a.strength_reduction->factors);
+    a.strength_reduction->tolerance =
+        std::max(a.strength_reduction->tolerance, kQuickFactorTolerance);
+  }
   return notes;
+}
+
+// -------------------------------------------------------------------------------------------
+// Blocks of the DDA
+
+/// Blocks smaller than this fraction of the median block volume are left out of the DDA
+/// and stability stages: the cutter's slivers (down to 1e-11 m3 against a median of
+/// 0.05 m3 in the Xiangjiaba quick box) have masses and inertias so small next to the
+/// contact penalties that the DDA matrix is not positive definite in floating point.
+constexpr double kSliverVolumeRatio = 1e-3;
+
+/// `blocks` without the blocks below kSliverVolumeRatio x the median volume; adds their
+/// count, total volume and the threshold to `report`.
+blocks::BlockModel withoutSlivers(const blocks::BlockModel& blocks, io::RunReport& report) {
+  std::vector<double> volumes;
+  for (const blocks::Block& b : blocks.blocks) volumes.push_back(b.mass.volume);
+  if (volumes.empty()) return blocks;
+  std::nth_element(volumes.begin(), volumes.begin() + volumes.size() / 2, volumes.end());
+  const double threshold = kSliverVolumeRatio * volumes[volumes.size() / 2];
+  blocks::BlockModel kept = blocks;
+  kept.blocks.clear();
+  io::DroppedBlocks dropped;
+  dropped.threshold = threshold;
+  for (const blocks::Block& b : blocks.blocks) {
+    if (b.mass.volume < threshold) {
+      ++dropped.count;
+      dropped.volume += b.mass.volume;
+    } else {
+      kept.blocks.push_back(b);
+    }
+  }
+  report.dda_dropped = dropped;
+  std::fprintf(stderr,
+               "run: DDA: %d sliver blocks below %.3g m3 (%.3g x the median) left out, %.3g m3 "
+               "in all\n",
+               dropped.count, threshold, kSliverVolumeRatio, dropped.volume);
+  return kept;
 }
 
 // -------------------------------------------------------------------------------------------
@@ -397,10 +470,12 @@ int runAll(const RunOptions& options) {
     parts.push_back({"rqd", io::formatRqdSummary(stageRun(run, {}), stage.report)});
   }
 
-  // DDA.
+  // DDA (on the blocks without the slivers).
+  std::optional<blocks::BlockModel> dda_blocks;
+  if (plan.dda) dda_blocks = withoutSlivers(cut->model, report);
   if (plan.dda) {
     const auto start = Clock::now();
-    const DdaStage stage = runDdaStage(scene, cut->model, dda_overrides, out);
+    const DdaStage stage = runDdaStage(scene, *dda_blocks, dda_overrides, out);
     run.stages.push_back("dda");
     run.timings.emplace_back("dda", secondsSince(start));
     run.effects = stage.effects;
@@ -411,17 +486,38 @@ int runAll(const RunOptions& options) {
   }
 
   // ===== Overload and strength reduction: the one place where they are wired. =====
-  // When runOverload(...) / runStrengthReduction(...) land (branch water-overload), call them
-  // here on the DDA settings and the blocks above, append "overload" / "strength_reduction"
-  // to run.stages and run.timings, add overload.csv to report.files and their summaries to
-  // `parts` (with `safety_factor`). Until then the run says so instead of inventing numbers.
-  if (plan.overload) {
-    report.unavailable.emplace_back("overload", "not available in this build");
-    std::fprintf(stderr, "run: analysis.overload: not available in this build\n");
-  }
-  if (plan.strength_reduction) {
-    report.unavailable.emplace_back("strength_reduction", "not available in this build");
-    std::fprintf(stderr, "run: analysis.strength_reduction: not available in this build\n");
+  if (plan.overload || plan.strength_reduction) {
+    const dda3d::DdaModel model = io::buildDdaModel(scene, *dda_blocks);
+    std::optional<dda3d::FactorSearchResult> overload;
+    std::optional<dda3d::FactorSearchResult> strength;
+    dda3d::ActiveTerms terms;
+    if (plan.overload) {
+      const auto start = Clock::now();
+      overload = runSceneOverload(scene, model);
+      run.stages.push_back("overload");
+      run.timings.emplace_back("overload", secondsSince(start));
+      addRunTerms(*overload, terms);
+      timedWrite([&] {
+        io::writeFileAtomically(out / "overload.csv",
+                                io::formatOverloadCsv(monitorNames(model), *overload));
+      });
+      report.files.push_back("overload.csv");
+    }
+    if (plan.strength_reduction) {
+      const auto start = Clock::now();
+      strength = runSceneStrengthReduction(scene, model);
+      run.stages.push_back("strength_reduction");
+      run.timings.emplace_back("strength_reduction", secondsSince(start));
+      addRunTerms(*strength, terms);
+    }
+    for (const std::string& effect : terms.names()) {
+      if (std::find(run.effects.begin(), run.effects.end(), effect) == run.effects.end()) {
+        run.effects.push_back(effect);
+      }
+    }
+    const io::StabilitySummary summary = stabilitySummary(
+        scene, model, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
+    parts.push_back({"stability", io::formatStabilitySummary(stageRun(run, {}), summary)});
   }
   // ===== end of overload / strength reduction =====
 

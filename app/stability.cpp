@@ -46,6 +46,33 @@ dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                      progress("strength"));
 }
 
+std::vector<std::string> monitorNames(const dda3d::DdaModel& model) {
+  std::vector<std::string> names;
+  for (const dda3d::DdaMonitor& m : model.monitors) names.push_back(m.name);
+  return names;
+}
+
+io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaModel& model,
+                                      const dda3d::FactorSearchResult* overload,
+                                      const dda3d::FactorSearchResult* strength_reduction) {
+  io::StabilitySummary summary;
+  summary.blocks = static_cast<int>(model.blocks.size());
+  for (const dda3d::DdaBlock& b : model.blocks) summary.fixed_blocks += b.fixed;
+  summary.pressures = static_cast<int>(model.pressures.size());
+  summary.equilibrium = io::equilibriumSettings(scene);
+  summary.overload = overload;
+  if (overload) {
+    summary.overload_scales = scene.analysis.overload->scales;
+    summary.scale_uplift = scene.analysis.overload->scale_uplift;
+  }
+  summary.strength_reduction = strength_reduction;
+  return summary;
+}
+
+void addRunTerms(const dda3d::FactorSearchResult& result, dda3d::ActiveTerms& terms) {
+  for (const dda3d::FactorRun& r : result.runs) terms |= r.terms;
+}
+
 int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analysis) {
   const bool overload = analysis == StabilityAnalysis::Overload;
   const io::Scene scene = loadScene(options.common);
@@ -78,23 +105,14 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   run.timings.emplace_back(overload ? "overload" : "strength_reduction", secondsSince(start));
 
   start = Clock::now();
-  io::StabilitySummary summary;
-  summary.blocks = static_cast<int>(model.blocks.size());
-  for (const dda3d::DdaBlock& b : model.blocks) summary.fixed_blocks += b.fixed;
-  summary.pressures = static_cast<int>(model.pressures.size());
-  summary.equilibrium = search.equilibrium;
-  std::vector<std::string> monitor_names;
-  for (const dda3d::DdaMonitor& m : model.monitors) monitor_names.push_back(m.name);
+  const io::StabilitySummary summary =
+      stabilitySummary(scene, model, overload ? &result : nullptr, overload ? nullptr : &result);
   if (overload) {
-    summary.overload = &result;
-    summary.overload_scales = scene.analysis.overload->scales;
-    summary.scale_uplift = scene.analysis.overload->scale_uplift;
-    io::writeFileAtomically(out / "overload.csv", io::formatOverloadCsv(monitor_names, result));
-  } else {
-    summary.strength_reduction = &result;
+    io::writeFileAtomically(out / "overload.csv",
+                            io::formatOverloadCsv(monitorNames(model), result));
   }
   dda3d::ActiveTerms terms;
-  for (const dda3d::FactorRun& r : result.runs) terms |= r.terms;
+  addRunTerms(result, terms);
   run.effects = terms.names();
   run.timings.emplace_back("write", secondsSince(start));
   io::writeFileAtomically(out / "summary.json", io::formatStabilitySummary(run, summary));

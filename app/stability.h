@@ -5,11 +5,13 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/command.h"
 #include "dda3d/model.h"
 #include "dda3d/stability.h"
 #include "io/scene.h"
+#include "io/stability_output.h"
 
 namespace rockmass::app {
 
@@ -24,6 +26,19 @@ dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const dda3d::
 /// analysis.strength_reduction.
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                                     const dda3d::DdaModel& model);
+
+/// Names of the model's monitors, in order (the columns of overload.csv).
+std::vector<std::string> monitorNames(const dda3d::DdaModel& model);
+
+/// The stability summary of `model` (block, fixed-block and wet-face counts, the
+/// equilibrium criterion of the scene) with the results that ran (null: did not run); the
+/// summary points into them, so they must outlive it.
+io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaModel& model,
+                                      const dda3d::FactorSearchResult* overload,
+                                      const dda3d::FactorSearchResult* strength_reduction);
+
+/// The effects (active engine terms) of every run of `result`, merged into `terms`.
+void addRunTerms(const dda3d::FactorSearchResult& result, dda3d::ActiveTerms& terms);
 
 /// Which analysis a stability command runs.
 enum class StabilityAnalysis { Overload, StrengthReduction };

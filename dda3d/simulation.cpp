@@ -623,7 +623,12 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     const bool positive = solver_->factorize(system_->matrix());
     if (solver_->stats().analyzed) ++pattern_changes_;
     timings_.factorize += secondsSince(start);
-    if (!positive) return iteration;
+    if (!positive) {
+      // No solution this attempt: step() sees the empty vector and redoes the step with a
+      // smaller time step (more inertia on the diagonal), or reports the failure.
+      solution.resize(0);
+      return iteration;
+    }
     start = Clock::now();
     // First guess (used by iterative backends): the previous iteration's solution, or for
     // the first iteration the last step's scaled to this dt.
@@ -807,6 +812,15 @@ StepReport Simulation::step() {
       dt *= settings_.iteration_time_step_factor;
       ++report.redo_iterations;
       continue;
+    }
+    if (solution.size() != system_->rhs().size()) {
+      // The factorization found the matrix not positive definite on every attempt, down to
+      // the smallest time step: a block with (almost) no mass or stiffness, or a mechanism.
+      throw std::runtime_error(
+          "DDA step failed at t = " + std::to_string(time_) +
+          " s: the system matrix is not positive definite even at time step " + std::to_string(dt) +
+          " s (a block of zero or near-zero volume or mass, or an unrestrained mechanism); "
+          "check the block volumes and materials");
     }
     if (!solution.allFinite()) {
       throw std::runtime_error(

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "geometry/disc.h"
 #include "geometry/point_in_polyhedron.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
@@ -50,17 +51,38 @@ bool liesOnDomainFace(const blocks::Piece& piece, int f, const DomainFace& face,
   return true;
 }
 
-/// True when some piece face of `block` came from or lies on `face`.
+/// Area (m2) of face `f` of `piece` inside the rectangle of `face` (the domain box's face,
+/// thickened by `tol` across its plane so that a face lying on it is kept).
+double areaOnDomainFace(const blocks::Piece& piece, int f, const DomainFace& face,
+                        const geometry::Box& domain, double tol) {
+  std::vector<geometry::Vec3> polygon;
+  for (int v : piece.shape.faces[static_cast<std::size_t>(f)]) {
+    polygon.push_back(piece.shape.vertices[static_cast<std::size_t>(v)]);
+  }
+  geometry::Box rectangle = domain;
+  const double plane = face.max_side ? domain.max[face.axis] : domain.min[face.axis];
+  rectangle.min[face.axis] = plane - tol;
+  rectangle.max[face.axis] = plane + tol;
+  const std::vector<geometry::Vec3> inside = geometry::clipPolygonToBox(polygon, rectangle);
+  return inside.size() < 3 ? 0.0 : geometry::polygonArea(inside);
+}
+
+/// True when some piece face of `block` came from or lies on the plane of `face` AND
+/// overlaps the face's rectangle with positive area (more than tol^2): a structure standing
+/// on the domain's top whose side is in the plane of a side face, but above the box, is
+/// not held by it.
 bool touches(const blocks::Block& block, const DomainFace& face, const geometry::Box& domain,
              double tol, bool box_domain) {
   for (const blocks::Piece& piece : block.pieces) {
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       const blocks::FaceSource source =
           f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
-      if (box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id) {
-        return true;
+      const bool from_face =
+          box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id;
+      if (!from_face && !liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) {
+        continue;
       }
-      if (liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) return true;
+      if (areaOnDomainFace(piece, static_cast<int>(f), face, domain, tol) > tol * tol) return true;
     }
   }
   return false;

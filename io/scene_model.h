@@ -48,8 +48,10 @@ int findContainingBlock(const blocks::BlockModel& blocks, const geometry::Vec3& 
 /// (bottom, top, west, east, south, north: z min, z max, x min, x max, y min, y max of the
 /// domain box). A block touches a face when one of its piece faces came from it (FaceKind::
 /// Boundary with that box face id; box domains only, `box_domain`) or lies in its plane
-/// (every vertex within the tolerance, outward normal along the face's): a block meeting the
-/// face along an edge or at a vertex only is not held.
+/// (every vertex within the tolerance, outward normal along the face's), and that piece face
+/// overlaps the domain face's rectangle (within the box bounds) with positive area: a block
+/// meeting the face along an edge or at a vertex only, or lying in its plane outside the
+/// box (a dam standing on the top, its sides in the planes of the side faces), is not held.
 std::vector<bool> blocksOnDomainFaces(const blocks::BlockModel& blocks,
                                       const std::vector<std::string>& faces, bool box_domain);
 

@@ -4,6 +4,7 @@
 // runs the Xiangjiaba example in --quick mode.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -85,12 +86,12 @@ TEST(RunCli, RunsTheStagesTheSceneNamesAndListsThem) {
       << log;
   const Json s = readJson(out / "summary.json");
   EXPECT_EQ(s["command"], "run");
-  EXPECT_EQ(s["stages"], Json::array({"dfn", "cut", "rqd", "dda"}));
-  for (const char* key : {"dfn", "cut", "rqd", "dda", "write", "section"}) {
+  EXPECT_EQ(s["stages"], Json::array({"dfn", "cut", "rqd", "dda", "overload"}));
+  for (const char* key : {"dfn", "cut", "rqd", "dda", "overload", "write", "section"}) {
     ASSERT_TRUE(s["timings"].contains(key)) << key;
     EXPECT_GE(s["timings"][key].get<double>(), 0.0) << key;
   }
-  EXPECT_FALSE(s["timings"].contains("overload"));  // it did not run
+  EXPECT_FALSE(s["timings"].contains("strength_reduction"));  // not asked for
   // The DDA's active physics: static gravity on contacts, no water, no point loads.
   const std::set<std::string> effects(s["effects"].begin(), s["effects"].end());
   EXPECT_TRUE(effects.count("body_force"));
@@ -101,9 +102,12 @@ TEST(RunCli, RunsTheStagesTheSceneNamesAndListsThem) {
   EXPECT_GT(s["discs"].get<int>(), 2);
   EXPECT_TRUE(s.contains("weibull") && s.contains("volume_stats") && s.contains("sets"));
   EXPECT_NEAR(s["total_volume"].get<double>(), 12.0, 1e-9);  // the 2 x 2 x 3 box
-  // Overload is asked for but not built yet: reported, with no invented numbers.
-  EXPECT_EQ(s["run"]["unavailable"]["overload"], "not available in this build");
-  EXPECT_FALSE(s.contains("safety_factor"));
+  // The overload stage ran both factors (no bisection asked for): two runs, and the
+  // safety factor key of the contract (null or K_s, depending on the runs).
+  EXPECT_TRUE(s["run"]["unavailable"].empty());
+  ASSERT_TRUE(s.contains("overload"));
+  EXPECT_EQ(s["overload"]["runs"].size(), 2u);
+  EXPECT_TRUE(s.contains("safety_factor"));
   // Every file listed exists, and every stage's promised file is listed.
   std::set<std::string> files;
   for (const Json& f : s["run"]["files"]) {
@@ -113,7 +117,7 @@ TEST(RunCli, RunsTheStagesTheSceneNamesAndListsThem) {
   for (const char* f :
        {"fractures.fab", "fractures.csv", "fractures.vtu", "blocks.csv", "blocks.vtu",
         "section.csv", "section.svg", "rqd_balls.csv", "rqd_ball_c_t0.1.ply", "history.csv",
-        "dda.pvd", "dda_000010.vtu", "summary.json"}) {
+        "dda.pvd", "dda_000010.vtu", "overload.csv", "summary.json"}) {
     EXPECT_TRUE(files.count(f)) << f;
   }
   EXPECT_EQ(s["run"]["section"], "y=1");  // default: mid-plane normal to y (no structure)
@@ -201,65 +205,79 @@ analysis:
 }
 
 // The Xiangjiaba example, --quick (the structure footprint, the top sixth of the depth, 10
-// DDA steps, 200 ball directions), with the fast cutter (the exact cutter does not take
-// structures yet). Outputs of DFN, blocks, section and RQD are checked as soon as they are
-// written; the DDA stage is checked when it completes.
-TEST(RunCli, XiangjiabaQuick) {
-  test::TempDir dir("run_cli_xiangjiaba");
-  const fs::path out = dir.path() / "out";
+// DDA steps, 200 ball directions, at most 4 factors and 20 steps per stability run), with the
+// fast cutter (the exact cutter does not take structures yet). Run once for both tests.
+struct QuickRun {
+  test::TempDir dir{"run_cli_xiangjiaba"};
+  fs::path out = dir.path() / "out";
   std::string log;
-  const int code = test::runRockmass(std::string("run ") + ROCKMASS_SOURCE_DIR +
-                                         "/examples/xiangjiaba/scene.yaml -o " + out.string() +
-                                         " --quick --cutter fast --no-figures",
-                                     &log);
+  int code = -1;
+};
+
+const QuickRun& xiangjiabaQuick() {
+  static const QuickRun* run = [] {
+    auto* r = new QuickRun;
+    r->code = test::runRockmass(std::string("run ") + ROCKMASS_SOURCE_DIR +
+                                    "/examples/xiangjiaba/scene.yaml -o " + r->out.string() +
+                                    " --quick --cutter fast --no-figures",
+                                &r->log);
+    return r;
+  }();
+  return *run;
+}
+
+/// True when the run stopped with the DDA's handled "not positive definite" error (exit 1
+/// and the message, no crash): the known open problem of docs/xiangjiaba.md.
+bool ddaMatrixNotPositive(const QuickRun& run) {
+  return run.code == 1 && run.log.find("not positive definite") != std::string::npos;
+}
+
+TEST(RunCli, XiangjiabaQuick) {
+  const QuickRun& run = xiangjiabaQuick();
   // Written before the DDA starts: the DFN, blocks, section and RQD files.
   for (const char* f : {"fractures.csv", "fractures.fab", "fractures.vtu", "blocks.csv",
                         "blocks.vtu", "section.csv", "section.svg", "rqd_balls.csv",
                         "boreholes.csv", "rqd.vdb", "rqd_ball_heel_t1.ply"}) {
-    EXPECT_TRUE(fs::exists(out / f)) << f;
+    EXPECT_TRUE(fs::exists(run.out / f)) << f;
   }
-  std::ifstream blocks(out / "blocks.csv");
+  std::ifstream blocks(run.out / "blocks.csv");
   int rows = -1;  // header
   for (std::string line; std::getline(blocks, line);) ++rows;
-  EXPECT_GT(rows, 50);              // the quick box still holds far more than 50 blocks
-  if (code == -1 || code >= 128) {  // killed by a signal (the shell reports 128 + signal)
-    GTEST_SKIP() << "the DDA stage crashed (dda3d: Simulation::step dereferences an empty "
-                    "solution when the factorization fails on its last attempt, see "
-                    "docs/xiangjiaba.md); the stages before it were checked";
+  EXPECT_GT(rows, 50);  // the quick box still holds far more than 50 blocks
+  ASSERT_NE(run.code, -1) << run.log;
+  ASSERT_LT(run.code, 128) << "killed by a signal: " << run.log;  // never a crash
+  if (ddaMatrixNotPositive(run)) {
+    GTEST_SKIP() << "the DDA's matrix is not positive definite on the quick box (handled "
+                    "error, exit 1; open problem in docs/xiangjiaba.md)";
   }
-  ASSERT_EQ(code, 0) << log;
-  const Json s = readJson(out / "summary.json");
+  ASSERT_EQ(run.code, 0) << run.log;
+  for (const char* f : {"history.csv", "dda.pvd", "overload.csv", "summary.json"}) {
+    EXPECT_TRUE(fs::exists(run.out / f)) << f;
+  }
+  const Json s = readJson(run.out / "summary.json");
   EXPECT_GT(s["blocks"].get<int>(), 50);
-  for (const char* key : {"dfn", "cut", "rqd", "dda", "write"}) {
+  for (const char* key : {"dfn", "cut", "rqd", "dda", "overload", "strength_reduction", "write"}) {
     EXPECT_TRUE(s["timings"].contains(key)) << key;
   }
-  EXPECT_EQ(s["stages"], Json::array({"dfn", "cut", "rqd", "grid", "dda"}));
+  EXPECT_EQ(s["stages"],
+            Json::array({"dfn", "cut", "rqd", "grid", "dda", "overload", "strength_reduction"}));
   for (const Json& f : s["run"]["files"]) {
-    EXPECT_TRUE(fs::exists(out / f.get<std::string>())) << f;
+    EXPECT_TRUE(fs::exists(run.out / f.get<std::string>())) << f;
   }
-  EXPECT_TRUE(fs::exists(out / "history.csv"));
 }
 
 TEST(RunCli, XiangjiabaQuickSafetyFactor) {
-  // The overload stage (branch water-overload) is not in this build: `run` reports it as
-  // unavailable (RunsTheStagesTheSceneNamesAndListsThem checks that). When it lands, this
-  // test runs the quick example and requires a finite safety factor.
-  test::TempDir dir("run_cli_xiangjiaba_sf");
-  const fs::path scene = writeScene(dir, kSceneHead + kFullAnalysis);
-  const fs::path out = dir.path() / "out";
-  ASSERT_EQ(test::runRockmass("run " + scene.string() + " -o " + out.string() + " --no-figures"),
-            0);
-  if (readJson(out / "summary.json")["run"]["unavailable"].contains("overload")) {
-    GTEST_SKIP() << "the overload stage is not available in this build yet";
+  const QuickRun& run = xiangjiabaQuick();
+  if (ddaMatrixNotPositive(run)) {
+    GTEST_SKIP() << "the DDA's matrix is not positive definite on the quick box (handled "
+                    "error, exit 1; open problem in docs/xiangjiaba.md)";
   }
-  test::TempDir quick("run_cli_xiangjiaba_sf_quick");
-  ASSERT_EQ(test::runRockmass(std::string("run ") + ROCKMASS_SOURCE_DIR +
-                              "/examples/xiangjiaba/scene.yaml -o " + quick.path().string() +
-                              " --quick --cutter fast --no-figures"),
-            0);
-  const Json s = readJson(quick.path() / "summary.json");
-  ASSERT_TRUE(s["safety_factor"].is_number());
-  EXPECT_GT(s["safety_factor"].get<double>(), 1.0);  // the dam stands under its own loads
+  ASSERT_EQ(run.code, 0) << run.log;
+  const Json s = readJson(run.out / "summary.json");
+  ASSERT_TRUE(s["safety_factor"].is_number()) << s["overload"].dump();
+  EXPECT_TRUE(std::isfinite(s["safety_factor"].get<double>()));
+  // The dam stands under its own loads: the overload starts at K = 1, at rest.
+  EXPECT_GT(s["safety_factor"].get<double>(), 1.0);
 }
 
 }  // namespace

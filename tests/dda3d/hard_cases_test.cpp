@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "dda3d/simulation.h"
@@ -91,6 +93,29 @@ DdaSettings hardSettings(Kinematics kinematics = Kinematics::Deformable) {
   s.kinematics = kinematics;
   s.time_step = 2e-3;
   return s;
+}
+
+TEST(HardCases, SingularSystemIsAnErrorNotACrash) {
+  // A free rigid block touching nothing whose density is the smallest positive double (the
+  // constructor accepts it): its moments of inertia underflow to exactly 0, so the rotational
+  // part of its 6 x 6 diagonal block is I / dt^2 = 0 at every time step (a mechanism), and the
+  // factorization fails on every attempt. The step must throw a clear std::runtime_error
+  // (the CLI's exit 1), never read a missing solution.
+  for (const SolverKind solver : {SolverKind::Cholmod, SolverKind::Eigen}) {
+    DdaModel model;
+    model.materials = {DdaMaterial{std::numeric_limits<double>::denorm_min(), 10e9, 0.25}};
+    model.joints = {DdaJoint{0.6, 0.0, 0.0}};
+    model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
+    DdaSettings settings = hardSettings(Kinematics::Rigid);
+    settings.solver.kind = solver;
+    Simulation sim(model, settings);
+    try {
+      sim.step();
+      ADD_FAILURE() << "a singular system was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("not positive definite"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(HardCases, SoftInterlayerBetweenStiffBlocks) {

@@ -154,6 +154,27 @@ TEST(SceneModel, AnEdgeOnTheFaceDoesNotHoldABlock) {
   EXPECT_TRUE(blocksOnDomainFaces(blocks, {"south"}, true)[0]);  // face {0, 1, 3} is at y = 0
 }
 
+TEST(SceneModel, AFaceInTheSidePlaneButAboveTheBoxDoesNotHold) {
+  // A dam standing on the top (z 2..5) across the whole slice (y 0..1): its y = 0 face lies
+  // in the south face's plane, and the cutter tags it Boundary 2, but at z in [2, 5] it is
+  // outside the south face's rectangle (z in [0, 2]): it touches the rectangle along an
+  // edge only (zero area), so south and north do not hold it. A block reaching 0.5 m into
+  // the box (z 1.5..5) overlaps it with 1 x 0.5 m2 and is held.
+  blocks::BlockModel blocks = fourBlocks();
+  blocks.blocks.push_back(boxBlock(5, {{0.5, 0, 2}, {1.5, 1, 5}}, blocks.domain));
+  blocks.blocks.push_back(boxBlock(6, {{0.5, 0, 1.5}, {1.5, 1, 5}}, blocks.domain));
+  for (const std::size_t b : {std::size_t{4}, std::size_t{5}}) {
+    blocks.blocks[b].pieces[0].face_sources[2] = {blocks::FaceKind::Boundary, 2};
+    blocks.blocks[b].pieces[0].face_sources[3] = {blocks::FaceKind::Boundary, 3};
+  }
+  const std::vector<bool> held = blocksOnDomainFaces(blocks, {"south", "north"}, true);
+  EXPECT_FALSE(held[4]);
+  EXPECT_TRUE(held[5]);
+  // By geometry alone (no provenance) the same.
+  EXPECT_FALSE(blocksOnDomainFaces(blocks, {"south"}, false)[4]);
+  EXPECT_TRUE(blocksOnDomainFaces(blocks, {"south"}, false)[5]);
+}
+
 TEST(SceneModel, MonitorsAttachToTheBlockThatContainsThem) {
   const blocks::BlockModel blocks = fourBlocks();
   EXPECT_EQ(findContainingBlock(blocks, Vec3(1.5, 0.5, 1.5)), 3);
