@@ -60,9 +60,41 @@ bool inPlane(const FaceData& a, const FaceData& b, double tolerance) {
   });
 }
 
+/// True when the two faces lie in one plane: the points of the smaller face within
+/// `tolerance` of the larger face's plane. The plane of a tiny face is not tested against:
+/// its computed normal is off by about the vertex round-off over its size (1e-7 rad for a
+/// 1 mm face of a 10 m cut), which would tilt it away from a large neighbour by more than
+/// the tolerance and lose a real contact.
+bool coplanar(const FaceData& a, const FaceData& b, double tolerance) {
+  const bool a_larger =
+      (a.box.max - a.box.min).squaredNorm() >= (b.box.max - b.box.min).squaredNorm();
+  return a_larger ? inPlane(a, b, tolerance) : inPlane(b, a, tolerance);
+}
+
 }  // namespace
 
-double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+bool thinnerThan(const std::vector<Vec3>& polygon, double tolerance) {
+  if (polygon.size() < 3) return true;
+  const Vec3& origin = polygon.front();
+  Vec3 low = origin;
+  Vec3 high = origin;
+  Vec3 twice_area = Vec3::Zero();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    low = low.cwiseMin(polygon[i]);
+    high = high.cwiseMax(polygon[i]);
+    if (i >= 1 && i + 1 < polygon.size()) {
+      twice_area += (polygon[i] - origin).cross(polygon[i + 1] - origin);
+    }
+  }
+  const double extent = (high - low).norm();
+  return extent <= tolerance || 0.5 * twice_area.norm() <= tolerance * extent;
+}
+
+namespace {
+
+/// The overlap polygon of two faces (see faceOverlapArea), in a thread-local buffer.
+const std::vector<Vec3>& faceOverlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
+                                     const Vec3& normal) {
   // Two buffers swapped between clips: no allocation once they have grown.
   thread_local std::vector<Vec3> clipped, next;
   clipped.assign(a.begin(), a.end());
@@ -77,7 +109,26 @@ double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, c
     clipPolygon(clipped, Plane::through(p, inward / length), next);
     std::swap(clipped, next);
   }
-  return clipped.size() >= 3 ? geometry::polygonArea(clipped) : 0.0;
+  return clipped;
+}
+
+/// Area (m2) of an overlap polygon (0 when degenerate).
+double overlapArea(const std::vector<Vec3>& overlap) {
+  return overlap.size() >= 3 ? geometry::polygonArea(overlap) : 0.0;
+}
+
+/// True when an overlap is a real contact: an area above `min_area` (m2), or a compact
+/// part, wider than `tolerance` (m). A small but compact contact (a 0.1 mm corner cut off a
+/// piece by a crack) joins what it touches, as in the exact cutter; a sliver along an edge,
+/// thinner than the tolerance, does not.
+bool realContact(const std::vector<Vec3>& overlap, double area, double tolerance, double min_area) {
+  return overlap.size() >= 3 && (area > min_area || !thinnerThan(overlap, tolerance));
+}
+
+}  // namespace
+
+double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
+  return overlapArea(faceOverlap(a, b, normal));
 }
 
 std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, double tolerance,
@@ -129,9 +180,12 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
           // Opposite normals (within ~2.6 degrees; the plane test below decides).
           if (a.normal.dot(b.normal) > -0.999) continue;
           if (!boxesMeet(a.box, b.box, tolerance)) continue;
-          if (!inPlane(a, b, tolerance) || !inPlane(b, a, tolerance)) continue;
-          const double area = faceOverlapArea(a.points, b.points, a.normal);
-          if (area > min_area) found[chunk].push_back({i, fa, j, fb, area});
+          if (!coplanar(a, b, tolerance)) continue;
+          const std::vector<Vec3>& overlap = faceOverlap(a.points, b.points, a.normal);
+          const double area = overlapArea(overlap);
+          if (realContact(overlap, area, tolerance, min_area)) {
+            found[chunk].push_back({i, fa, j, fb, area});
+          }
         }
       }
     }
@@ -206,11 +260,11 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
       const Ref& rb = refs[begin + kb];
       if (ra.piece == rb.piece) continue;
       if (data[ka].normal.dot(data[kb].normal) > -0.999) continue;
-      if (!inPlane(data[ka], data[kb], tolerance) || !inPlane(data[kb], data[ka], tolerance)) {
-        continue;
-      }
-      const double area = faceOverlapArea(data[ka].points, data[kb].points, data[ka].normal);
-      if (area <= min_area) continue;
+      if (!coplanar(data[ka], data[kb], tolerance)) continue;
+      const std::vector<Vec3>& overlap =
+          faceOverlap(data[ka].points, data[kb].points, data[ka].normal);
+      const double area = overlapArea(overlap);
+      if (!realContact(overlap, area, tolerance, min_area)) continue;
       if (ra.piece < rb.piece) {
         found[g].push_back({ra.piece, ra.face, rb.piece, rb.face, area});
       } else {
