@@ -18,21 +18,12 @@ void addCutterOption(CLI::App& command, std::string& cutter) {
 }
 
 std::string chooseCutter(const io::Scene& scene, const std::string& option,
-                         const std::string& scene_path) {
-  const std::string cutter =
-      !option.empty() ? option
-      : (scene.analysis.blocks && scene.analysis.blocks->cutter == io::BlocksAnalysis::Cutter::Fast)
-          ? "fast"
-          : "exact";
-  // The exact cutter labels every face in a structure face's plane as Structure, so blocks
-  // under a structure do not glue (docs/blocks.md, "Known limits"): refuse rather than give
-  // wrong blocks.
-  if (cutter == "exact" && !scene.structures.empty()) {
-    throw io::InputError(scene_path + ": structures: the exact cutter does not handle " +
-                         "structures yet; run with --cutter fast or set " +
-                         "analysis.blocks.cutter: fast");
-  }
-  return cutter;
+                         const std::string& /*scene_path*/) {
+  return !option.empty() ? option
+         : (scene.analysis.blocks &&
+            scene.analysis.blocks->cutter == io::BlocksAnalysis::Cutter::Fast)
+             ? "fast"
+             : "exact";
 }
 
 /// The cut input of a scene: its domain (a box, or a mesh domain's surface and its convex

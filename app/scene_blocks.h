@@ -27,8 +27,8 @@ struct SceneBlocks {
 void addCutterOption(CLI::App& command, std::string& cutter);
 
 /// The cutter to use: `option` when given, else the scene's analysis.blocks.cutter (exact
-/// by default). Throws io::InputError, before any work, when the scene needs what that
-/// cutter cannot do yet (the exact cutter and structures).
+/// by default). Both cutters handle every scene cutInput accepts; `scene_path` is kept for
+/// errors of cutters that cannot.
 std::string chooseCutter(const io::Scene& scene, const std::string& option,
                          const std::string& scene_path);
 

@@ -7,6 +7,8 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "blocks/convex_split.h"
@@ -43,35 +45,6 @@ void markInternalFaces(std::vector<Piece>& pieces, const CutTolerances& toleranc
   }
 }
 
-/// Adds the contacts of the structure pieces (all[rock_count..]) with each other and with
-/// the rock pieces whose bounding boxes come near a structure.
-void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
-                             const CutTolerances& tolerances, std::vector<PieceContact>& contacts) {
-  if (all.size() == rock_count) return;
-  std::vector<geometry::Box> structure_boxes;
-  for (std::size_t i = rock_count; i < all.size(); ++i) {
-    structure_boxes.push_back(geometry::bounds(all[i].shape).enlarged(tolerances.distance));
-  }
-  std::vector<int> index;  // into `all`
-  for (std::size_t i = 0; i < rock_count; ++i) {
-    const geometry::Box b = geometry::bounds(all[i].shape);
-    const bool near =
-        std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const auto& s) {
-          return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
-        });
-    if (near) index.push_back(static_cast<int>(i));
-  }
-  for (std::size_t i = rock_count; i < all.size(); ++i) index.push_back(static_cast<int>(i));
-  std::vector<Piece> subset;
-  for (int i : index) subset.push_back(all[i]);
-  for (PieceContact c : findPieceContacts(subset, tolerances.distance, tolerances.area)) {
-    c.piece_a = index[c.piece_a];
-    c.piece_b = index[c.piece_b];
-    if (c.piece_b < static_cast<int>(rock_count)) continue;  // rock-rock: given already
-    contacts.push_back(c);
-  }
-}
-
 }  // namespace
 
 CutTolerances cutTolerances(const geometry::Box& domain) {
@@ -99,6 +72,77 @@ std::vector<int> blockOrder(const std::vector<Block>& blocks, const geometry::Bo
   return order;
 }
 
+void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
+                             const CutTolerances& tolerances, std::vector<PieceContact>& contacts) {
+  if (all.size() == rock_count) return;
+  std::vector<geometry::Box> structure_boxes;
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    structure_boxes.push_back(geometry::bounds(all[i].shape).enlarged(tolerances.distance));
+  }
+  std::vector<int> index;  // into `all`
+  for (std::size_t i = 0; i < rock_count; ++i) {
+    const geometry::Box b = geometry::bounds(all[i].shape);
+    const bool near =
+        std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const auto& s) {
+          return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
+        });
+    if (near) index.push_back(static_cast<int>(i));
+  }
+  for (std::size_t i = rock_count; i < all.size(); ++i) index.push_back(static_cast<int>(i));
+  std::vector<Piece> subset;
+  for (int i : index) subset.push_back(all[i]);
+  for (PieceContact c : findPieceContacts(subset, tolerances.distance, tolerances.area)) {
+    c.piece_a = index[c.piece_a];
+    c.piece_b = index[c.piece_b];
+    if (c.piece_b < static_cast<int>(rock_count)) continue;  // rock-rock: given already
+    contacts.push_back(c);
+  }
+}
+
+void checkStructuresOutsideRock(const CutInput& input, const CutTolerances& tolerances) {
+  for (std::size_t s = 0; s < input.structures.size(); ++s) {
+    for (const geometry::Polyhedron& shape : input.structures[s].pieces) {
+      for (const geometry::Polyhedron& domain : input.domain_pieces) {
+        // Clip the structure piece by the domain piece's face planes.
+        Piece inside{shape, std::vector<FaceSource>(shape.faces.size())};
+        bool empty = false;
+        for (std::size_t f = 0; f < domain.faces.size() && !empty; ++f) {
+          const Plane plane = Plane::through(domain.vertices[domain.faces[f][0]],
+                                             geometry::faceNormal(domain, static_cast<int>(f)));
+          const Section section = planeSection(inside, plane, tolerances.distance);
+          if (section.kind == SectionKind::Crossing) {
+            inside = splitPiece(inside, plane, tolerances.distance, {})->below;
+          } else {
+            // Not crossed: wholly inside or wholly outside this face's half-space.
+            const Vec3 c = geometry::massProperties(inside.shape).centroid();
+            empty = plane.distance(c) > 0.0;
+          }
+        }
+        if (!empty && geometry::massProperties(inside.shape).volume >
+                          tolerances.area * tolerances.distance * 1e6) {
+          throw std::invalid_argument("structure " + std::to_string(s + 1) +
+                                      " overlaps the rock domain; the cutters need structures "
+                                      "that stand on or beside the rock, not in it");
+        }
+      }
+    }
+  }
+}
+
+std::vector<Piece> labelStructurePieces(const CutInput& input, std::size_t structure,
+                                        const CutTolerances& tolerances) {
+  std::vector<Piece> pieces;
+  for (const geometry::Polyhedron& shape : input.structures[structure].pieces) {
+    Piece piece;
+    piece.shape = shape;
+    piece.face_sources.assign(shape.faces.size(),
+                              {FaceKind::Structure, static_cast<int>(structure)});
+    pieces.push_back(std::move(piece));
+  }
+  markInternalFaces(pieces, tolerances);
+  return pieces;
+}
+
 std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances) {
   std::vector<Piece> pieces;
   int face_id = 0;
@@ -122,15 +166,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   const std::size_t rock_count = all.size();
   std::vector<int> structure_of(rock_count, -1);
   for (std::size_t s = 0; s < input.structures.size(); ++s) {
-    std::vector<Piece> pieces;
-    for (const geometry::Polyhedron& shape : input.structures[s].pieces) {
-      Piece piece;
-      piece.shape = shape;
-      piece.face_sources.assign(shape.faces.size(), {FaceKind::Structure, static_cast<int>(s)});
-      pieces.push_back(std::move(piece));
-    }
-    markInternalFaces(pieces, tolerances);
-    for (Piece& p : pieces) {
+    for (Piece& p : labelStructurePieces(input, s, tolerances)) {
       all.push_back(std::move(p));
       structure_of.push_back(static_cast<int>(s));
     }

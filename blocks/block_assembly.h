@@ -28,6 +28,23 @@ CutTolerances cutTolerances(const geometry::Box& domain);
 /// decomposition of a mesh domain).
 std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances& tolerances);
 
+/// The pieces of structure `structure` of `input` with face provenance: Structure (id =
+/// the structure index), or Fictitious for a face wholly covered by a face of another piece
+/// of the same structure (an internal face of its convex decomposition).
+std::vector<Piece> labelStructurePieces(const CutInput& input, std::size_t structure,
+                                        const CutTolerances& tolerances);
+
+/// Throws std::invalid_argument when a structure piece overlaps a domain piece by more than
+/// a sliver (1e-16 of the domain diagonal cubed): structures stand on or beside the rock,
+/// both cutters leave them whole and the rock uncut by them.
+void checkStructuresOutsideRock(const CutInput& input, const CutTolerances& tolerances);
+
+/// Appends to `contacts` the contacts of the structure pieces (all[rock_count..]) with each
+/// other and with the rock pieces (all[..rock_count]) whose bounding boxes come near a
+/// structure (findPieceContacts). Rock-rock contacts are not searched.
+void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_count,
+                             const CutTolerances& tolerances, std::vector<PieceContact>& contacts);
+
 /// The order in which both cutters number their blocks 1..N: by centroid x, then y, then z,
 /// each rounded to 1e-9 of the domain diagonal, then by volume rounded to 1e-12 of the
 /// domain volume (a ring block and the core it surrounds share a centroid), then by the

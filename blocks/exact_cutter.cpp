@@ -161,36 +161,60 @@ Point2 project(const Point3& p, int axis) {
   }
 }
 
-/// The disc's outline lifted exactly onto the plane through its centre: each vertex keeps
-/// two coordinates and gets the third (along the normal's largest component) solved from the
-/// plane equation in rational arithmetic.
+/// The disc's outline as an exactly planar polygon. An interlayer segment (a rectangle swept
+/// along x or y: its vertices are exactly coplanar in double) is kept as given, on the plane
+/// through its vertices: the segments of an interlayer surface share their knee edges exactly,
+/// and lifting each onto its own plane would open round-off windows (1e-13 m2) between them
+/// through which the slab would glue to the rock. Any other outline is lifted exactly onto
+/// the plane through the centre: each vertex keeps two coordinates and gets the third (along
+/// the normal's largest component) solved from the plane equation in rational arithmetic.
 ExactDisc makeExactDisc(const geometry::Disc& disc, int segments) {
   ExactDisc out;
   out.id = disc.id;
-  const Vec3 n = disc.normal;
-  const double w = -n.dot(disc.center);
-  const Plane3 plane(n.x(), n.y(), n.z(), w);
-  int k = 0;
-  n.cwiseAbs().maxCoeff(&k);
-  out.drop_axis = k;
-  out.plane = knownPlane(plane);
   out.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
   out.bounds.max = -out.bounds.min;
-  for (const Vec3& v : disc.outline(segments)) {
-    std::array<FT, 3> c{FT(v.x()), FT(v.y()), FT(v.z())};
-    FT rest = FT(w);
-    for (int j = 0; j < 3; ++j) {
-      if (j != k) rest += FT(n[j]) * c[j];
-    }
-    c[k] = -rest / FT(n[k]);
-    const Point3 p(c[0], c[1], c[2]);
-    if (!out.polygon.empty() && (out.polygon.back() == p || out.polygon.front() == p)) continue;
+  const std::vector<Vec3> outline = disc.outline(segments);
+  const auto add = [&](const Point3& p, const Vec3& v) {
+    if (!out.polygon.empty() && (out.polygon.back() == p || out.polygon.front() == p)) return;
     out.polygon.push_back(p);
-    out.polygon2d.push_back(project(p, k));
     out.rounded.push_back(v);
     out.bounds.min = out.bounds.min.cwiseMin(v);
     out.bounds.max = out.bounds.max.cwiseMax(v);
+  };
+  std::optional<Plane3> given;
+  if (!disc.polygon.empty() && disc.origin == geometry::DiscOrigin::Interlayer) {
+    std::vector<Point3> points;
+    for (const Vec3& v : outline) points.push_back(toPoint(v));
+    given = polygonPlane(points);
+    if (given && !std::all_of(points.begin(), points.end(),
+                              [&](const Point3& p) { return given->has_on(p); })) {
+      given.reset();
+    }
   }
+  if (given) {
+    out.plane = knownPlane(*given);
+    if (out.plane.normal.dot(disc.normal) < 0.0) out.plane = knownPlane(given->opposite());
+    out.plane.normal.cwiseAbs().maxCoeff(&out.drop_axis);
+    for (const Vec3& v : outline) add(toPoint(v), v);
+  } else {
+    const Vec3 n = disc.normal;
+    const double w = -n.dot(disc.center);
+    const Plane3 plane(n.x(), n.y(), n.z(), w);
+    int k = 0;
+    n.cwiseAbs().maxCoeff(&k);
+    out.drop_axis = k;
+    out.plane = knownPlane(plane);
+    for (const Vec3& v : outline) {
+      std::array<FT, 3> c{FT(v.x()), FT(v.y()), FT(v.z())};
+      FT rest = FT(w);
+      for (int j = 0; j < 3; ++j) {
+        if (j != k) rest += FT(n[j]) * c[j];
+      }
+      c[k] = -rest / FT(n[k]);
+      add(Point3(c[0], c[1], c[2]), v);
+    }
+  }
+  for (const Point3& p : out.polygon) out.polygon2d.push_back(project(p, out.drop_axis));
   for (const Point2& p : out.polygon2d) {
     out.ccw2d.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()));
   }
@@ -226,14 +250,13 @@ bool mayMeet(const ExactDisc& disc, const Box& box) {
 
 /// What a plane of a region's cell complex is.
 struct PlaneTag {
-  enum Kind { RegionFace, DomainFace, DiscPlane, StructurePlane } kind = RegionFace;
-  int index = -1;      ///< boundary id, disc group, or structure index
+  enum Kind { RegionFace, DomainFace, DiscPlane } kind = RegionFace;
+  int index = -1;      ///< boundary id, or disc group
   int axis = 0;        ///< RegionFace / box DomainFace: the axis
   double level = 0.0;  ///< RegionFace / box DomainFace: the coordinate
 };
 
-/// A surface that splits cells without being a disc: a face of the domain surface or of a
-/// structure piece.
+/// A surface that splits cells without being a disc: a face of the domain surface.
 struct Splitter {
   std::vector<Vec3> polygon;  ///< m
   KnownPlane plane;
@@ -265,11 +288,7 @@ struct Context {
   /// of the plane's interior faces), and the disc group lying in it (-1: none).
   std::vector<int> boundary_canonical;
   std::vector<int> boundary_group;
-  std::vector<std::vector<KnownPlane>> structure_planes;        ///< per structure
-  std::vector<Box> structure_bounds;                            ///< per structure piece
-  std::vector<std::pair<int, int>> structure_piece_index;       ///< (structure, piece)
-  std::vector<std::vector<KnownPlane>> structure_piece_planes;  ///< outward, per piece
-  std::vector<Splitter> surface_splitters;  ///< domain surface (mesh) and structure faces
+  std::vector<Splitter> surface_splitters;  ///< domain surface faces (mesh domains)
   std::vector<std::vector<int>> groups;     ///< discs in one plane (indices into discs)
   std::vector<int> group_of_disc;           ///< per disc
   double tolerance = 0.0;                   ///< double prefilter tolerance for plane offsets (m)
@@ -310,8 +329,8 @@ struct Region {
   std::vector<int> discs;
 };
 
-/// Splitting level along `axis` of `box` that coincides with no disc, domain or structure
-/// plane (so that region faces are never covered by a disc or lie on the domain surface).
+/// Splitting level along `axis` of `box` that coincides with no disc or domain plane (so that
+/// region faces are never covered by a disc or lie on the domain surface).
 double splitLevel(const Context& context, const std::vector<int>& discs, const Box& box, int axis) {
   const double size = box.max[axis] - box.min[axis];
   for (int attempt = 0; attempt < 32; ++attempt) {
@@ -322,9 +341,6 @@ double splitLevel(const Context& context, const std::vector<int>& discs, const B
       clash = clash || isAxisPlane(context.discs[d].plane.exact, axis, level);
     for (const KnownPlane& p : context.boundary_planes) {
       clash = clash || isAxisPlane(p.exact, axis, level);
-    }
-    for (const auto& planes : context.structure_planes) {
-      for (const KnownPlane& p : planes) clash = clash || isAxisPlane(p.exact, axis, level);
     }
     if (!clash) return level;
   }
@@ -662,7 +678,8 @@ std::vector<Point3> clipToBox(std::vector<Point3> polygon, const Box& box) {
   return polygon;
 }
 
-/// The rock of a region as a Nef polyhedron: domain within the region, minus structures.
+/// The rock of a region as a Nef polyhedron: the domain within the region (structures lie
+/// outside the rock: checkStructuresOutsideRock).
 Nef regionRock(const Context& context, const Box& region) {
   const Box& domain = context.input->domain_box;
   Box clipped{region.min.cwiseMax(domain.min), region.max.cwiseMin(domain.max)};
@@ -671,15 +688,6 @@ Nef regionRock(const Context& context, const Box& region) {
     Nef solid;
     for (const Polyhedron& p : context.domain_solids) solid += nefFromPolyhedron(p);
     rock *= solid;
-  }
-  for (std::size_t s = 0; s < context.structure_bounds.size(); ++s) {
-    const Box& b = context.structure_bounds[s];
-    if ((b.max.array() < clipped.min.array()).any() ||
-        (b.min.array() > clipped.max.array()).any()) {
-      continue;
-    }
-    const auto [structure, piece] = context.structure_piece_index[s];
-    rock -= nefFromPolyhedron(context.input->structures[structure].pieces[piece]);
   }
   return rock;
 }
@@ -837,19 +845,11 @@ bool insideDomain(const Nef& domain, const std::vector<Point3>& vertices,
   return CGAL::assign(volume, domain.locate(interiorPoint(points))) && volume->mark();
 }
 
-/// Whether the point is inside the rock: inside the domain and outside every structure.
-bool insideRock(const Context& context, const Point3& p, const Nef* domain_nef) {
-  if (domain_nef != nullptr) {
-    Nef::Volume_const_handle volume;
-    if (!CGAL::assign(volume, domain_nef->locate(p)) || !volume->mark()) return false;
-  }
-  for (const auto& planes : context.structure_piece_planes) {
-    const bool inside = std::all_of(planes.begin(), planes.end(), [&](const KnownPlane& plane) {
-      return plane.exact.oriented_side(p) == CGAL::ON_NEGATIVE_SIDE;
-    });
-    if (inside) return false;
-  }
-  return true;
+/// Whether the point is inside the rock: inside the domain (always, for a box domain).
+bool insideRock(const Point3& p, const Nef* domain_nef) {
+  if (domain_nef == nullptr) return true;
+  Nef::Volume_const_handle volume;
+  return CGAL::assign(volume, domain_nef->locate(p)) && volume->mark();
 }
 
 /// The region's starting cell: the region box with its six axis planes.
@@ -880,7 +880,7 @@ Cell startCell(const Context& context, const Box& box, PlaneTable& table) {
 }
 
 /// Cuts one region: splits its box into convex cells by every splitting surface (domain
-/// surface, structure faces, discs) that meets a cell, drops cells outside the rock, and
+/// surface, discs) that meets a cell, drops cells outside the rock, and
 /// records the provenance of every face. With `nef_referee`, the region's rock minus its
 /// discs is also built as a Nef polyhedron and each cell is located in it.
 RegionResult cutRegion(const Context& context, const Region& region, bool exact_volume,
@@ -939,7 +939,7 @@ RegionResult cutRegion(const Context& context, const Region& region, bool exact_
   std::unordered_map<const void*, int> piece_of_volume;
   for (const Cell& cell : cells) {
     const Point3 inside = interiorPoint(cell.vertices);
-    if (!insideRock(context, inside, domain_nef ? &*domain_nef : nullptr)) continue;
+    if (!insideRock(inside, domain_nef ? &*domain_nef : nullptr)) continue;
     const int index = static_cast<int>(result.pieces.size());
     if (rock) {
       Nef::Volume_const_handle volume;
@@ -1004,9 +1004,6 @@ RegionResult cutRegion(const Context& context, const Region& region, bool exact_
           }
           break;
         }
-        case PlaneTag::StructurePlane:
-          source = {FaceKind::Structure, tag.index};
-          break;
         case PlaneTag::DiscPlane:
           source = discFace(tag.index, face.ring, record);
           break;
@@ -1177,7 +1174,7 @@ std::vector<CrackContact> matchFaces(const Context& context, const std::vector<F
   }
   return cracks;
 }
-/// Exact volume of the domain solids (no structures).
+/// Exact volume of the domain solids.
 ExactFT exactDomainVolume(const Context& context) {
   ExactFT total = 0;
   for (const Polyhedron& solid : context.domain_solids) {
@@ -1266,24 +1263,6 @@ Context makeContext(const CutInput& input) {
       context.boundary_planes.push_back(planes[f]);
     }
   }
-  for (std::size_t s = 0; s < input.structures.size(); ++s) {
-    std::vector<KnownPlane> planes;
-    for (std::size_t p = 0; p < input.structures[s].pieces.size(); ++p) {
-      const Polyhedron& piece = input.structures[s].pieces[p];
-      const std::vector<KnownPlane> piece_planes = facePlanes(piece);
-      for (std::size_t f = 0; f < piece_planes.size(); ++f) {
-        planes.push_back(piece_planes[f]);
-        context.surface_splitters.push_back(
-            {facePolygon(piece, f),
-             piece_planes[f],
-             {PlaneTag::StructurePlane, static_cast<int>(s), 0, 0.0}});
-      }
-      context.structure_piece_planes.push_back(piece_planes);
-      context.structure_bounds.push_back(geometry::bounds(piece));
-      context.structure_piece_index.emplace_back(static_cast<int>(s), static_cast<int>(p));
-    }
-    context.structure_planes.push_back(std::move(planes));
-  }
   if (input.network != nullptr) {
     for (const geometry::Disc& disc : input.network->discs) {
       if (!disc.cuts) continue;
@@ -1350,6 +1329,7 @@ std::vector<Polyhedron> convexDecomposition(const Polyhedron& solid) {
 
 BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, ExactCutReport* report) {
   const Context context = makeContext(input);
+  checkStructuresOutsideRock(input, cutTolerances(input.domain_box));
   Region root;
   root.box = input.domain_box;
   for (std::size_t d = 0; d < context.discs.size(); ++d) root.discs.push_back(static_cast<int>(d));
@@ -1418,8 +1398,9 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
     members[it->second].push_back(static_cast<int>(i));
     block_of_piece[i] = it->second;
   }
+  const CutTolerances tolerances = cutTolerances(input.domain_box);
   const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
-                            cutTolerances(input.domain_box).distance);
+                            tolerances.distance);
   std::vector<Block> blocks;
   for (const std::vector<int>& group : members) {
     std::vector<Piece> block_pieces;
@@ -1427,17 +1408,40 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
     const int material = slabs.ofBlock(block_pieces);
     blocks.push_back(makeBlock(std::move(block_pieces), material));
   }
-  const int rock_blocks = static_cast<int>(blocks.size());
+  // Structures: one block each, as the fast cutter makes them (block_assembly.h), and their
+  // contacts with the rock pieces near them and with each other.
+  std::vector<Piece> near;  // rock pieces near a structure, then the structure pieces
+  std::vector<int> block_of_near;
+  if (!input.structures.empty()) {
+    std::vector<Box> structure_boxes;
+    for (const StructureSolid& structure : input.structures) {
+      for (const Polyhedron& shape : structure.pieces) {
+        structure_boxes.push_back(geometry::bounds(shape).enlarged(tolerances.distance));
+      }
+    }
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Box b = geometry::bounds(pieces[i].shape);
+      const bool close =
+          std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const Box& s) {
+            return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
+          });
+      if (close) {
+        near.push_back(pieces[i]);
+        block_of_near.push_back(block_of_piece[i]);
+      }
+    }
+  }
+  const std::size_t near_rock = near.size();
   for (std::size_t s = 0; s < input.structures.size(); ++s) {
-    std::vector<Piece> structure_pieces;
-    for (const Polyhedron& shape : input.structures[s].pieces) {
-      Piece piece;
-      piece.shape = shape;
-      piece.face_sources.assign(shape.faces.size(), {FaceKind::Structure, static_cast<int>(s)});
-      structure_pieces.push_back(std::move(piece));
+    std::vector<Piece> structure_pieces = labelStructurePieces(input, s, tolerances);
+    for (const Piece& piece : structure_pieces) {
+      near.push_back(piece);
+      block_of_near.push_back(static_cast<int>(blocks.size()));
     }
     blocks.push_back(makeBlock(std::move(structure_pieces), input.structures[s].material));
   }
+  std::vector<PieceContact> structure_contacts;
+  appendStructureContacts(near, near_rock, tolerances, structure_contacts);
 
   // Deterministic ids: the order both cutters share.
   const std::vector<int> order = blockOrder(blocks, input.domain_box);
@@ -1446,7 +1450,7 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
     id_of[order[rank]] = static_cast<int>(rank) + 1;
   }
 
-  // Adjacency: cracks between pieces of different blocks, and rock faces on structures.
+  // Adjacency: cracks between pieces of different blocks, and contacts with structures.
   std::map<std::tuple<int, int, int, int>, double> shared;
   const auto add = [&](int block_a, int block_b, const FaceSource& source, double area) {
     int a = id_of[block_a];
@@ -1458,15 +1462,14 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   for (const CrackContact& c : cracks) {
     add(block_of_piece[c.piece_a], block_of_piece[c.piece_b], c.source, c.area);
   }
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const Piece& piece = pieces[i];
-    for (std::size_t f = 0; f < piece.face_sources.size(); ++f) {
-      const FaceSource& source = piece.face_sources[f];
-      if (source.kind != FaceKind::Structure) continue;
-      std::vector<Vec3> polygon;
-      for (const int v : piece.shape.faces[f]) polygon.push_back(piece.shape.vertices[v]);
-      add(block_of_piece[i], rock_blocks + source.id, source, geometry::polygonArea(polygon));
-    }
+  for (const PieceContact& c : structure_contacts) {
+    // The rule of assembleBlocks: no fictitious side; the structure's face names the contact
+    // (piece_a's when both sides are structures).
+    const FaceSource& a = near[static_cast<std::size_t>(c.piece_a)].face_sources[c.face_a];
+    const FaceSource& b = near[static_cast<std::size_t>(c.piece_b)].face_sources[c.face_b];
+    if (a.kind == FaceKind::Fictitious || b.kind == FaceKind::Fictitious) continue;
+    add(block_of_near[c.piece_a], block_of_near[c.piece_b], a.kind == FaceKind::Structure ? a : b,
+        c.area);
   }
 
   BlockModel model;
@@ -1488,11 +1491,9 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   local.pieces = static_cast<int>(pieces.size());
   if (options.check_exact_volume) {
     local.rock_volume_exact = toString(rock_volume);
-    if (input.structures.empty()) {
-      const ExactFT domain = exactDomainVolume(context);
-      local.domain_volume_exact = toString(domain);
-      local.volume_conserved = domain == rock_volume;
-    }
+    const ExactFT domain = exactDomainVolume(context);
+    local.domain_volume_exact = toString(domain);
+    local.volume_conserved = domain == rock_volume;
   }
   if (report != nullptr) *report = local;
   return model;

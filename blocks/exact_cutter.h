@@ -2,16 +2,18 @@
 // polyhedron referee.
 //
 // The domain's bounding box is split (kd-tree, longest axis first) into regions that each
-// meet at most `max_discs_per_region` cutting discs; split planes never coincide with a disc,
-// domain or structure plane, so region faces are always fictitious. In every region a convex
+// meet at most `max_discs_per_region` cutting discs; split planes never coincide with a disc
+// or domain plane, so region faces are always fictitious. In every region a convex
 // cell complex is built in exact arithmetic (CGAL Epeck; every vertex is the intersection of
 // three planes with double coefficients, so numbers never grow): a cell is split by the full
 // plane of every disc (an exactly planar polygon: its vertices are lifted onto the plane in
-// rational arithmetic) and every domain-surface or structure face that meets it. Cells
+// rational arithmetic) and every domain-surface face (mesh domains) that meets it. Cells
 // outside the rock are dropped. A face in a disc plane is a Disc face when the union of the
 // discs in that plane covers it wholly (exact polygon clipping), else fictitious. Pieces
 // glue into blocks across every shared face part that no disc covers - the fictitious-face
-// rule of the fast cutter, decided exactly. Regions run in parallel (TBB).
+// rule of the fast cutter, decided exactly. Regions run in parallel (TBB). Structures stand
+// on or beside the rock, as for the fast cutter: each is one block of its own material, not
+// cut by discs and not cutting the rock.
 //
 // Why not CGAL's Nef differences and convex_decomposition_3 as the cutter: measured on this
 // machine, one Nef difference costs about 10 ms even in a small region, so 100 discs of the
@@ -57,9 +59,9 @@ struct ExactCutReport {
   double glue_seconds = 0.0;     ///< union of pieces into blocks, materials, adjacency (s)
   /// With check_exact_volume: the rational sum of all rock piece volumes (m3) as "p/q".
   std::string rock_volume_exact;
-  /// With check_exact_volume and no structures: the domain volume as a rational "p/q" (m3).
+  /// With check_exact_volume: the domain volume as a rational "p/q" (m3).
   std::string domain_volume_exact;
-  /// With check_exact_volume and no structures: whether the two rationals are equal.
+  /// With check_exact_volume: whether the two rationals are equal.
   std::optional<bool> volume_conserved;
   /// With nef_referee: the number of blocks the Nef volumes give.
   std::optional<int> nef_blocks;
@@ -71,9 +73,10 @@ struct ExactCutReport {
 /// The domain is input.domain_surface when it is not empty, else the union of
 /// input.domain_pieces. Face provenance: Disc (disc id), Boundary (box face 0..5 for a box
 /// domain, else the index of the first domain face in that plane), Structure (structure
-/// index) or Fictitious (between pieces of one block). Block ids are 1..N in blockOrder
-/// (block_assembly.h), the order the fast cutter uses too; materials by SlabMaterials. Throws
-/// std::invalid_argument when the input has no domain or fewer than 3 disc segments.
+/// index, on structure pieces only) or Fictitious (between pieces of one block). Block ids are 1..N
+/// in blockOrder (block_assembly.h), the order the fast cutter uses too; materials by
+/// SlabMaterials. Throws std::invalid_argument when the input has no domain or fewer than 3 disc
+/// segments, or a structure overlaps the rock (checkStructuresOutsideRock).
 BlockModel cutExact(const CutInput& input, const ExactCutOptions& options = {},
                     ExactCutReport* report = nullptr);
 

@@ -221,7 +221,10 @@ CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTo
     covered = clipPolygon(covered, edge);
     if (covered.size() < 3) return result;
   }
-  if (geometry::polygonArea(covered) <= tol.area) return result;
+  // A covered part thinner than the distance tolerance is a graze along a polygon edge:
+  // nothing to cut. A small but compact one is a real crossing (a piece corner poking
+  // 0.1 mm through a crack): it is cut, as the exact cutter cuts it.
+  if (thinnerThan(covered, tol.distance)) return result;
 
   std::vector<WorkPiece> out;
   WorkPiece core = work;
@@ -268,37 +271,6 @@ CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTo
   }
   result.pieces = std::move(out);
   return result;
-}
-
-/// Throws when a structure piece overlaps the rock domain by more than a sliver.
-void checkStructuresOutsideRock(const CutInput& input, const CutTolerances& tol) {
-  for (std::size_t s = 0; s < input.structures.size(); ++s) {
-    for (const geometry::Polyhedron& shape : input.structures[s].pieces) {
-      for (const geometry::Polyhedron& domain : input.domain_pieces) {
-        // Clip the structure piece by the domain piece's face planes.
-        Piece inside{shape, std::vector<FaceSource>(shape.faces.size())};
-        bool empty = false;
-        for (std::size_t f = 0; f < domain.faces.size() && !empty; ++f) {
-          const Plane plane = Plane::through(domain.vertices[domain.faces[f][0]],
-                                             geometry::faceNormal(domain, static_cast<int>(f)));
-          const Section section = planeSection(inside, plane, tol.distance);
-          if (section.kind == SectionKind::Crossing) {
-            inside = splitPiece(inside, plane, tol.distance, {})->below;
-          } else {
-            // Not crossed: wholly inside or wholly outside this face's half-space.
-            const Vec3 c = geometry::massProperties(inside.shape).centroid();
-            empty = plane.distance(c) > 0.0;
-          }
-        }
-        if (!empty &&
-            geometry::massProperties(inside.shape).volume > tol.area * tol.distance * 1e6) {
-          throw std::invalid_argument("structure " + std::to_string(s + 1) +
-                                      " overlaps the rock domain; the cutters need structures "
-                                      "that stand on or beside the rock, not in it");
-        }
-      }
-    }
-  }
 }
 
 BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCutReport* report) {
@@ -702,9 +674,12 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
         inside = inside && low >= 0.0;
       }
-      double area = 0.0;
+      // A covered part thinner than the distance tolerance is a graze: no cut. A small but
+      // compact one (a corner poking 0.1 mm through a crack) is cut, as the exact cutter
+      // cuts it (blocks-exact2's rule for EdgePlanes, thinnerThan).
+      bool cut = false;
       if (!apart && inside) {
-        area = geometry::polygonArea(section.polygon);
+        cut = !thinnerThan(section.polygon, tol.distance);
       } else if (!apart) {
         covered = section.polygon;
         for (const Plane& edge : polygon.edges) {
@@ -712,9 +687,9 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
           std::swap(covered, scratch);
           if (covered.size() < 3) break;
         }
-        if (covered.size() >= 3) area = geometry::polygonArea(covered);
+        cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
-      if (area <= tol.area) {
+      if (!cut) {
         next.push_back(std::move(cell));
         continue;
       }

@@ -86,7 +86,35 @@ bool sameLoop(const std::vector<Vec3>& points, std::uint32_t a_begin, std::uint3
   return true;
 }
 
+/// True when the two faces lie in one plane: the points of the smaller face within
+/// `tolerance` of the larger face's plane. The plane of a tiny face is not tested against:
+/// its computed normal is off by about the vertex round-off over its size (1e-7 rad for a
+/// 1 mm face of a 10 m cut), which would tilt it away from a large neighbour by more than
+/// the tolerance and lose a real contact.
+bool coplanar(const FaceData& a, const FaceData& b, double tolerance) {
+  const bool a_larger =
+      (a.box.max - a.box.min).squaredNorm() >= (b.box.max - b.box.min).squaredNorm();
+  return a_larger ? inPlane(a, b, tolerance) : inPlane(b, a, tolerance);
+}
+
 }  // namespace
+
+bool thinnerThan(const std::vector<Vec3>& polygon, double tolerance) {
+  if (polygon.size() < 3) return true;
+  const Vec3& origin = polygon.front();
+  Vec3 low = origin;
+  Vec3 high = origin;
+  Vec3 twice_area = Vec3::Zero();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    low = low.cwiseMin(polygon[i]);
+    high = high.cwiseMax(polygon[i]);
+    if (i >= 1 && i + 1 < polygon.size()) {
+      twice_area += (polygon[i] - origin).cross(polygon[i + 1] - origin);
+    }
+  }
+  const double extent = (high - low).norm();
+  return extent <= tolerance || 0.5 * twice_area.norm() <= tolerance * extent;
+}
 
 void faceOverlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal,
                  std::vector<Vec3>& out) {
@@ -105,6 +133,18 @@ void faceOverlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const V
     std::swap(out, next);
   }
 }
+
+namespace {
+
+/// True when an overlap is a real contact: an area above `min_area` (m2), or a compact
+/// part, wider than `tolerance` (m). A small but compact contact (a 0.1 mm corner cut off a
+/// piece by a crack) joins what it touches, as in the exact cutter; a sliver along an edge,
+/// thinner than the tolerance, does not.
+bool realContact(const std::vector<Vec3>& overlap, double area, double tolerance, double min_area) {
+  return overlap.size() >= 3 && (area > min_area || !thinnerThan(overlap, tolerance));
+}
+
+}  // namespace
 
 double faceOverlapArea(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& normal) {
   thread_local std::vector<Vec3> clipped;
@@ -161,9 +201,13 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
           // Opposite normals (within ~2.6 degrees; the plane test below decides).
           if (a.normal.dot(b.normal) > -0.999) continue;
           if (!boxesMeet(a.box, b.box, tolerance)) continue;
-          if (!inPlane(a, b, tolerance) || !inPlane(b, a, tolerance)) continue;
-          const double area = faceOverlapArea(a.points, b.points, a.normal);
-          if (area > min_area) found[chunk].push_back({i, fa, j, fb, area});
+          if (!coplanar(a, b, tolerance)) continue;
+          thread_local std::vector<Vec3> overlap;
+          faceOverlap(a.points, b.points, a.normal, overlap);
+          const double area = overlap.size() >= 3 ? geometry::polygonArea(overlap) : 0.0;
+          if (realContact(overlap, area, tolerance, min_area)) {
+            found[chunk].push_back({i, fa, j, fb, area});
+          }
         }
       }
     }
@@ -371,6 +415,13 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
     }
     return true;
   };
+  // The two faces lie in one plane: the smaller face's points near the larger face's plane
+  // (the plane of a tiny face is too uncertain to test a large one against; see coplanar).
+  const auto coplanarFaces = [&](const Face& a, const Face& b) {
+    const bool a_larger =
+        (a.box.max - a.box.min).squaredNorm() >= (b.box.max - b.box.min).squaredNorm();
+    return a_larger ? inPlaneOf(a, b) : inPlaneOf(b, a);
+  };
   // True when an edge line of face e has every point of face x on its outer side or within
   // `tolerance` of it: the faces share at most a strip of that width (area below min_area),
   // decided without constructing points (most candidate pairs only touch along an edge).
@@ -394,14 +445,17 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
     return a.piece < b.piece ? PieceContact{a.piece, a.face, b.piece, b.face, area}
                              : PieceContact{b.piece, b.face, a.piece, a.face, area};
   };
-  /// The overlap area of a candidate pair whose faces are not the same loop (0 when they
-  /// do not touch with area).
-  const auto overlapArea = [&](const Face& a, const Face& b, std::vector<Vec3>& loop_a,
-                               std::vector<Vec3>& loop_b) {
-    if (separated(a, b) || separated(b, a) || !inPlaneOf(a, b) || !inPlaneOf(b, a)) return 0.0;
+  /// The overlap of a candidate pair whose faces are not the same loop, into `overlap`
+  /// (fewer than 3 points when they do not touch with area), and its area (m2). Separated
+  /// faces share at most a strip thinner than `tolerance`: never a real contact.
+  const auto overlapOf = [&](const Face& a, const Face& b, std::vector<Vec3>& loop_a,
+                             std::vector<Vec3>& loop_b, std::vector<Vec3>& overlap) {
+    overlap.clear();
+    if (separated(a, b) || separated(b, a) || !coplanarFaces(a, b)) return 0.0;
     loopOf(a, loop_a);
     loopOf(b, loop_b);
-    return faceOverlapArea(loop_a, loop_b, a.normal);
+    faceOverlap(loop_a, loop_b, a.normal, overlap);
+    return overlap.size() >= 3 ? geometry::polygonArea(overlap) : 0.0;
   };
   /// Which of the pair tests to run: both sides of one cut (same loop) or the others.
   const auto mirrored = [&](const Face& a, const Face& b) {
@@ -417,7 +471,7 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
   if (!decide) {
     tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
       const auto [begin, end] = table.groups[g];
-      std::vector<Vec3> loop_a, loop_b;
+      std::vector<Vec3> loop_a, loop_b, overlap;
       for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
         const Face& a = table.faces[ka];
         const Face& b = table.faces[kb];
@@ -426,13 +480,15 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
         if (mirrored(a, b)) {
           // The common case: both sides of one cut, neither split further since. Shared
           // points are bitwise equal (the splitter computes each crossing point once).
-          if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
-          loopOf(a, loop_a);
-          area = geometry::polygonArea(loop_a);
+          if (!coplanarFaces(a, b)) continue;
+          loopOf(a, overlap);
+          area = geometry::polygonArea(overlap);
         } else {
-          area = overlapArea(a, b, loop_a, loop_b);
+          area = overlapOf(a, b, loop_a, loop_b, overlap);
         }
-        if (area > min_area) found[g].push_back(contactOf(a, b, area));
+        if (realContact(overlap, area, tolerance, min_area)) {
+          found[g].push_back(contactOf(a, b, area));
+        }
       }
     });
   } else {
@@ -449,10 +505,10 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
           waiting[g].emplace_back(ka, kb);
           continue;
         }
-        if (!inPlaneOf(a, b) || !inPlaneOf(b, a)) continue;
+        if (!coplanarFaces(a, b)) continue;
         loopOf(a, loop);
         const double area = geometry::polygonArea(loop);
-        if (area <= min_area) continue;
+        if (!realContact(loop, area, tolerance, min_area)) continue;
         found[g].push_back(contactOf(a, b, area));
         decided[g].push_back(decide(found[g].back(), true));
       }
@@ -470,14 +526,14 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
     // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the group).
     tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
       LocalClusters local;
-      std::vector<Vec3> loop_a, loop_b;
+      std::vector<Vec3> loop_a, loop_b, overlap;
       for (const auto& [ka, kb] : waiting[g]) {
         const Face& a = table.faces[ka];
         const Face& b = table.faces[kb];
         const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
         if (ra == rb) continue;
-        const double area = overlapArea(a, b, loop_a, loop_b);
-        if (area <= min_area) continue;
+        const double area = overlapOf(a, b, loop_a, loop_b, overlap);
+        if (!realContact(overlap, area, tolerance, min_area)) continue;
         found[g].push_back(contactOf(a, b, area));
         decided[g].push_back(decide(found[g].back(), false));
         if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);

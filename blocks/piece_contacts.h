@@ -21,8 +21,10 @@ struct PieceContact {
 };
 
 /// All contacts among `pieces` (closed convex polyhedra with outward faces): faces of two
-/// different pieces whose vertices lie within `tolerance` (m) of each other's plane, whose
-/// normals are opposite, and whose overlap area exceeds `min_area` (m2). Candidate pairs come
+/// different pieces in one plane (the smaller face's vertices within `tolerance` (m) of the
+/// larger face's plane), whose normals are opposite, and whose overlap is a real contact: an
+/// area above `min_area` (m2), or a compact one, wider than `tolerance` (area > tolerance x
+/// the overlap's bounding-box diagonal); thinner overlaps are mere touches. Candidate pairs come
 /// from CGAL's box intersection (bounding boxes grown by `tolerance`). Sorted by
 /// (piece_a, piece_b, face_a, face_b).
 std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, double tolerance,
@@ -58,6 +60,13 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
 /// `out` (counter-clockwise about `normal`; fewer than 3 points when they do not overlap).
 void faceOverlap(const std::vector<geometry::Vec3>& a, const std::vector<geometry::Vec3>& b,
                  const geometry::Vec3& normal, std::vector<geometry::Vec3>& out);
+
+/// True when the convex planar polygon is thinner than `tolerance` (m): its area is at most
+/// `tolerance` x its bounding-box diagonal (a convex polygon is at least area / diagonal
+/// wide), or it is smaller than `tolerance` across. The area is summed about the first
+/// vertex, so its round-off scales with the polygon's size, not with its distance from the
+/// origin: a degenerate polygon 1e-15 m across never passes as a compact one.
+bool thinnerThan(const std::vector<geometry::Vec3>& polygon, double tolerance);
 
 /// Overlap area (m2) of two convex planar faces given counter-clockwise about `normal` (for
 /// `a`) and about -normal (for `b`), assumed coplanar.

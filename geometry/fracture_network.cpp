@@ -278,6 +278,37 @@ std::vector<Vec2> offsetPolyline(const std::vector<Vec2>& line, double distance,
   return out;
 }
 
+/// The profile with each end that lies on or beyond a side of the domain section (the
+/// (profile axis, z) rectangle `low`..`high`) moved outward along its end segment, until
+/// both surfaces offset by `half_thickness` reach `extra` beyond that side. Without this an
+/// inclined end segment's offset surfaces stop up to half a thickness short of the domain
+/// face, and the slab leaves a gap through which its rock glues to the rock around it. An
+/// end inside the domain stays where the profile puts it (a layer that pinches out).
+std::vector<Vec2> extendProfileEnds(std::vector<Vec2> line, const Vec2& low, const Vec2& high,
+                                    double half_thickness, const Vec2& extra) {
+  const double reach = (high - low).norm();
+  for (const bool last : {false, true}) {
+    const std::size_t end = last ? line.size() - 1 : 0;
+    const std::size_t inner = last ? line.size() - 2 : 1;
+    const Vec2 d = (line[end] - line[inner]).normalized();  // outward along the end segment
+    const Vec2 n(-d.y(), d.x());
+    double shift = 0.0;
+    for (int axis = 0; axis < 2; ++axis) {
+      for (const double sign : {-1.0, 1.0}) {
+        // The side axis = low (sign -1) or axis = high (sign +1), outward coordinate sign * x.
+        const double level = sign > 0 ? high[axis] : -low[axis];
+        const double beyond = sign * line[end][axis] - level;  // >= 0: on or beyond the side
+        const double outward = sign * d[axis];
+        if (beyond < -1e-9 * reach || outward <= 0.0) continue;
+        const double needed = (half_thickness * std::abs(n[axis]) + extra[axis] - beyond) / outward;
+        shift = std::max(shift, std::min(needed, reach));
+      }
+    }
+    line[end] += shift * d;
+  }
+  return line;
+}
+
 /// Adds the surfaces of an interlayer: each profile segment swept across the domain.
 void generateInterlayer(const InterlayerSpec& spec, int set_index, const Box& domain,
                         FractureNetwork& network) {
@@ -294,13 +325,18 @@ void generateInterlayer(const InterlayerSpec& spec, int set_index, const Box& do
     q[2] = p.y();
     return q;
   };
+  // The same 1% beyond the domain in the section plane, where the profile reaches a side.
+  const Vec2 low(domain.min[profile_axis], domain.min.z());
+  const Vec2 high(domain.max[profile_axis], domain.max.z());
+  const std::vector<Vec2> profile =
+      extendProfileEnds(spec.profile, low, high, 0.5 * spec.thickness, 0.01 * (high - low));
   std::vector<std::vector<Vec2>> lines;
   Slab slab{set_index, spec.material, spec.thickness, {}, {}};
   if (spec.thickness > 0.0) {
-    lines.push_back(offsetPolyline(spec.profile, -0.5 * spec.thickness, spec.name));
-    lines.push_back(offsetPolyline(spec.profile, 0.5 * spec.thickness, spec.name));
+    lines.push_back(offsetPolyline(profile, -0.5 * spec.thickness, spec.name));
+    lines.push_back(offsetPolyline(profile, 0.5 * spec.thickness, spec.name));
   } else {
-    lines.push_back(spec.profile);
+    lines.push_back(profile);
   }
   SetInfo info = deterministicSet(spec.name, DiscOrigin::Interlayer, Vec3::UnitZ());
   Vec3 normal_sum = Vec3::Zero();

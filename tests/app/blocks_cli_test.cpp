@@ -84,30 +84,11 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
                         &output),
             0)
       << output;
-  // The scene asks for the exact cutter (also the default). The exact cutter extends
-  // structure face planes through the rock without gluing across them (known limit), so with
-  // the dam it refuses to run (exit 2, naming the way out) instead of giving wrong blocks,
-  // and the comparison runs on the rock alone.
-  EXPECT_EQ(runRockmass("blocks " + scene.string() + " -o " + (dir.path() / "e").string(), &output),
-            2);
-  EXPECT_NE(output.find("structures: the exact cutter does not handle structures yet; run with "
-                        "--cutter fast"),
-            std::string::npos)
-      << output;
-  std::string rock_only = kScene;
-  const std::size_t from = rock_only.find("structures:");
-  rock_only.erase(from, rock_only.find("analysis:") - from);
-  const fs::path rock_scene = test::writeFile(dir.path() / "rock.yaml", rock_only);
-  ASSERT_EQ(
-      runRockmass("blocks " + rock_scene.string() + " -o " + (dir.path() / "c").string(), &output),
-      0)
-      << output;
-  EXPECT_NE(output.find("exact cutter"), std::string::npos) << output;
-  ASSERT_EQ(runRockmass("blocks " + rock_scene.string() + " -o " + (dir.path() / "d").string() +
-                            " --cutter fast",
-                        &output),
+  // The scene asks for the exact cutter (also the default): it cuts the scene with its dam.
+  ASSERT_EQ(runRockmass("blocks " + scene.string() + " -o " + (dir.path() / "c").string(), &output),
             0)
       << output;
+  EXPECT_NE(output.find("exact cutter"), std::string::npos) << output;
 
   const auto summary = nlohmann::json::parse(test::readFile(dir.path() / "a" / "summary.json"));
   // Four rock blocks (8 x 12, 12 x 12, 8 x 8, 12 x 8 times 10 m) and the dam.
@@ -126,12 +107,12 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   EXPECT_EQ(test::readFile(dir.path() / "a" / "blocks.vtu"),
             test::readFile(dir.path() / "b" / "blocks.vtu"));
 
-  // The exact cutter gives the same blocks, numbered the same way (the shared order of
-  // blocks/block_assembly.h): per row the same id and material, and a volume within 1e-9
-  // relative (issue 3: the fast cutter's floating-point volumes against exact ones).
-  const std::vector<CsvBlock> fast = readBlocks(test::readFile(dir.path() / "d" / "blocks.csv"));
+  // The exact cutter gives the same blocks, dam included, numbered the same way (the shared
+  // order of blocks/block_assembly.h): per row the same id and material, and a volume within
+  // 1e-9 relative (issue 3: the fast cutter's floating-point volumes against exact ones).
+  const std::vector<CsvBlock> fast = readBlocks(csv);
   const std::vector<CsvBlock> exact = readBlocks(test::readFile(dir.path() / "c" / "blocks.csv"));
-  ASSERT_EQ(fast.size(), 4u);
+  ASSERT_EQ(fast.size(), 5u);
   ASSERT_EQ(exact.size(), fast.size());
   for (std::size_t i = 0; i < fast.size(); ++i) {
     EXPECT_EQ(exact[i].id, fast[i].id);
@@ -141,7 +122,9 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   const auto exact_summary =
       nlohmann::json::parse(test::readFile(dir.path() / "c" / "summary.json"));
   EXPECT_EQ(exact_summary["cutter"], "exact");
-  EXPECT_NEAR(exact_summary["total_volume"].get<double>(), 4000.0, 1e-9);  // round-off
+  EXPECT_NEAR(exact_summary["total_volume"].get<double>(), 4000.0 + 768.0, 1e-9);  // round-off
+  // The dam stands on the rock top: the same contacts (block pairs and areas) both ways.
+  EXPECT_EQ(exact_summary["adjacencies"], summary["adjacencies"]);
 }
 
 }  // namespace

@@ -252,6 +252,50 @@ TEST(FractureNetwork, KneeShapedInterlayerIsAContinuousSlab) {
   EXPECT_THROW(generateNetwork(spec, 1), std::invalid_argument);
 }
 
+TEST(FractureNetwork, InterlayerSurfacesReachBeyondTheDomain) {
+  // The knee-shaped layer ends on the faces x = 0 and x = 240 with inclined end segments.
+  // Offset by +-t/2 normal to the segments, the surface ends would move by up to
+  // t/2 |sin| along x, so one surface would stop short of the face and leave a gap in the
+  // slab. The ends are extended along the end segments until both surfaces reach 1% of the
+  // domain beyond the face (2.4 m), as the sweep does along y.
+  DfnSpec spec;
+  spec.domain = Box{{0, 0, -120}, {240, 160, 0}};
+  InterlayerSpec layer;
+  layer.name = "P1";
+  layer.profile = {{0, -40}, {100, -45}, {140, -30}, {240, -35}};
+  layer.sweep = 'y';
+  layer.thickness = 1.0;
+  layer.material = 1;
+  spec.interlayers.push_back(layer);
+  const FractureNetwork network = generateNetwork(spec, 1);
+  const Slab& slab = network.slabs.at(0);
+  ASSERT_EQ(slab.lower.size(), 3u);
+  ASSERT_EQ(slab.upper.size(), 3u);
+  const Disc& lower_first = network.discs[slab.lower.front() - 1];
+  const Disc& upper_first = network.discs[slab.upper.front() - 1];
+  const Disc& lower_last = network.discs[slab.lower.back() - 1];
+  const Disc& upper_last = network.discs[slab.upper.back() - 1];
+  // polygon[0] is a segment's start, polygon[1] its end (at y = from).
+  const double start = std::max(lower_first.polygon[0].x(), upper_first.polygon[0].x());
+  const double end = std::min(lower_last.polygon[1].x(), upper_last.polygon[1].x());
+  EXPECT_NEAR(start, -2.4, 1e-12 * 240);  // the nearer surface: exactly 1% beyond
+  EXPECT_NEAR(end, 242.4, 1e-12 * 240);
+  // The other surface lies farther out by t |sin| of the end segment's slope.
+  const double slope_first = std::atan2(5.0, 100.0);
+  EXPECT_NEAR(std::min(lower_first.polygon[0].x(), upper_first.polygon[0].x()),
+              -2.4 - std::sin(slope_first), 1e-9);
+  // An end inside the domain stays where the profile puts it (a layer that pinches out).
+  layer.profile = {{20, -40}, {100, -45}};
+  spec.interlayers = {layer};
+  const FractureNetwork inner = generateNetwork(spec, 1);
+  ASSERT_EQ(inner.discs.size(), 2u);
+  const double d = std::sin(std::atan2(5.0, 80.0)) * 0.5;  // x shift of the offset ends
+  EXPECT_NEAR(std::min(inner.discs[0].polygon[0].x(), inner.discs[1].polygon[0].x()), 20.0 - d,
+              1e-9);
+  EXPECT_NEAR(std::max(inner.discs[0].polygon[1].x(), inner.discs[1].polygon[1].x()), 100.0 + d,
+              1e-9);
+}
+
 TEST(FractureNetwork, PolygonsAreKeptAsGiven) {
   DfnSpec spec;
   spec.domain = Box{{0, 0, 0}, {10, 10, 10}};
