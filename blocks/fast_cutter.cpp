@@ -273,29 +273,48 @@ CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTo
   return result;
 }
 
+/// What both strategies start from: the labelled domain pieces, one plane id per domain face
+/// (faces shared by two domain pieces united), then the cutting polygons with their plane and
+/// edge ids, in disc order.
+struct CutStart {
+  UnionFind plane_ids;  ///< coincident planes end up with one root
+  std::vector<Piece> domain;
+  std::vector<std::vector<int>> domain_planes;  ///< per domain piece, per face
+  std::vector<CutPolygon> polygons;
+};
+
+CutStart startCut(const CutInput& input, const CutTolerances& tol) {
+  CutStart s;
+  s.domain = labelDomainPieces(input, tol);
+  s.domain_planes.resize(s.domain.size());
+  for (std::size_t i = 0; i < s.domain.size(); ++i) {
+    for (std::size_t f = 0; f < s.domain[i].shape.faces.size(); ++f) {
+      s.domain_planes[i].push_back(s.plane_ids.add());
+    }
+  }
+  if (s.domain.size() > 1) {
+    for (const PieceContact& c : findPieceContacts(s.domain, tol.distance, tol.area)) {
+      s.plane_ids.unite(s.domain_planes[c.piece_a][c.face_a], s.domain_planes[c.piece_b][c.face_b]);
+    }
+  }
+  for (const geometry::Disc& disc : input.network->discs) {
+    if (disc.cuts) {
+      addCutPolygons(disc, input.disc_segments, tol.distance, s.plane_ids, s.polygons);
+    }
+  }
+  return s;
+}
+
 BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCutReport* report) {
   FastCutReport counters;
   counters.regions = 1;
   const auto start = std::chrono::steady_clock::now();
 
-  // Plane ids: one per domain face, then per cutting polygon its plane and its edges.
-  UnionFind plane_ids;  // coincident planes end up with one root
-  std::vector<Piece> domain = labelDomainPieces(input, tol);
-  std::vector<std::vector<int>> domain_planes(domain.size());
-  for (std::size_t i = 0; i < domain.size(); ++i) {
-    for (std::size_t f = 0; f < domain[i].shape.faces.size(); ++f) {
-      domain_planes[i].push_back(plane_ids.add());
-    }
-  }
-  if (domain.size() > 1) {
-    for (const PieceContact& c : findPieceContacts(domain, tol.distance, tol.area)) {
-      plane_ids.unite(domain_planes[c.piece_a][c.face_a], domain_planes[c.piece_b][c.face_b]);
-    }
-  }
-  std::vector<CutPolygon> polygons;
-  for (const geometry::Disc& disc : input.network->discs) {
-    if (disc.cuts) addCutPolygons(disc, input.disc_segments, tol.distance, plane_ids, polygons);
-  }
+  CutStart setup = startCut(input, tol);
+  UnionFind& plane_ids = setup.plane_ids;
+  std::vector<Piece>& domain = setup.domain;
+  std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
+  const std::vector<CutPolygon>& polygons = setup.polygons;
   counters.cutting_polygons = static_cast<int>(polygons.size());
 
   PieceStore store(input.domain_box, polygons.size());
@@ -722,27 +741,15 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
                          const CutTolerances& tol, FastCutReport* report) {
   FastCutReport counters;
   const auto start = std::chrono::steady_clock::now();
-  UnionFind plane_ids;
-  std::vector<Piece> domain = labelDomainPieces(input, tol);
-  std::vector<std::vector<int>> domain_planes(domain.size());
-  for (std::size_t i = 0; i < domain.size(); ++i) {
-    for (std::size_t f = 0; f < domain[i].shape.faces.size(); ++f) {
-      domain_planes[i].push_back(plane_ids.add());
-    }
-  }
-  if (domain.size() > 1) {
-    for (const PieceContact& c : findPieceContacts(domain, tol.distance, tol.area)) {
-      plane_ids.unite(domain_planes[c.piece_a][c.face_a], domain_planes[c.piece_b][c.face_b]);
-    }
-  }
+  CutStart setup = startCut(input, tol);
+  UnionFind& plane_ids = setup.plane_ids;
+  const std::vector<Piece>& domain = setup.domain;
+  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
+  std::vector<CutPolygon>& polygons = setup.polygons;
   const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
                           geometry::bounds(domain[0].shape).min == input.domain_box.min &&
                           geometry::bounds(domain[0].shape).max == input.domain_box.max &&
                           domain[0].shape.vertices.size() == 8;
-  std::vector<CutPolygon> polygons;
-  for (const geometry::Disc& disc : input.network->discs) {
-    if (disc.cuts) addCutPolygons(disc, input.disc_segments, tol.distance, plane_ids, polygons);
-  }
   const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
   counters.cutting_polygons = static_cast<int>(polygons.size());
 
