@@ -18,17 +18,7 @@ using test::readFile;
 using test::TempDir;
 using test::writeFile;
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  ///< stdout and stderr together
-};
-
-/// Runs the rockmass binary with `arguments` and captures its output.
-Result run(const std::string& arguments) {
-  Result result;
-  result.exit_code = test::runRockmass(arguments, &result.output);
-  return result;
-}
+using Result = test::CliResult;
 
 /// A small scene: two joint sets, a fault and an interlayer in a 40 m cube.
 const char* kScene = R"(version: 1
@@ -71,11 +61,12 @@ TEST(Cli, DfnWritesEveryFileAndTheSameSeedGivesTheSameBytes) {
   TempDir dir("cli_reproducible");
   writeFile(dir.path() / "scene.yaml", kScene);
   const std::string scene = (dir.path() / "scene.yaml").string();
-  const Result first = run("dfn " + scene + " -o " + (dir.path() / "a").string());
+  const Result first = test::runCli("dfn " + scene + " -o " + (dir.path() / "a").string());
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  const Result second = run("dfn " + scene + " -o " + (dir.path() / "b").string());
+  const Result second = test::runCli("dfn " + scene + " -o " + (dir.path() / "b").string());
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  const Result other = run("dfn " + scene + " -o " + (dir.path() / "c").string() + " --seed 8");
+  const Result other =
+      test::runCli("dfn " + scene + " -o " + (dir.path() / "c").string() + " --seed 8");
   ASSERT_EQ(other.exit_code, 0) << other.output;
   for (const char* name : kOutputs) {
     const std::string a = readFile(dir.path() / "a" / name);
@@ -107,7 +98,7 @@ TEST(Cli, BadSceneExitsWithTwoAndALocatedMessage) {
   text.replace(text.find("mean: 2.0, std: 1.5"), 19, "mean: -2.0, std: 1.5");
   writeFile(dir.path() / "scene.yaml", text);
   const std::string scene = (dir.path() / "scene.yaml").string();
-  const Result result = run("dfn " + scene + " -o " + (dir.path() / "out").string());
+  const Result result = test::runCli("dfn " + scene + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(result.exit_code, 2);
   // file:line:column, the key, and what was expected.
   EXPECT_NE(result.output.find(scene + ":17:"), std::string::npos) << result.output;
@@ -117,11 +108,11 @@ TEST(Cli, BadSceneExitsWithTwoAndALocatedMessage) {
 }
 
 TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
-  EXPECT_EQ(run("dfn /nonexistent/scene.yaml -o /tmp/rockmass_cli_none").exit_code, 2);
-  EXPECT_EQ(run("dfn").exit_code, 2);  // no scene, no -o
-  EXPECT_EQ(run("unknown-command x").exit_code, 2);
-  EXPECT_EQ(run("dfn a.yaml -o b --seed notanumber").exit_code, 2);
-  const Result version = run("--version");
+  EXPECT_EQ(test::runCli("dfn /nonexistent/scene.yaml -o /tmp/rockmass_cli_none").exit_code, 2);
+  EXPECT_EQ(test::runCli("dfn").exit_code, 2);  // no scene, no -o
+  EXPECT_EQ(test::runCli("unknown-command x").exit_code, 2);
+  EXPECT_EQ(test::runCli("dfn a.yaml -o b --seed notanumber").exit_code, 2);
+  const Result version = test::runCli("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.output, "0.1.0\n");
 }
@@ -130,8 +121,8 @@ TEST(Cli, UnwritableOutputIsAFailureNotACrash) {
   TempDir dir("cli_unwritable");
   writeFile(dir.path() / "scene.yaml", kScene);
   writeFile(dir.path() / "file", "not a folder");
-  const Result result = run("dfn " + (dir.path() / "scene.yaml").string() + " -o " +
-                            (dir.path() / "file" / "out").string());
+  const Result result = test::runCli("dfn " + (dir.path() / "scene.yaml").string() + " -o " +
+                                     (dir.path() / "file" / "out").string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("cannot create the output folder"), std::string::npos)
       << result.output;

@@ -31,17 +31,7 @@ using test::readFile;
 using test::TempDir;
 using test::writeFile;
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  ///< stdout and stderr together
-};
-
-/// Runs the rockmass binary with `arguments` and captures its output.
-Result run(const std::string& arguments) {
-  Result result;
-  result.exit_code = test::runRockmass(arguments, &result.output);
-  return result;
-}
+using Result = test::CliResult;
 
 /// Two joint sets in a 30 m cube, a ball, two holes with a measured log and calibration.
 std::string scene(const std::string& thresholds = "[0.1, 1, 2]") {
@@ -92,9 +82,9 @@ std::string withoutTimings(const std::string& summary) {
 TEST(RqdCli, WritesBallsBoreholesAndCalibrationReproducibly) {
   TempDir dir("rqd_cli_files");
   const std::string scene_path = prepare(dir);
-  const Result first = run("rqd " + scene_path + " -o " + (dir.path() / "a").string());
+  const Result first = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "a").string());
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  const Result second = run("rqd " + scene_path + " -o " + (dir.path() / "b").string());
+  const Result second = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "b").string());
   ASSERT_EQ(second.exit_code, 0) << second.output;
   for (const char* file : {"rqd_balls.csv", "boreholes.csv", "rqd_ball_mid_t0.1.ply",
                            "rqd_ball_mid_t1.ply", "rqd_ball_mid_t2.ply"}) {
@@ -136,8 +126,9 @@ TEST(RqdCli, WritesBallsBoreholesAndCalibrationReproducibly) {
 TEST(RqdCli, OptionsOverrideTheScene) {
   TempDir dir("rqd_cli_options");
   const std::string scene_path = prepare(dir);
-  const Result r = run("rqd " + scene_path + " -o " + (dir.path() / "o").string() +
-                       " --directions 50 --thresholds 0.5,3 --form triangulated --ball-radius 4");
+  const Result r =
+      test::runCli("rqd " + scene_path + " -o " + (dir.path() / "o").string() +
+                   " --directions 50 --thresholds 0.5,3 --form triangulated --ball-radius 4");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(readFile(dir.path() / "o" / "summary.json"));
   EXPECT_EQ(j["balls"][0]["directions"], 50);
@@ -150,7 +141,7 @@ TEST(RqdCli, OptionsOverrideTheScene) {
 /// Runs `rqd` on a scene whose holes file is `holes` and returns the result.
 Result runWithHoles(const TempDir& dir, const std::string& holes) {
   const std::string scene_path = prepare(dir, holes);
-  return run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  return test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
 }
 
 TEST(RqdCli, BadBoreholeFilesAreLocatedInputErrors) {
@@ -187,25 +178,26 @@ TEST(RqdCli, BadMeasuredLogAndThresholdsAreInputErrors) {
   TempDir dir("rqd_cli_bad_log");
   std::string scene_path = prepare(dir);
   writeFile(dir.path() / "log.csv", "id,from,to,rqd\nA,0,10,70\nC,0,5,50\n");
-  Result r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  Result r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output,
             "error: " + (dir.path() / "log.csv").string() + ":3: id: unknown borehole 'C'\n");
   writeFile(dir.path() / "log.csv", "id,from,to,rqd\nA,10,5,70\n");
-  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output, "error: " + (dir.path() / "log.csv").string() +
                           ":2: from, to: expected 0 <= from < to <= 25 (the length of hole 'A'), "
                           "got 10, 5\n");
   // An empty threshold list, in the scene and on the command line.
   scene_path = prepare(dir, kHoles, scene("[]"));
-  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output,
             "error: " + scene_path +
                 ":17:17: analysis.rqd.thresholds: expected a non-empty list of numbers\n");
   scene_path = prepare(dir);
-  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string() + " --thresholds 2,1");
+  r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string() +
+                   " --thresholds 2,1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output,
             "error: --thresholds: expected increasing numbers > 0 (m), got 1 at position 2\n");
@@ -242,7 +234,8 @@ analysis:
 TEST(RqdCli, GridWritesAVolumeEqualToTheLibrary) {
   TempDir dir("rqd_cli_grid");
   const fs::path scene_path = writeFile(dir.path() / "scene.yaml", gridScene());
-  const Result r = run("rqd " + scene_path.string() + " -o " + (dir.path() / "out").string());
+  const Result r =
+      test::runCli("rqd " + scene_path.string() + " -o " + (dir.path() / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   // The same volume computed directly by the library from the same scene and seed.
@@ -311,8 +304,8 @@ TEST(RqdCli, GridWritesAVolumeEqualToTheLibrary) {
   EXPECT_EQ(g["p32"]["mean"].get<double>(), p32_sum / 18.0);
 
   // --no-grid skips the volume; the scene then has nothing else to compute.
-  const Result skipped =
-      run("rqd " + scene_path.string() + " -o " + (dir.path() / "none").string() + " --no-grid");
+  const Result skipped = test::runCli("rqd " + scene_path.string() + " -o " +
+                                      (dir.path() / "none").string() + " --no-grid");
   EXPECT_EQ(skipped.exit_code, 2) << skipped.output;
   EXPECT_EQ(skipped.output, "error: " + scene_path.string() +
                                 ": analysis.rqd: nothing to compute; give balls, boreholes or a "
@@ -325,7 +318,7 @@ TEST(RqdCli, BadGridIsAnInputError) {
   std::string scene_path =
       writeFile(dir.path() / "scene.yaml", gridScene("{min: [2, 2, -26], max: [28, 28, 5]}"))
           .string();
-  Result r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  Result r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_EQ(r.output, "error: " + scene_path +
                           ": analysis.rqd.grid: the RQD volume region (2, 2, -26) - (28, 28, 5) "
@@ -335,11 +328,12 @@ TEST(RqdCli, BadGridIsAnInputError) {
   scene_path =
       writeFile(dir.path() / "scene.yaml", gridScene("{min: [2, 2, -26], max: [28, 28, -22]}"))
           .string();
-  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string());
+  r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_EQ(r.output.rfind("error: " + scene_path + ": analysis.rqd.grid: ", 0), 0u) << r.output;
   // A bad override on the command line.
-  r = run("rqd " + scene_path + " -o " + (dir.path() / "out").string() + " --grid-spacing -1");
+  r = test::runCli("rqd " + scene_path + " -o " + (dir.path() / "out").string() +
+                   " --grid-spacing -1");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_EQ(r.output, "error: --grid-spacing: expected a number > 0 (m), got -1\n");
 }

@@ -22,4 +22,17 @@ inline int runRockmass(const std::string& arguments, std::string* output = nullp
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// The exit code and the output of one run of the binary.
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs `rockmass <arguments>` and captures its exit code and output.
+inline CliResult runCli(const std::string& arguments) {
+  CliResult result;
+  result.exit_code = runRockmass(arguments, &result.output);
+  return result;
+}
+
 }  // namespace rockmass::test
