@@ -133,7 +133,8 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
 }  // namespace
 
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& options, const fs::path& out) {
+                     const DdaOverrides& options, const fs::path& out,
+                     const std::optional<blocks::MergeReport>& glued) {
   const io::DdaAnalysis& dda = *scene.analysis.dda;
   const int steps = options.steps.value_or(dda.steps);
   DdaStage stage;
@@ -187,6 +188,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   summary.fixed_blocks = fixed_blocks;
   summary.pieces = pieces;
   summary.unknowns = (summary.blocks - fixed_blocks) * sim.dofsPerBlock();
+  summary.glued = glued;
   summary.dynamic = dda.dynamic;
   summary.deformable = dda.deformable;
   summary.solver = sim.solverName();
@@ -239,7 +241,10 @@ int runDda(const DdaOptions& options) {
                cutter.c_str(), run.timings.back().second);
 
   start = Clock::now();
-  const DdaStage stage = runDdaStage(scene, cut.model, options.overrides, out);
+  blocks::MergeReport glued;
+  const blocks::BlockModel dda_blocks = ddaBlocks(scene, cut.model, &glued);
+  const DdaStage stage = runDdaStage(scene, dda_blocks, options.overrides, out,
+                                     glued.merged > 0 ? std::optional(glued) : std::nullopt);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();

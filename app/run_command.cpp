@@ -183,40 +183,6 @@ std::vector<std::string> makeQuick(io::Scene& scene) {
 // -------------------------------------------------------------------------------------------
 // Blocks of the DDA
 
-/// Blocks smaller than this fraction of the median block volume are left out of the DDA
-/// and stability stages: the cutter's slivers (down to 1e-11 m3 against a median of
-/// 0.05 m3 in the Xiangjiaba quick box) have masses and inertias so small next to the
-/// contact penalties that the DDA matrix is not positive definite in floating point.
-constexpr double kSliverVolumeRatio = 1e-3;
-
-/// `blocks` without the blocks below kSliverVolumeRatio x the median volume; adds their
-/// count, total volume and the threshold to `report`.
-blocks::BlockModel withoutSlivers(const blocks::BlockModel& blocks, io::RunReport& report) {
-  std::vector<double> volumes;
-  for (const blocks::Block& b : blocks.blocks) volumes.push_back(b.mass.volume);
-  if (volumes.empty()) return blocks;
-  std::nth_element(volumes.begin(), volumes.begin() + volumes.size() / 2, volumes.end());
-  const double threshold = kSliverVolumeRatio * volumes[volumes.size() / 2];
-  blocks::BlockModel kept = blocks;
-  kept.blocks.clear();
-  io::DroppedBlocks dropped;
-  dropped.threshold = threshold;
-  for (const blocks::Block& b : blocks.blocks) {
-    if (b.mass.volume < threshold) {
-      ++dropped.count;
-      dropped.volume += b.mass.volume;
-    } else {
-      kept.blocks.push_back(b);
-    }
-  }
-  report.dda_dropped = dropped;
-  std::fprintf(stderr,
-               "run: DDA: %d sliver blocks below %.3g m3 (%.3g x the median) left out, %.3g m3 "
-               "in all\n",
-               dropped.count, threshold, kSliverVolumeRatio, dropped.volume);
-  return kept;
-}
-
 // -------------------------------------------------------------------------------------------
 // Section plane
 
@@ -470,12 +436,17 @@ int runAll(const RunOptions& options) {
     parts.push_back({"rqd", io::formatRqdSummary(stageRun(run, {}), stage.report)});
   }
 
-  // DDA (on the blocks without the slivers).
+  // DDA (on the blocks with the small ones glued, analysis.dda.min_block_volume).
   std::optional<blocks::BlockModel> dda_blocks;
-  if (plan.dda) dda_blocks = withoutSlivers(cut->model, report);
+  std::optional<blocks::MergeReport> glued;
+  if (plan.dda || plan.overload || plan.strength_reduction) {
+    blocks::MergeReport merge;
+    dda_blocks = ddaBlocks(scene, cut->model, &merge);
+    if (merge.merged > 0) glued = merge;
+  }
   if (plan.dda) {
     const auto start = Clock::now();
-    const DdaStage stage = runDdaStage(scene, *dda_blocks, dda_overrides, out);
+    const DdaStage stage = runDdaStage(scene, *dda_blocks, dda_overrides, out, glued);
     run.stages.push_back("dda");
     run.timings.emplace_back("dda", secondsSince(start));
     run.effects = stage.effects;
@@ -515,8 +486,9 @@ int runAll(const RunOptions& options) {
         run.effects.push_back(effect);
       }
     }
-    const io::StabilitySummary summary = stabilitySummary(
-        scene, model, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
+    const io::StabilitySummary summary =
+        stabilitySummary(scene, model, glued, overload ? &*overload : nullptr,
+                         strength ? &*strength : nullptr);
     parts.push_back({"stability", io::formatStabilitySummary(stageRun(run, {}), summary)});
   }
   // ===== end of overload / strength reduction =====

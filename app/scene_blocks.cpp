@@ -1,5 +1,7 @@
 #include "app/scene_blocks.h"
 
+#include <cstdio>
+
 #include <stdexcept>
 
 #include "blocks/exact_cutter.h"
@@ -86,6 +88,22 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
     throw io::InputError(scene_path + ": " + e.what());
   }
   return cut;
+}
+
+blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
+                             blocks::MergeReport* report) {
+  const double min_volume = scene.analysis.dda ? scene.analysis.dda->min_block_volume : 0.0;
+  blocks::BlockModel glued = model;
+  const blocks::MergeReport merge = blocks::mergeSmallBlocks(glued, min_volume);
+  if (merge.merged > 0) {
+    std::fprintf(stderr,
+                 "dda: %d blocks below %.3g m3 (%.3g m3 in all) glued to a neighbour: %d blocks, "
+                 "%d still below (no neighbour of their material)\n",
+                 merge.merged, min_volume, merge.merged_volume, merge.blocks_after,
+                 merge.left_small);
+  }
+  if (report != nullptr) *report = merge;
+  return glued;
 }
 
 }  // namespace rockmass::app

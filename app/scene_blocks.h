@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "blocks/block_merge.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
@@ -43,5 +44,12 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
 /// for an input the cutter rejects.
 SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwork& network,
                            const std::string& cutter, const std::string& scene_path);
+
+/// The blocks a DDA of the scene runs on (`dda`, `overload`, `strength`, `run`): `model`
+/// with the blocks below analysis.dda.min_block_volume glued to a neighbour
+/// (blocks::mergeSmallBlocks); `model` itself when the key is absent or 0. Prints one line
+/// on stderr when it glued any, and fills `report` when given.
+blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
+                             blocks::MergeReport* report = nullptr);
 
 }  // namespace rockmass::app

@@ -53,6 +53,7 @@ std::vector<std::string> monitorNames(const dda3d::DdaModel& model) {
 }
 
 io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaModel& model,
+                                      const std::optional<blocks::MergeReport>& glued,
                                       const dda3d::FactorSearchResult* overload,
                                       const dda3d::FactorSearchResult* strength_reduction) {
   io::StabilitySummary summary;
@@ -66,6 +67,7 @@ io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaMo
     summary.scale_uplift = scene.analysis.overload->scale_uplift;
   }
   summary.strength_reduction = strength_reduction;
+  summary.glued = glued;
   return summary;
 }
 
@@ -95,7 +97,10 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   start = Clock::now();
   const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
-  const dda3d::DdaModel model = io::buildDdaModel(scene, cut.model);
+  blocks::MergeReport merge;
+  const dda3d::DdaModel model = io::buildDdaModel(scene, ddaBlocks(scene, cut.model, &merge));
+  const std::optional<blocks::MergeReport> glued =
+      merge.merged > 0 ? std::optional(merge) : std::nullopt;
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
                model.blocks.size(), model.pressures.size(), search.factors.size());
 
@@ -106,7 +111,8 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
 
   start = Clock::now();
   const io::StabilitySummary summary =
-      stabilitySummary(scene, model, overload ? &result : nullptr, overload ? nullptr : &result);
+      stabilitySummary(scene, model, glued, overload ? &result : nullptr,
+                       overload ? nullptr : &result);
   if (overload) {
     io::writeFileAtomically(out / "overload.csv",
                             io::formatOverloadCsv(monitorNames(model), result));

@@ -4,6 +4,7 @@
 // scene, runs one of them and writes its files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ std::vector<std::string> monitorNames(const dda3d::DdaModel& model);
 /// equilibrium criterion of the scene) with the results that ran (null: did not run); the
 /// summary points into them, so they must outlive it.
 io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaModel& model,
+                                      const std::optional<blocks::MergeReport>& glued,
                                       const dda3d::FactorSearchResult* overload,
                                       const dda3d::FactorSearchResult* strength_reduction);
 

@@ -120,9 +120,10 @@ struct DdaStage {
 
 /// Builds the DDA model of `blocks` from the scene (loads, supports, monitors) and runs
 /// analysis.dda (which must be present), writing dda.pvd and the frames into `out` as it
-/// goes (and the debug dump when asked).
+/// goes (and the debug dump when asked). `glued`: what ddaBlocks glued, for the summary.
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& overrides, const std::filesystem::path& out);
+                     const DdaOverrides& overrides, const std::filesystem::path& out,
+                     const std::optional<blocks::MergeReport>& glued = std::nullopt);
 
 /// Writes history.csv into `out`.
 void writeDdaFiles(const std::filesystem::path& out, const DdaStage& stage);

@@ -35,17 +35,22 @@ PieceTopology pieceTopology(const geometry::Polyhedron& piece) {
 }
 
 void BlockState::updateMassProperties() {
+  // Moments about a vertex of the block, not the origin: a sliver 1 mm thick 300 m from the
+  // origin would otherwise lose every digit of its central second moments (and its mass
+  // matrix would not be positive definite).
   geometry::MassProperties total;
+  const Vec3 reference =
+      pieces.empty() || pieces.front().vertices.empty() ? Vec3::Zero() : pieces.front().vertices.front();
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 high = -low;
   for (const geometry::Polyhedron& piece : pieces) {
-    total += geometry::massProperties(piece);
+    total += geometry::massProperties(piece, reference);
     const geometry::Box box = geometry::bounds(piece);
     low = low.cwiseMin(box.min);
     high = high.cwiseMax(box.max);
   }
   volume = total.volume;
-  centroid = total.centroid();
+  centroid = reference + total.centroid();
   second = total.centralSecond();
   size = (high - low).norm();
 }

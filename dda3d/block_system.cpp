@@ -1,5 +1,7 @@
 #include "dda3d/block_system.h"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 
 namespace rockmass::dda3d {
@@ -117,6 +119,15 @@ const SparseMatrix& BlockSystem::matrix() {
     }
   }
   return matrix_;
+}
+
+int BlockSystem::firstIndefiniteDiagonal() const {
+  for (int b = 0; b < block_count_; ++b) {
+    const Eigen::MatrixXd m = diagonal_[static_cast<std::size_t>(b)].topLeftCorner(dofs_, dofs_);
+    const Eigen::LLT<Eigen::MatrixXd> llt(m);
+    if (llt.info() != Eigen::Success) return b;
+  }
+  return -1;
 }
 
 Eigen::VectorXd BlockSystem::rhs() const {

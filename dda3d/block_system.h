@@ -40,6 +40,11 @@ class BlockSystem {
   Eigen::VectorXd rhs() const;
   /// Unknowns of movable block i from a stacked solution (zero-padded to 12).
   BlockVector unknowns(const Eigen::VectorXd& x, int i) const;
+  /// Index of the first movable block whose diagonal block K_ii is not positive definite,
+  /// or -1 (a diagnostic for a failed factorization).
+  int firstIndefiniteDiagonal() const;
+  /// K_ii of movable block i.
+  const BlockMatrix& diagonalBlock(int i) const { return diagonal_[static_cast<std::size_t>(i)]; }
   /// Number of coupled pairs (off-diagonal blocks).
   std::size_t pairCount() const { return pairs_.size(); }
 

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <utility>
 
 namespace rockmass::dda3d {
@@ -24,6 +26,9 @@ constexpr double kAreaCosine = 0.985;
 /// A vertex may touch face f when none of its edges dives into f's plane steeper than this
 /// (cosine of the angle with the inward normal; 0.3 ~ 17 deg below the plane).
 constexpr double kConeSlack = 0.3;
+/// Two entries of one point of block i against block j are the same when their normals
+/// agree to 1 - cos within this (coplanar faces of two pieces of j).
+constexpr double kDuplicateNormalSlack = 1e-9;
 
 struct Plane {
   Vec3 normal;
@@ -48,6 +53,13 @@ std::vector<Plane> facePlanes(const Polyhedron& piece) {
 }
 
 /// True when q (on the face's plane) lies inside the convex face, within `tolerance` (m).
+/// Largest signed distance of p outside the planes of a convex piece (<= 0: inside).
+double outsideDistance(const std::vector<Plane>& planes, const Vec3& p) {
+  double outside = -std::numeric_limits<double>::infinity();
+  for (const Plane& plane : planes) outside = std::max(outside, plane.normal.dot(p) - plane.offset);
+  return outside;
+}
+
 bool insideFace(const Polyhedron& piece, const std::vector<int>& face, const Vec3& normal,
                 const Vec3& q, double tolerance) {
   for (std::size_t k = 0; k < face.size(); ++k) {
@@ -195,9 +207,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
   for (std::size_t v = 0; v < a.shape->vertices.size(); ++v) {
     const Vec3& p = a.shape->vertices[v];
     if (!reach.contains(p)) continue;
-    double outside = -std::numeric_limits<double>::infinity();
-    for (const Plane& plane : b.planes)
-      outside = std::max(outside, plane.normal.dot(p) - plane.offset);
+    const double outside = outsideDistance(b.planes, p);
     if (outside > range.gap) continue;
     const bool is_outside = outside > tolerance;
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
@@ -212,6 +222,12 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
       // would hand the corner to an edge crossing (seen already penetrating) or to nothing.
       const bool kept = static_cast<int>(f) == previous && outside <= range.keep_margin;
       if (gap < -range.depth || (is_outside && gap <= tolerance && !kept)) continue;
+      // Without a face from the last step, a vertex in b is taken to have entered through a
+      // face about as near as the nearest one (outside = minus its depth). A face far behind
+      // the nearest would be a guess: at a vertex resting on b's edge or corner (nearest
+      // faces rejected by the foot or cone tests) it read as a penetration of up to the
+      // piece's thickness, and the penalty then threw the blocks apart.
+      if (static_cast<int>(f) != previous && gap < outside - range.keep_margin) continue;
       const Vec3 foot = p - gap * plane.normal;
       if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot,
                       kept ? range.keep_margin : tolerance)) {
@@ -311,6 +327,15 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       c.gap0 = n.dot(pc - qc);
       c.foot = pc - c.gap0 * n;
       if (c.gap0 < -range.depth || c.gap0 > range.gap) continue;
+      // A negative gap is a penetration only if the edges really pass through each other:
+      // then each closest point lies inside the other piece. Skew edges of two pieces kept
+      // apart by some other plane (small pieces, a reach as large as they are) can satisfy
+      // both support tests above with the slabs overlapping; without this check they were
+      // recorded as penetrations as deep as the search depth.
+      if (c.gap0 < -tolerance &&
+          (outsideDistance(b.planes, pc) > tolerance || outsideDistance(a.planes, qc) > tolerance)) {
+        continue;
+      }
       out.push_back(c);
     }
   }
@@ -356,6 +381,34 @@ std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
   return overlappingPieces(boxes);
 }
 
+namespace {
+
+std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
+  // A vertex of a block made of several pieces belongs to each piece that meets there, and a
+  // face of the other block may be split between its pieces: the same point of block i
+  // against the same plane of block j is then found once per piece pair. Each copy is a
+  // full penalty spring, so the copies would make that corner several times stiffer than
+  // the others (6 copies at a corner of a multi-piece Xiangjiaba block). The first copy
+  // found is kept (a deterministic order, so that contacts carry over between steps).
+  using Key = std::tuple<int, int, double, double, double>;
+  std::map<Key, std::vector<Vec3>> seen;
+  std::vector<Contact> kept;
+  kept.reserve(contacts.size());
+  for (Contact& c : contacts) {
+    std::vector<Vec3>& normals =
+        seen[Key{c.block_i, c.block_j, c.point.x(), c.point.y(), c.point.z()}];
+    const bool duplicate = std::any_of(normals.begin(), normals.end(), [&](const Vec3& n) {
+      return n.dot(c.normal) > 1.0 - kDuplicateNormalSlack;
+    });
+    if (duplicate) continue;
+    normals.push_back(c.normal);
+    kept.push_back(std::move(c));
+  }
+  return kept;
+}
+
+}  // namespace
+
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face) {
@@ -390,7 +443,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
     vertexToFace(b, a, range, tolerance, previous_face, out);
     edgeToEdge(a, b, range, tolerance, out);
   }
-  return out;
+  return withoutDuplicates(std::move(out));
 }
 
 }  // namespace rockmass::dda3d

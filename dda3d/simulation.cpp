@@ -517,6 +517,11 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
   const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
   const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
   const double ks = penalty_ / settings_.shear_penalty_ratio;
+  // A sliding contact sticks only when its slip reverses by more than round-off: at a tiny
+  // time step (or at rest) the rigid slip is ~1e-13 m in a random direction, and reading its
+  // sign locked and released thousands of contacts of the Xiangjiaba model in turn, so that
+  // the iteration never settled at any time step.
+  const double reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
   bool changed = false;
   for (Contact& c : contacts_) {
     const Vec3 relative = relativeDisplacement(c, solution);
@@ -559,7 +564,7 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
             c.slide_direction = shear.normalized();
             c.slip_length = 0.0;  // not known yet: no transverse tangent
           }
-        } else if (!frozen && rigid_slip.dot(c.slide_direction) < 0.0) {
+        } else if (!frozen && rigid_slip.dot(c.slide_direction) < -reverse_tolerance) {
           // Friction alone would drive it back: it sticks, its spring carrying the friction.
           ++c.flips;
           c.state = ContactState::Locked;
@@ -786,6 +791,39 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
   }
 }
 
+namespace {
+
+/// Names the first movable block whose mass matrix is not positive definite, the usual
+/// reason for a failed factorization, or says what else to check.
+std::string singularBlockHint(const std::vector<BlockState>& blocks, const BlockSystem& system) {
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const BlockState& block = blocks[i];
+    if (block.fixed) continue;
+    const Eigen::LLT<BlockMatrix> llt(massMatrix(block));
+    if (llt.info() != Eigen::Success || !(block.volume > 0.0)) {
+      return "block " + std::to_string(i) + " of volume " + std::to_string(block.volume) +
+             " m3 has a mass matrix that is not positive definite";
+    }
+  }
+  const int diagonal = system.firstIndefiniteDiagonal();
+  if (diagonal >= 0) {
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      if (blocks[i].dof_offset == diagonal) {
+        if (!system.diagonalBlock(diagonal).allFinite()) {
+          return "the diagonal of block " + std::to_string(i) + " (volume " +
+                 std::to_string(blocks[i].volume) + " m3) has NaN or infinite entries";
+        }
+        return "the diagonal of block " + std::to_string(i) + " (volume " +
+               std::to_string(blocks[i].volume) + " m3) is not positive definite";
+      }
+    }
+  }
+  return "every block's mass matrix is positive definite: look for an unrestrained "
+         "mechanism or contact springs far stiffer than the blocks";
+}
+
+}  // namespace
+
 StepReport Simulation::step() {
   StepReport report;
   Clock::time_point start = Clock::now();
@@ -819,8 +857,7 @@ StepReport Simulation::step() {
       throw std::runtime_error(
           "DDA step failed at t = " + std::to_string(time_) +
           " s: the system matrix is not positive definite even at time step " + std::to_string(dt) +
-          " s (a block of zero or near-zero volume or mass, or an unrestrained mechanism); "
-          "check the block volumes and materials");
+          " s (" + singularBlockHint(blocks_, *system_) + ")");
     }
     if (!solution.allFinite()) {
       throw std::runtime_error(

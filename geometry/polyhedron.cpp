@@ -5,15 +5,19 @@
 namespace rockmass::geometry {
 
 MassProperties massProperties(const Polyhedron& polyhedron) {
+  return massProperties(polyhedron, Vec3::Zero());
+}
+
+MassProperties massProperties(const Polyhedron& polyhedron, const Vec3& reference) {
   MassProperties local;  // about r = first vertex
   if (polyhedron.vertices.empty()) return local;
-  const Vec3 r = polyhedron.vertices.front();
+  const Vec3 r = polyhedron.vertices.front() - reference;
   for (const std::vector<int>& face : polyhedron.faces) {
     if (face.size() < 3) continue;
-    const Vec3 a = polyhedron.vertices[face[0]] - r;
+    const Vec3 a = polyhedron.vertices[face[0]] - polyhedron.vertices.front();
     for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      const Vec3 b = polyhedron.vertices[face[k]] - r;
-      const Vec3 c = polyhedron.vertices[face[k + 1]] - r;
+      const Vec3 b = polyhedron.vertices[face[k]] - polyhedron.vertices.front();
+      const Vec3 c = polyhedron.vertices[face[k + 1]] - polyhedron.vertices.front();
       const double v = a.dot(b.cross(c)) / 6.0;  // signed; the fourth vertex is r (0 here)
       const Vec3 sum = a + b + c;
       local.volume += v;
@@ -23,7 +27,7 @@ MassProperties massProperties(const Polyhedron& polyhedron) {
           (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
     }
   }
-  // Shift from r to the global origin: x = y + r.
+  // Shift from the first vertex to the reference: x - reference = y + r.
   MassProperties global;
   global.volume = local.volume;
   global.first = local.first + local.volume * r;

@@ -48,6 +48,12 @@ struct MassProperties {
 /// as they are planar.
 MassProperties massProperties(const Polyhedron& polyhedron);
 
+/// The same integrals taken about `reference` instead of the origin (of x - reference).
+/// Summing the pieces of a block about a point of the block keeps the central second
+/// moments accurate for a thin block far from the origin, where the shift to the origin
+/// and back (second - V c c^T) would cancel all their digits.
+MassProperties massProperties(const Polyhedron& polyhedron, const Vec3& reference);
+
 /// Axis-aligned bounding box of the vertices.
 Box bounds(const Polyhedron& polyhedron);
 

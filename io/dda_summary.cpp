@@ -45,6 +45,7 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   j["fixed_blocks"] = dda.fixed_blocks;
   j["pieces"] = dda.pieces;
   j["unknowns"] = dda.unknowns;
+  if (dda.glued) j["glued_blocks"] = gluedBlocksJson(*dda.glued);
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;

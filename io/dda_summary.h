@@ -3,10 +3,12 @@
 /// (blocks, unknowns, kinematics, solver), per-step statistics (contacts by state,
 /// open-close iterations, redone steps, time step) and the final monitor displacements;
 /// per-phase times go under "timings" with the other stage timings.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "blocks/block_merge.h"
 #include "geometry/vec.h"
 #include "io/summary.h"
 
@@ -55,10 +57,12 @@ struct DdaRunSummary {
   double penalty = 0.0;          ///< contact normal penalty at the end (N/m)
   std::vector<DdaMonitorResult> monitors;
   std::vector<DdaStepRecord> steps;
+  /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).
+  std::optional<blocks::MergeReport> glued;
 };
 
 /// summary.json of a dda run: keys command, ..., effects, blocks, fixed_blocks, pieces,
-/// unknowns, mode, kinematics, solver, time_integration{scheme, spectral_radius (bossak
+/// unknowns, glued_blocks{...} (when blocks were glued, gluedBlocksJson), mode, kinematics, solver, time_integration{scheme, spectral_radius (bossak
 /// only)}, steps_requested, steps_taken, time_step, duration,
 /// penalty, monitors[], steps{time, time_step, contacts, open, sliding, locked, iterations,
 /// retries, max_displacement, max_penetration} (one array entry per

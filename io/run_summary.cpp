@@ -44,11 +44,6 @@ std::string formatRunSummary(const RunInfo& run, const std::vector<StageSummary>
   SummaryJson unavailable = SummaryJson::object();
   for (const auto& [stage, reason] : report.unavailable) unavailable[stage] = reason;
   r["unavailable"] = unavailable;
-  if (report.dda_dropped) {
-    r["dda_dropped_blocks"] = {{"count", report.dda_dropped->count},
-                               {"volume", report.dda_dropped->volume},
-                               {"threshold", report.dda_dropped->threshold}};
-  }
   r["files"] = report.files;
   r["figures"] = report.figures;
   r["warnings"] = report.warnings;

@@ -19,13 +19,6 @@ struct StageSummary {
   std::string json;   ///< the stage's summary.json text
 };
 
-/// Blocks left out of the DDA and stability stages (the cutter's slivers).
-struct DroppedBlocks {
-  int count = 0;           ///< blocks left out
-  double volume = 0.0;     ///< their total volume (m3)
-  double threshold = 0.0;  ///< volume below which a block is left out (m3)
-};
-
 /// What `rockmass run` adds to the stages' summaries.
 struct RunReport {
   bool quick = false;    ///< run --quick
@@ -37,7 +30,6 @@ struct RunReport {
   std::vector<std::string> files;            ///< output files written (names, sorted)
   std::vector<std::string> figures;          ///< PNG figures written (names, sorted)
   std::vector<std::string> warnings;         ///< e.g. no python for the figures
-  std::optional<DroppedBlocks> dda_dropped;  ///< when the DDA ran
 };
 
 /// Merges the stage summaries in order under `run`'s header: a key of a stage summary that
@@ -45,8 +37,7 @@ struct RunReport {
 /// is skipped (e.g. `discs`, `blocks`); one with a different value goes under an object
 /// named after the stage (e.g. `dda.pieces`), so nothing is lost. Header keys (version,
 /// command, scene, name, seed, stages, effects) come from `run`. Then the `run` object
-/// (quick, domain, cutter, section, unavailable, dda_dropped_blocks {count, volume,
-/// threshold} when the DDA ran, files, figures, warnings) and, last,
+/// (quick, domain, cutter, section, unavailable, files, figures, warnings) and, last,
 /// `timings`: run.timings followed by the stages' own extra timing keys (cut_split,
 /// dda_phases, dda_steps, ...). Throws std::runtime_error for a stage text that is not JSON.
 std::string formatRunSummary(const RunInfo& run, const std::vector<StageSummary>& stages,

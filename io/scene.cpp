@@ -810,7 +810,7 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c) {
   const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
-                          "penalty", "time_integration"});
+                          "penalty", "time_integration", "min_block_volume"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -827,6 +827,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
     if (!penalty->isNumber()) penalty->failExpected("'auto' or a number > 0");
     dda.penalty = penalty->number(kPositive);
   }
+  dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
   if (const auto integration = m.get("time_integration")) {
     const Cursor t = integration->map({"scheme", "spectral_radius"});
     dda.bossak = t.valueOr("scheme", dda.bossak, [](const Cursor& v) {

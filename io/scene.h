@@ -136,6 +136,9 @@ struct DdaAnalysis {
   /// time_integration.spectral_radius: the Bossak scheme's high-frequency spectral radius
   /// rho_inf in [0, 1] (0 damps the stiff contact modes within two steps, 1 keeps them).
   double spectral_radius = 0.0;
+  /// m3: blocks smaller than this are glued to the same-material neighbour they share the
+  /// most face area with before the DDA (blocks::mergeSmallBlocks); 0 glues none.
+  double min_block_volume = 0.0;
 };
 
 /// analysis.overload

@@ -107,6 +107,7 @@ std::string formatStabilitySummary(const RunInfo& run, const StabilitySummary& s
   Json j = summaryHeader(run);
   j["blocks"] = summary.blocks;
   j["fixed_blocks"] = summary.fixed_blocks;
+  if (summary.glued) j["glued_blocks"] = gluedBlocksJson(*summary.glued);
   j["pressures"] = summary.pressures;
   appendStability(j, summary);
   appendTimings(j, run.timings);

@@ -1,9 +1,11 @@
 #pragma once
 /// Outputs of the stability analyses (docs/stability.md): overload.csv (the K-displacement
 /// curve) and the summary.json of `rockmass overload` / `rockmass strength`.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "blocks/block_merge.h"
 #include "dda3d/stability.h"
 #include "io/summary.h"
 
@@ -27,9 +29,12 @@ struct StabilitySummary {
   std::vector<std::string> overload_scales;             ///< analysis.overload.scales
   bool scale_uplift = false;                            ///< analysis.overload.scale_uplift
   const dda3d::FactorSearchResult* strength_reduction = nullptr;  ///< when it ran
+  /// The small blocks glued before the runs (analysis.dda.min_block_volume > 0).
+  std::optional<blocks::MergeReport> glued;
 };
 
-/// summary.json of `overload` / `strength`: the header, blocks, fixed_blocks, pressures,
+/// summary.json of `overload` / `strength`: the header, blocks, fixed_blocks, glued_blocks
+/// (when blocks were glued), pressures,
 /// equilibrium{...}, overload{rule, scales, scale_uplift, factors_at_rest, last_stable,
 /// first_unstable, K_s, runs[]} and/or strength_reduction{rule, last_stable,
 /// first_unstable, critical_srf, runs[]}, safety_factor (K_s when the overload ran, else

@@ -102,4 +102,10 @@ std::string formatDfnSummary(const RunInfo& run, const geometry::FractureNetwork
   return j.dump(2) + "\n";
 }
 
+SummaryJson gluedBlocksJson(const blocks::MergeReport& glued) {
+  return {{"min_volume", glued.min_volume},       {"blocks_before", glued.blocks_before},
+          {"blocks_after", glued.blocks_after},   {"merged", glued.merged},
+          {"merged_volume", glued.merged_volume}, {"left_small", glued.left_small}};
+}
+
 }  // namespace rockmass::io

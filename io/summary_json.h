@@ -3,6 +3,7 @@
 /// private dependency of the module, so only io's .cpp files include this).
 #include <nlohmann/json.hpp>
 
+#include "blocks/block_merge.h"
 #include "io/summary.h"
 
 namespace rockmass::io {
@@ -20,5 +21,9 @@ void appendTimings(SummaryJson& j, const Timings& timings);
 
 /// A number, or null where JSON has none (an infinite or undefined value).
 SummaryJson finiteOrNull(double value);
+
+/// The `glued_blocks` object of a DDA or stability summary: min_volume, blocks_before,
+/// blocks_after, merged, merged_volume, left_small (blocks::MergeReport).
+SummaryJson gluedBlocksJson(const blocks::MergeReport& glued);
 
 }  // namespace rockmass::io

@@ -1,0 +1,36 @@
+// Gluing small blocks to their neighbours before a DDA. A DFN with dense short joints cuts
+// a foundation into many blocks far smaller than the structure above them (the Xiangjiaba
+// quick box: median 0.05 m3 under a 5e8 kg dam). They carry no load path of their own, yet
+// they set the DDA's time step and contact count. Gluing each one to the neighbour it shares
+// the most face area with keeps the mass, the volume and the geometry (the glued block is
+// the union of the pieces, a non-convex block like any other), only the joint between them
+// no longer opens.
+#pragma once
+
+#include "blocks/block_model.h"
+
+namespace rockmass::blocks {
+
+/// What mergeSmallBlocks did.
+struct MergeReport {
+  double min_volume = 0.0;  ///< m3, the threshold
+  int blocks_before = 0;
+  int blocks_after = 0;
+  int merged = 0;              ///< blocks glued to a neighbour
+  double merged_volume = 0.0;  ///< m3, their volume
+  /// Blocks still below min_volume: no neighbour of the same material (an isolated block,
+  /// or one touching only other materials).
+  int left_small = 0;
+};
+
+/// Glues every block of `model` smaller than `min_volume` (m3) to the neighbour of the same
+/// material with which it shares the largest face area (ties: the lower id), smallest block
+/// first, and again while the glued block stays below the threshold. Blocks of different
+/// materials are never glued (a rock block is not glued to the dam, nor to a fault slab).
+/// The result has the blocks renumbered 1..N in the order of their lowest original id, each
+/// with the pieces of the blocks glued into it, the summed mass properties and the union of
+/// the bounds; adjacency areas between glued groups are summed, adjacency inside a group
+/// dropped. Volumes are conserved exactly (the pieces are kept as they are).
+MergeReport mergeSmallBlocks(BlockModel& model, double min_volume);
+
+}  // namespace rockmass::blocks
