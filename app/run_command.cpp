@@ -486,9 +486,8 @@ int runAll(const RunOptions& options) {
         run.effects.push_back(effect);
       }
     }
-    const io::StabilitySummary summary =
-        stabilitySummary(scene, model, glued, overload ? &*overload : nullptr,
-                         strength ? &*strength : nullptr);
+    const io::StabilitySummary summary = stabilitySummary(
+        scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
     parts.push_back({"stability", io::formatStabilitySummary(stageRun(run, {}), summary)});
   }
   // ===== end of overload / strength reduction =====

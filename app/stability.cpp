@@ -110,9 +110,8 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   run.timings.emplace_back(overload ? "overload" : "strength_reduction", secondsSince(start));
 
   start = Clock::now();
-  const io::StabilitySummary summary =
-      stabilitySummary(scene, model, glued, overload ? &result : nullptr,
-                       overload ? nullptr : &result);
+  const io::StabilitySummary summary = stabilitySummary(
+      scene, model, glued, overload ? &result : nullptr, overload ? nullptr : &result);
   if (overload) {
     io::writeFileAtomically(out / "overload.csv",
                             io::formatOverloadCsv(monitorNames(model), result));

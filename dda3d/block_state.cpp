@@ -39,8 +39,9 @@ void BlockState::updateMassProperties() {
   // origin would otherwise lose every digit of its central second moments (and its mass
   // matrix would not be positive definite).
   geometry::MassProperties total;
-  const Vec3 reference =
-      pieces.empty() || pieces.front().vertices.empty() ? Vec3::Zero() : pieces.front().vertices.front();
+  const Vec3 reference = pieces.empty() || pieces.front().vertices.empty()
+                             ? Vec3::Zero()
+                             : pieces.front().vertices.front();
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 high = -low;
   for (const geometry::Polyhedron& piece : pieces) {

@@ -332,8 +332,8 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       // apart by some other plane (small pieces, a reach as large as they are) can satisfy
       // both support tests above with the slabs overlapping; without this check they were
       // recorded as penetrations as deep as the search depth.
-      if (c.gap0 < -tolerance &&
-          (outsideDistance(b.planes, pc) > tolerance || outsideDistance(a.planes, qc) > tolerance)) {
+      if (c.gap0 < -tolerance && (outsideDistance(b.planes, pc) > tolerance ||
+                                  outsideDistance(a.planes, qc) > tolerance)) {
         continue;
       }
       out.push_back(c);

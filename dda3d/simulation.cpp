@@ -854,10 +854,10 @@ StepReport Simulation::step() {
     if (solution.size() != system_->rhs().size()) {
       // The factorization found the matrix not positive definite on every attempt, down to
       // the smallest time step: a block with (almost) no mass or stiffness, or a mechanism.
-      throw std::runtime_error(
-          "DDA step failed at t = " + std::to_string(time_) +
-          " s: the system matrix is not positive definite even at time step " + std::to_string(dt) +
-          " s (" + singularBlockHint(blocks_, *system_) + ")");
+      throw std::runtime_error("DDA step failed at t = " + std::to_string(time_) +
+                               " s: the system matrix is not positive definite even at time step " +
+                               std::to_string(dt) + " s (" + singularBlockHint(blocks_, *system_) +
+                               ")");
     }
     if (!solution.allFinite()) {
       throw std::runtime_error(

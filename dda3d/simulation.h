@@ -56,7 +56,7 @@ struct DdaSettings {
   double shear_penalty_ratio = 2.5;  ///< k_n / k_s
   /// Fixed points' spring (N/m) as a multiple of the normal contact penalty.
   double fixed_point_penalty_ratio = 10.0;
-  int max_open_close_iterations = 20;  ///< per attempt (the 2D reference allows 6 + 2)
+  int max_open_close_iterations = 20;       ///< per attempt (the 2D reference allows 6 + 2)
   double iteration_time_step_factor = 0.3;  ///< dt multiplier when the iteration fails
   int max_step_attempts = 40;               ///< redo limit per step
   /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a

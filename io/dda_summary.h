@@ -62,12 +62,12 @@ struct DdaRunSummary {
 };
 
 /// summary.json of a dda run: keys command, ..., effects, blocks, fixed_blocks, pieces,
-/// unknowns, glued_blocks{...} (when blocks were glued, gluedBlocksJson), mode, kinematics, solver, time_integration{scheme, spectral_radius (bossak
-/// only)}, steps_requested, steps_taken, time_step, duration,
-/// penalty, monitors[], steps{time, time_step, contacts, open, sliding, locked, iterations,
-/// retries, max_displacement, max_penetration} (one array entry per
-/// step), then timings (run.timings plus dda_phases: totals per phase, and dda_steps: per
-/// phase, one entry per step).
+/// unknowns, glued_blocks{...} (when blocks were glued, gluedBlocksJson), mode, kinematics, solver,
+/// time_integration{scheme, spectral_radius (bossak only)}, steps_requested, steps_taken,
+/// time_step, duration, penalty, monitors[], steps{time, time_step, contacts, open, sliding,
+/// locked, iterations, retries, max_displacement, max_penetration} (one array entry per step), then
+/// timings (run.timings plus dda_phases: totals per phase, and dda_steps: per phase, one entry per
+/// step).
 std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda);
 
 }  // namespace rockmass::io

@@ -27,9 +27,9 @@ struct RunReport {
   std::string section;   ///< section plane label, e.g. "y=10"; empty: none
   /// Stages the scene asks for that this build cannot run: (stage, reason).
   std::vector<std::pair<std::string, std::string>> unavailable;
-  std::vector<std::string> files;            ///< output files written (names, sorted)
-  std::vector<std::string> figures;          ///< PNG figures written (names, sorted)
-  std::vector<std::string> warnings;         ///< e.g. no python for the figures
+  std::vector<std::string> files;     ///< output files written (names, sorted)
+  std::vector<std::string> figures;   ///< PNG figures written (names, sorted)
+  std::vector<std::string> warnings;  ///< e.g. no python for the figures
 };
 
 /// Merges the stage summaries in order under `run`'s header: a key of a stage summary that

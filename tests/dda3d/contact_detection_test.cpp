@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "blocks/convex_split.h"
 #include "dda3d/broad_phase.h"
 #include "dda3d/contact_detection.h"
 #include "dda3d/simulation.h"
@@ -203,6 +204,98 @@ TEST(SearchDistance, AStepThatWouldOutrunTheReachIsRedone) {
   }
   // The load is resisted by the slab: the cube ends in contact.
   EXPECT_GT(sim.contactCounts().total - sim.contactCounts().open, 0);
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
+
+namespace rockmass::dda3d {
+namespace {
+
+using geometry::Vec3;
+
+/// The unit cube cut by `cuts` random planes through random points of it into convex
+/// pieces that touch exactly across the cuts and overlap nowhere (blocks::splitPiece).
+std::vector<geometry::Polyhedron> cutCube(std::uint64_t seed, int cuts) {
+  geometry::Rng rng = geometry::makeRng(seed, 0);
+  const auto uniform = [&rng] { return static_cast<double>(rng() % 1000001) / 1e6; };
+  std::vector<blocks::Piece> pieces(1);
+  pieces[0].shape = geometry::boxPolyhedron({Vec3::Zero(), Vec3::Ones()});
+  pieces[0].face_sources.assign(6, {});
+  for (int k = 0; k < cuts; ++k) {
+    const Vec3 normal = Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5).normalized();
+    const auto plane = blocks::Plane::through(Vec3(uniform(), uniform(), uniform()), normal);
+    std::vector<blocks::Piece> next;
+    for (const blocks::Piece& p : pieces) {
+      const auto split = blocks::splitPiece(p, plane, 1e-9, {});
+      if (!split) {
+        next.push_back(p);
+        continue;
+      }
+      next.push_back(split->below);
+      next.push_back(split->above);
+    }
+    pieces = std::move(next);
+  }
+  std::vector<geometry::Polyhedron> out;
+  for (const blocks::Piece& p : pieces) out.push_back(p.shape);
+  return out;
+}
+
+std::vector<BlockState> blocksOf(const std::vector<std::vector<geometry::Polyhedron>>& groups) {
+  std::vector<BlockState> blocks(groups.size());
+  for (std::size_t b = 0; b < groups.size(); ++b) {
+    for (const geometry::Polyhedron& p : groups[b]) {
+      blocks[b].pieces.push_back(p);
+      blocks[b].topology.push_back(pieceTopology(p));
+    }
+    blocks[b].updateMassProperties();
+  }
+  return blocks;
+}
+
+const PreviousFace kNoPrevious = [](int, int, int, int, int) { return -1; };
+
+// Pieces that only touch never penetrate: every entry found between the pieces of a cube cut
+// by random planes has gap0 >= 0 up to round-off. The search reach (0.3 m) and depth are as
+// large as the pieces, as with the small blocks of the Xiangjiaba model, where skew edges kept
+// apart by another plane, and vertices on a piece's edge matched to a face far behind the
+// nearest, were recorded as penetrations up to the depth (0.26 m) and threw blocks apart.
+TEST(NarrowPhase, TouchingPiecesNeverReadAsPenetrating) {
+  int entries = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    std::vector<std::vector<geometry::Polyhedron>> groups;
+    for (const geometry::Polyhedron& p : cutCube(seed, 5)) groups.push_back({p});
+    const std::vector<BlockState> blocks = blocksOf(groups);
+    const std::vector<double> reach(blocks.size(), 0.15);
+    const std::vector<Contact> contacts = findContacts(blocks, reach, 0.3, kNoPrevious);
+    entries += static_cast<int>(contacts.size());
+    for (const Contact& c : contacts) {
+      // 1e-9 m: the round-off of the split vertices (tolerance 1e-9 of a 1 m cube).
+      EXPECT_GT(c.gap0, -1e-9) << "seed " << seed << " blocks " << c.block_i << "/" << c.block_j
+                               << " kind " << static_cast<int>(c.kind);
+    }
+  }
+  EXPECT_GT(entries, 1000);  // the cut pieces do touch: many entries were examined
+}
+
+// A block of two pieces (a box split in half) resting on a box: each corner of its bottom face
+// is one contact entry, also the two corners on the split, which belong to both pieces (each
+// copy would be a full penalty spring, doubling the support there).
+TEST(NarrowPhase, ASharedVertexOfAMultiPieceBlockIsOneEntry) {
+  const geometry::Polyhedron left = geometry::boxPolyhedron({Vec3(0, 0, 1), Vec3(0.5, 1, 2)});
+  const geometry::Polyhedron right = geometry::boxPolyhedron({Vec3(0.5, 0, 1), Vec3(1, 1, 2)});
+  const geometry::Polyhedron base = geometry::boxPolyhedron({Vec3(-1, -1, 0), Vec3(2, 2, 1)});
+  const std::vector<BlockState> blocks = blocksOf({{left, right}, {base}});
+  const std::vector<Contact> contacts = findContacts(blocks, {0.01, 0.01}, 0.02, kNoPrevious);
+  int vertex_entries = 0;
+  for (const Contact& c : contacts) {
+    if (c.kind != ContactKind::VertexFace || c.block_i != 0) continue;
+    ++vertex_entries;
+    EXPECT_NEAR(c.point.z(), 1.0, 1e-12);
+    EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
+  }
+  EXPECT_EQ(vertex_entries, 6);  // 4 corners + the 2 ends of the split line
 }
 
 }  // namespace

@@ -29,6 +29,23 @@ TEST(Polyhedron, BoxMassPropertiesAreExact) {
   EXPECT_NEAR(central(1, 2), 0.0, 1e-6);
 }
 
+TEST(Polyhedron, ThinBlockFarFromTheOriginKeepsItsCentralMomentsAboutAReference) {
+  // A 1 mm sliver 300 m from the origin (a Xiangjiaba block): about the origin its raw
+  // moments are ~1e5 V and its thinnest central moment V t^2 / 12 ~ 1e-7 V, below their
+  // round-off, so second - V c c^T loses it (the DDA mass matrix was not positive definite).
+  // About a point of the block the textbook values V l^2 / 12 come out to 1e-9 relative.
+  const Box box{Vec3(300.0, 200.0, -10.0), Vec3(300.5, 200.4, -9.999)};
+  const Vec3 l = box.max - box.min;
+  const double v = l.x() * l.y() * l.z();
+  const MassProperties m = massProperties(boxPolyhedron(box), box.min);
+  EXPECT_NEAR(m.volume, v, 1e-12 * v);
+  EXPECT_NEAR((box.min + m.centroid() - box.center()).norm(), 0.0, 1e-12);
+  const Eigen::Matrix3d central = m.centralSecond();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(central(k, k), v * l[k] * l[k] / 12.0, 1e-9 * v * l[k] * l[k] / 12.0) << k;
+  }
+}
+
 TEST(Polyhedron, TetrahedronMatchesClosedForm) {
   // Corner tetrahedron with legs a, b, c: V = abc/6, centroid (a, b, c)/4, and about the
   // corner the integral of x^2 is V a^2 / 10 and of x y is V a b / 20 (Tonon 2004).

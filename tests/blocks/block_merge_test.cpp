@@ -1,0 +1,89 @@
+// Gluing small blocks to a neighbour before the DDA (blocks::mergeSmallBlocks).
+#include "blocks/block_merge.h"
+
+#include <gtest/gtest.h>
+
+#include "geometry/polyhedron.h"
+
+namespace rockmass::blocks {
+namespace {
+
+using geometry::Vec3;
+
+/// A row of boxes along x, each `widths[i]` long, 1 x 1 in y and z, of `materials[i]`; the
+/// adjacency of neighbours in the row has area 1 m2.
+BlockModel row(const std::vector<double>& widths, const std::vector<int>& materials) {
+  BlockModel model;
+  double x = 0.0;
+  for (std::size_t i = 0; i < widths.size(); ++i) {
+    Block b;
+    b.id = static_cast<int>(i) + 1;
+    b.material = materials[i];
+    Piece p;
+    p.shape = geometry::boxPolyhedron({Vec3(x, 0, 0), Vec3(x + widths[i], 1, 1)});
+    p.face_sources.assign(6, {});
+    b.mass = geometry::massProperties(p.shape);
+    b.bounds = geometry::bounds(p.shape);
+    b.pieces.push_back(p);
+    model.blocks.push_back(b);
+    if (i > 0) model.adjacency.push_back({b.id - 1, b.id, 1.0, {FaceKind::Disc, 0}});
+    x += widths[i];
+  }
+  model.domain_volume = x;
+  return model;
+}
+
+TEST(MergeSmallBlocks, GluesEachSmallBlockToItsNeighbourAndKeepsTheVolume) {
+  // 0.1 is glued to 2 (its only neighbour); 0.3 shares 1 m2 with both 2 and 5 (ties: the
+  // lower index, 2); the glued 2 + 0.1 + 0.3 = 2.4 is above the threshold.
+  BlockModel model = row({0.1, 2.0, 0.3, 5.0, 0.2}, {0, 0, 0, 0, 0});
+  const MergeReport r = mergeSmallBlocks(model, 1.0);
+  EXPECT_EQ(r.merged, 3);
+  EXPECT_EQ(r.blocks_after, 2);
+  EXPECT_EQ(r.left_small, 0);
+  EXPECT_NEAR(r.merged_volume, 0.6, 1e-12);
+  ASSERT_EQ(model.blocks.size(), 2u);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 2.4, 1e-12);  // 0.1 + 2.0 + 0.3
+  EXPECT_NEAR(model.blocks[1].mass.volume, 5.2, 1e-12);  // 5.0 + 0.2
+  EXPECT_EQ(model.blocks[0].pieces.size(), 3u);
+  EXPECT_EQ(model.blocks[0].id, 1);
+  EXPECT_EQ(model.blocks[1].id, 2);
+  // The bounds are the union: x from 0 to 2.4.
+  EXPECT_DOUBLE_EQ(model.blocks[0].bounds.min.x(), 0.0);
+  EXPECT_DOUBLE_EQ(model.blocks[0].bounds.max.x(), 2.4);
+  // One adjacency left, between the two glued groups, with the 1 m2 of their shared face.
+  ASSERT_EQ(model.adjacency.size(), 1u);
+  EXPECT_EQ(model.adjacency[0].block_a, 1);
+  EXPECT_EQ(model.adjacency[0].block_b, 2);
+  EXPECT_DOUBLE_EQ(model.adjacency[0].area, 1.0);
+}
+
+TEST(MergeSmallBlocks, NeverGluesAcrossMaterials) {
+  // The small block 0.5 of material 1 touches only material-0 blocks: it stays, reported.
+  BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 0});
+  const MergeReport r = mergeSmallBlocks(model, 1.0);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(r.left_small, 1);
+  EXPECT_EQ(model.blocks.size(), 3u);
+}
+
+TEST(MergeSmallBlocks, ChainsUntilTheGroupIsLargeEnough) {
+  // Four 0.3 m3 blocks: the smallest-first rule glues them into one block of 1.2 m3.
+  BlockModel model = row({0.3, 0.3, 0.3, 0.3}, {0, 0, 0, 0});
+  const MergeReport r = mergeSmallBlocks(model, 1.0);
+  EXPECT_EQ(r.blocks_after, 1);
+  EXPECT_EQ(r.merged, 3);
+  ASSERT_EQ(model.blocks.size(), 1u);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 1.2, 1e-12);
+  EXPECT_TRUE(model.adjacency.empty());
+}
+
+TEST(MergeSmallBlocks, ZeroThresholdChangesNothing) {
+  BlockModel model = row({0.1, 2.0}, {0, 0});
+  const MergeReport r = mergeSmallBlocks(model, 0.0);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(model.blocks.size(), 2u);
+}
+
+}  // namespace
+}  // namespace rockmass::blocks
