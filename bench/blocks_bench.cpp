@@ -51,6 +51,8 @@ void fastCut(benchmark::State& state, const DiscSceneSpec& spec, int segments,
   state.counters["pieces"] = report.pieces;
   state.counters["cut_s"] = report.cut_seconds;
   state.counters["assemble_s"] = report.assemble_seconds;
+  state.counters["cover_s"] = report.coverage_seconds;
+  state.counters["contact_s"] = report.contact_seconds;
 }
 
 /// Density series: n discs of radius 3-7 m (aspect 0.6, 24 segments) in one 10 m cube.

@@ -833,6 +833,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
   });
 
+  counters.coverage_seconds = secondsSince(assemble_start);
+  const auto contact_start = std::chrono::steady_clock::now();
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
   // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
   const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
@@ -865,6 +867,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   std::vector<FaceSource> sources;
   const std::vector<PieceContact> contacts =
       findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
+  counters.contact_seconds = secondsSince(contact_start);
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;

@@ -53,6 +53,10 @@ struct FastCutReport {
   int inconsistent_contacts = 0;  ///< see AssemblyReport (0 in a sound cut)
   double cut_seconds = 0.0;       ///< wall time of the splitting
   double assemble_seconds = 0.0;  ///< wall time of contacts, gluing, materials, adjacency
+  double coverage_seconds = 0.0;  ///< FullPlanes: part of assemble_seconds spent classifying
+                                  ///< faces in disc planes (Cover)
+  double contact_seconds = 0.0;   ///< part of assemble_seconds spent finding and deciding
+                                  ///< contacts (the rest: assembleBlocks)
 };
 
 /// Cuts the domain pieces of `input` by every disc of input.network with cuts == true, in
