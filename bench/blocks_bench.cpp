@@ -86,6 +86,24 @@ BENCHMARK(BM_FastEdgeDensity)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+/// The density series with the contact search of the previous sessions (every plane
+/// searched geometrically, FastCutOptions::track_contacts = false), for the gain of tracking
+/// the face neighbours through the splits, measured in the same run.
+void BM_FastSearchDensity(benchmark::State& state) {
+  DiscSceneSpec spec;
+  spec.discs = static_cast<int>(state.range(0));
+  FastCutOptions options;
+  options.track_contacts = false;
+  fastCut(state, spec, 24, options);
+}
+BENCHMARK(BM_FastSearchDensity)
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(200)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 /// Size series: n discs at the density of the 100-disc case, cube side 10 (n/100)^(1/3) m.
 void BM_FastSize(benchmark::State& state) {
   fastCut(state, sizeSeriesScene(static_cast<int>(state.range(0))), 24);
