@@ -1,9 +1,9 @@
 // Block cutting: the density and size series of issue 3 and the disc_segments column, for
-// both cutters. Each series runs alone with --benchmark_filter, e.g. 'FastSize',
-// 'ExactDensity/(10|30|100)$', 'Segments', '/100$' (both cutters at 100 discs).
-// Scenes come from blocks/disc_scenes.h, so another cutter can run the very same series:
-// add a BM_<Cutter>Density / BM_<Cutter>Size pair below that calls it.
-// Prints Google Benchmark's table, then comparisons as ratios measured in this run.
+// both cutters (plus the constant-intensity size series, FastConstP32). Each series runs alone with
+// --benchmark_filter, e.g. 'FastSize', 'ExactDensity/(10|30|100)$', 'Segments', '/100$' (both
+// cutters at 100 discs). Scenes come from blocks/disc_scenes.h, so another cutter can run the very
+// same series: add a BM_<Cutter>Density / BM_<Cutter>Size pair below that calls it. Prints Google
+// Benchmark's table, then comparisons as ratios measured in this run.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -51,6 +51,8 @@ void fastCut(benchmark::State& state, const DiscSceneSpec& spec, int segments,
   state.counters["pieces"] = report.pieces;
   state.counters["cut_s"] = report.cut_seconds;
   state.counters["assemble_s"] = report.assemble_seconds;
+  state.counters["cover_s"] = report.coverage_seconds;
+  state.counters["contact_s"] = report.contact_seconds;
 }
 
 /// Density series: n discs of radius 3-7 m (aspect 0.6, 24 segments) in one 10 m cube.
@@ -84,11 +86,53 @@ BENCHMARK(BM_FastEdgeDensity)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+/// The density series with the contact search of the previous sessions (every plane
+/// searched geometrically, FastCutOptions::track_contacts = false), for the gain of tracking
+/// the face neighbours through the splits, measured in the same run.
+void BM_FastSearchDensity(benchmark::State& state) {
+  DiscSceneSpec spec;
+  spec.discs = static_cast<int>(state.range(0));
+  FastCutOptions options;
+  options.track_contacts = false;
+  fastCut(state, spec, 24, options);
+}
+BENCHMARK(BM_FastSearchDensity)
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(200)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 /// Size series: n discs at the density of the 100-disc case, cube side 10 (n/100)^(1/3) m.
 void BM_FastSize(benchmark::State& state) {
   fastCut(state, sizeSeriesScene(static_cast<int>(state.range(0))), 24);
 }
 BENCHMARK(BM_FastSize)
+    ->Arg(100)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Arg(3000)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+/// Constant-intensity size series (blocks/disc_scenes.h, constantIntensityScene): the cube
+/// of the size series, discs centred in the cube grown by 7 m at the same density, so P32
+/// inside the cube is the same for every n (the size series' P32 grows with n: fewer of its
+/// discs stick out of a larger cube). Work per unit volume is constant: time should grow
+/// like n. Counters: p32 (m2/m3 inside the cube, Disc::areaInside), generated discs.
+void BM_FastConstP32(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const DiscSceneSpec spec = constantIntensityScene(n);
+  const rockmass::geometry::FractureNetwork network = randomDiscNetwork(spec);
+  double area = 0.0;
+  for (const rockmass::geometry::Disc& d : network.discs) area += d.areaInside(network.domain);
+  fastCut(state, spec, 24);
+  state.counters["discs"] = n;
+  state.counters["generated"] = spec.discs;
+  state.counters["p32"] = area / network.domain.size().prod();
+}
+BENCHMARK(BM_FastConstP32)
     ->Arg(100)
     ->Arg(300)
     ->Arg(1000)
@@ -279,12 +323,13 @@ int main(int argc, char** argv) {
   const auto find = [&](const std::string& prefix) -> const rockmass::bench::Record* {
     return reporter.find(prefix);
   };
-  std::printf("\nSize series, wall-time growth (same run; 1.0 = linear):\n");
-  for (const std::string cutter : {"Fast", "Exact"}) {
-    const auto* base = find("BM_" + cutter + "Size/100");
+  std::printf("\nSize series, time growth (same run; growth/linear 1.0 = linear):\n");
+  for (const std::string series : {"FastSize", "ExactSize", "FastConstP32"}) {
+    const std::string cutter = series;
+    const auto* base = find("BM_" + series + "/100");
     std::vector<double> log_n, log_t, log_c, log_p;
     for (int n : {100, 300, 1000, 3000}) {
-      const std::string name = "BM_" + cutter + "Size/" + std::to_string(n);
+      const std::string name = "BM_" + series + "/" + std::to_string(n);
       const auto* r = find(name);
       if (!r) continue;
       log_n.push_back(std::log(n));
@@ -312,8 +357,10 @@ int main(int argc, char** argv) {
         }
         return sxy / sxx;
       };
-      std::printf("  %-6s fitted over %zu sizes: wall ~ n^%.2f, CPU ~ n^%.2f, pieces ~ n^%.2f\n",
-                  cutter.c_str(), log_n.size(), slope(log_t), slope(log_c), slope(log_p));
+      std::printf(
+          "  %-12s fitted over %zu sizes: wall ~ n^%.2f, CPU ~ n^%.2f, pieces ~ n^%.2f"
+          " (target: growth within 1.3x of linear)\n",
+          cutter.c_str(), log_n.size(), slope(log_t), slope(log_c), slope(log_p));
     }
   }
   std::printf("Exact over fast, same scene (same run; target >= 50 at 100 discs):\n");
@@ -329,6 +376,17 @@ int main(int argc, char** argv) {
             exact->real_time / fast->real_time,
             exact->counters.at("cpu_s") / fast->counters.at("cpu_s"));
       }
+    }
+  }
+  std::printf("Fast cutter, plane search over tracked contacts (same run):\n");
+  for (int n : {10, 30, 100, 200}) {
+    const auto* search = find("BM_FastSearchDensity/" + std::to_string(n));
+    const auto* tracked = find("BM_FastDensity/" + std::to_string(n));
+    if (search && tracked) {
+      std::printf("  %5d discs: CPU %5.2f  wall %5.2f  contact phase (wall) %5.2f\n", n,
+                  search->counters.at("cpu_s") / tracked->counters.at("cpu_s"),
+                  search->real_time / tracked->real_time,
+                  search->counters.at("contact_s") / tracked->counters.at("contact_s"));
     }
   }
   std::printf("Fast cutter, EdgePlanes over FullPlanes (same run):\n");

@@ -17,6 +17,15 @@ DiscSceneSpec sizeSeriesScene(int discs, std::uint64_t seed) {
   return spec;
 }
 
+DiscSceneSpec constantIntensityScene(int discs, std::uint64_t seed) {
+  DiscSceneSpec spec = sizeSeriesScene(discs, seed);
+  spec.margin = spec.radius_max;
+  const double grown = spec.side + 2.0 * spec.margin;
+  const double density = discs / (spec.side * spec.side * spec.side);
+  spec.discs = static_cast<int>(std::lround(density * grown * grown * grown));
+  return spec;
+}
+
 geometry::FractureNetwork randomDiscNetwork(const DiscSceneSpec& spec) {
   geometry::Rng rng = geometry::makeRng(spec.seed, 0);
   const auto uniform = [&](double lo, double hi) {
@@ -30,7 +39,8 @@ geometry::FractureNetwork randomDiscNetwork(const DiscSceneSpec& spec) {
   for (int i = 0; i < spec.discs; ++i) {
     geometry::Disc d;
     d.id = i + 1;
-    d.center = Vec3(uniform(0, spec.side), uniform(0, spec.side), uniform(0, spec.side));
+    const double lo = -spec.margin, hi = spec.side + spec.margin;
+    d.center = Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi));
     const double z = uniform(-1.0, 1.0);
     const double phi = uniform(0.0, 2.0 * geometry::kPi);
     const double r = std::sqrt(1.0 - z * z);

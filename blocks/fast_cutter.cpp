@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include "blocks/convex_partition.h"
@@ -181,10 +183,16 @@ bool boxMissesPlane(const Box& box, const Plane& plane, double tolerance) {
   return std::abs(plane.distance(c)) > reach + tolerance;
 }
 
+/// The two halves of a split work piece, with the face of the input each face comes from
+/// (-1: the new face).
+struct WorkSplit {
+  WorkPiece below, above;
+  std::vector<int> below_origin, above_origin;
+};
+
 /// Splits a work piece by a plane with id `plane_id`; faces keep their plane ids.
-std::optional<std::pair<WorkPiece, WorkPiece>> splitWork(const WorkPiece& work, const Plane& plane,
-                                                         int plane_id, double tolerance,
-                                                         FaceSource cap) {
+std::optional<WorkSplit> splitWork(const WorkPiece& work, const Plane& plane, int plane_id,
+                                   double tolerance, FaceSource cap) {
   std::optional<SplitPieces> split = splitPiece(work.piece, plane, tolerance, cap);
   if (!split) return std::nullopt;
   const auto planes = [&](const std::vector<int>& origin) {
@@ -193,8 +201,12 @@ std::optional<std::pair<WorkPiece, WorkPiece>> splitWork(const WorkPiece& work, 
     for (int f : origin) out.push_back(f < 0 ? plane_id : work.planes[f]);
     return out;
   };
-  return std::pair{WorkPiece{std::move(split->below), planes(split->below_origin)},
-                   WorkPiece{std::move(split->above), planes(split->above_origin)}};
+  std::vector<int> below_planes = planes(split->below_origin);
+  std::vector<int> above_planes = planes(split->above_origin);
+  return WorkSplit{{std::move(split->below), std::move(below_planes)},
+                   {std::move(split->above), std::move(above_planes)},
+                   std::move(split->below_origin),
+                   std::move(split->above_origin)};
 }
 
 /// What cutting one piece by one polygon gives.
@@ -237,8 +249,8 @@ CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTo
     if (auto split = splitWork(core, edge, polygon.first_edge_id + static_cast<int>(k),
                                tol.distance, {FaceKind::Fictitious, -1})) {
       ++result.splits;
-      out.push_back(std::move(split->first));  // outside the polygon: not cut by the disc
-      core = std::move(split->second);
+      out.push_back(std::move(split->below));  // outside the polygon: not cut by the disc
+      core = std::move(split->above);
     }
     core_section = clipPolygon(core_section, edge);
   }
@@ -246,8 +258,8 @@ CutResult cutPiece(const WorkPiece& work, const CutPolygon& polygon, const CutTo
   if (section.kind == SectionKind::Crossing) {
     if (auto split = splitWork(core, polygon.plane, polygon.plane_id, tol.distance, disc)) {
       ++result.splits;
-      out.push_back(std::move(split->first));
-      out.push_back(std::move(split->second));
+      out.push_back(std::move(split->below));
+      out.push_back(std::move(split->above));
     } else {
       out.push_back(std::move(core));
     }
@@ -520,10 +532,19 @@ Cover coverage(const std::vector<Vec3>& face, const DiscGroup& group,
   return Cover::Whole;
 }
 
-/// A cell of a region: a work piece and its bounding box.
+/// Face `face` of a cell may touch face `other_face` of cell `other` of the same region.
+struct Link {
+  int face = 0;
+  int other = 0;  ///< index in the region's cell store
+  int other_face = 0;
+};
+
+/// A cell of a region: a work piece, its bounding box and, when contacts are tracked, the
+/// faces of other cells of the region that may touch its faces.
 struct Cell {
   WorkPiece work;
   Box box;
+  std::vector<Link> links;
 };
 
 /// A kd region: its box, the plane id of each of its six faces (boxPolyhedron order; -1 on
@@ -592,6 +613,7 @@ void splitRegions(const std::vector<CutPolygon>& polygons,
 /// What one region gives.
 struct RegionCut {
   std::vector<WorkPiece> pieces;
+  std::vector<FacePair> touching;  ///< tracked: face pairs that may touch (indices in `pieces`)
   std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
   long long piece_tests = 0;
   long long splits = 0;
@@ -615,7 +637,7 @@ std::vector<Cell> regionCells(const Region& region, const std::vector<Piece>& do
         work.planes.push_back(region.face_plane[f]);
       }
     }
-    cells.push_back({std::move(work), region.box});
+    cells.push_back({std::move(work), region.box, {}});
     return cells;
   }
   const geometry::Polyhedron box_shape = geometry::boxPolyhedron(region.box);
@@ -633,7 +655,7 @@ std::vector<Cell> regionCells(const Region& region, const std::vector<Piece>& do
                                          geometry::faceNormal(box_shape, f));
       if (auto split = splitWork(work, plane, region.face_plane[f], tol.distance,
                                  {FaceKind::Fictitious, -1})) {
-        work = std::move(split->first);
+        work = std::move(split->below);
       } else {
         const Vec3 c = geometry::massProperties(work.piece.shape).centroid();
         empty = plane.distance(c) > 0.0;
@@ -641,30 +663,136 @@ std::vector<Cell> regionCells(const Region& region, const std::vector<Piece>& do
     }
     if (empty) continue;
     const Box box = geometry::bounds(work.piece.shape);
-    cells.push_back({std::move(work), box});
+    cells.push_back({std::move(work), box, {}});
   }
   return cells;
 }
 
-/// Splits the region's cells by the full plane of every polygon that meets them.
+/// The lowest and highest signed distance (m) of the points of face f of `piece` from
+/// `plane`.
+std::pair<double, double> faceReach(const Piece& piece, int f, const Plane& plane) {
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int v : piece.shape.faces[f]) {
+    const double d = plane.distance(piece.shape.vertices[v]);
+    low = std::min(low, d);
+    high = std::max(high, d);
+  }
+  return {low, high};
+}
+
+/// The starting cells' mutual neighbours (several domain pieces in the region): faces of
+/// two cells with opposite normals, one lying in the plane of the other within twice the
+/// tolerance, whose boxes meet. Conservative: the contact test decides later.
+void initialTouching(std::vector<Cell>& cells, double tolerance) {
+  const double margin = 2.0 * tolerance;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (std::size_t j = i + 1; j < cells.size(); ++j) {
+      const Box near = cells[i].box.enlarged(margin);
+      if ((near.max.array() < cells[j].box.min.array()).any() ||
+          (cells[j].box.max.array() < near.min.array()).any()) {
+        continue;
+      }
+      const Piece& a = cells[i].work.piece;
+      const Piece& b = cells[j].work.piece;
+      for (int fa = 0; fa < static_cast<int>(a.shape.faces.size()); ++fa) {
+        const Vec3 na = geometry::faceNormal(a.shape, fa);
+        const Plane pa = Plane::through(a.shape.vertices[a.shape.faces[fa][0]], na);
+        for (int fb = 0; fb < static_cast<int>(b.shape.faces.size()); ++fb) {
+          const Vec3 nb = geometry::faceNormal(b.shape, fb);
+          if (na.dot(nb) > -0.999) continue;
+          const Plane pb = Plane::through(b.shape.vertices[b.shape.faces[fb][0]], nb);
+          const auto [low_b, high_b] = faceReach(b, fb, pa);
+          const auto [low_a, high_a] = faceReach(a, fa, pb);
+          const bool b_on_a = low_b >= -margin && high_b <= margin;
+          const bool a_on_b = low_a >= -margin && high_a <= margin;
+          if (!b_on_a && !a_on_b) continue;
+          cells[i].links.push_back({fa, static_cast<int>(j), fb});
+          cells[j].links.push_back({fb, static_cast<int>(i), fa});
+        }
+      }
+    }
+  }
+}
+
+/// Hands the links of `store[c]` to its two halves `below` (to be stored at index
+/// `below_id`) and `above` (`above_id`), and updates the linked cells' own links. A face
+/// that goes to one half keeps its links; for a face split between the halves, a linked
+/// face stays with a half unless it lies wholly beyond twice the tolerance on the other
+/// side of the splitting plane, so a face that touches a half with area stays linked
+/// (conservative: the contact test decides). The two new faces are linked.
+void relink(std::vector<Cell>& store, int c, Cell& below, Cell& above, int below_id, int above_id,
+            const WorkSplit& split, const Plane& plane, double tolerance) {
+  Cell& old = store[c];
+  thread_local std::vector<int> to_below, to_above;
+  const std::size_t faces = old.work.piece.shape.faces.size();
+  to_below.assign(faces, -1);
+  to_above.assign(faces, -1);
+  int new_below = -1, new_above = -1;
+  for (std::size_t f = 0; f < split.below_origin.size(); ++f) {
+    (split.below_origin[f] < 0 ? new_below : to_below[split.below_origin[f]]) = static_cast<int>(f);
+  }
+  for (std::size_t f = 0; f < split.above_origin.size(); ++f) {
+    (split.above_origin[f] < 0 ? new_above : to_above[split.above_origin[f]]) = static_cast<int>(f);
+  }
+  below.links.clear();
+  above.links.clear();
+  below.links.push_back({new_below, above_id, new_above});
+  above.links.push_back({new_above, below_id, new_below});
+  const double margin = 2.0 * tolerance;
+  for (const Link& link : old.links) {
+    const int fb = to_below[link.face], fa = to_above[link.face];
+    bool keep_below = fb >= 0, keep_above = fa >= 0;
+    Cell& other = store[link.other];
+    if (keep_below && keep_above) {
+      const auto [low, high] = faceReach(other.work.piece, link.other_face, plane);
+      keep_below = low <= margin;
+      keep_above = high >= -margin;
+    }
+    if (keep_below) below.links.push_back({fb, link.other, link.other_face});
+    if (keep_above) above.links.push_back({fa, link.other, link.other_face});
+    // The linked cell's link back to (c, face): to the half kept, or one per half.
+    for (Link& back : other.links) {
+      if (back.other != c || back.face != link.other_face || back.other_face != link.face) {
+        continue;
+      }
+      if (keep_below) {
+        back.other = below_id;
+        back.other_face = fb;
+        if (keep_above) other.links.push_back({link.other_face, above_id, fa});
+      } else {
+        back.other = above_id;
+        back.other_face = fa;
+      }
+      break;
+    }
+  }
+}
+
+/// Splits the region's cells by the full plane of every polygon that meets them. With
+/// `track`, follows which faces may touch through the splits (RegionCut::touching).
 RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygons,
                     const std::vector<Piece>& domain,
                     const std::vector<std::vector<int>>& domain_planes, bool box_domain,
-                    const CutTolerances& tol) {
+                    const CutTolerances& tol, bool track) {
   RegionCut out;
-  std::vector<Cell> cells = regionCells(region, domain, domain_planes, box_domain, tol);
-  std::vector<Cell> next;
+  // Cells stay at their index in `store` (dead ones are emptied); `live` lists the live
+  // ones in order, a split cell's halves taking its place.
+  std::vector<Cell> store = regionCells(region, domain, domain_planes, box_domain, tol);
+  if (track) initialTouching(store, tol.distance);
+  std::vector<int> live(store.size()), next;
+  std::iota(live.begin(), live.end(), 0);
   std::vector<Vec3> covered, scratch;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
     const Box reach = polygon.box.enlarged(tol.distance);
     next.clear();
-    for (Cell& cell : cells) {
+    for (const int id : live) {
+      const Cell& cell = store[id];
       const bool near = (cell.box.min.array() <= reach.max.array()).all() &&
                         (reach.min.array() <= cell.box.max.array()).all() &&
                         !boxMissesPlane(cell.box, polygon.plane, tol.distance);
       if (!near) {
-        next.push_back(std::move(cell));
+        next.push_back(id);
         continue;
       }
       ++out.piece_tests;
@@ -673,7 +801,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         out.coincident.emplace_back(cell.work.planes[section.face], polygon.plane_id);
       }
       if (section.kind != SectionKind::Crossing) {
-        next.push_back(std::move(cell));
+        next.push_back(id);
         continue;
       }
       // Does the polygon meet the section with area? Vertex signs first: an edge with the
@@ -709,25 +837,49 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
       if (!cut) {
-        next.push_back(std::move(cell));
+        next.push_back(id);
         continue;
       }
       auto split = splitWork(cell.work, polygon.plane, polygon.plane_id, tol.distance,
                              {FaceKind::Fictitious, -1});
       if (!split) {
-        next.push_back(std::move(cell));
+        next.push_back(id);
         continue;
       }
       ++out.splits;
-      for (WorkPiece* half : {&split->first, &split->second}) {
-        const Box box = geometry::bounds(half->piece.shape);
-        next.push_back({std::move(*half), box});
+      const int below_id = static_cast<int>(store.size());
+      const int above_id = below_id + 1;
+      const Box below_box = geometry::bounds(split->below.piece.shape);
+      const Box above_box = geometry::bounds(split->above.piece.shape);
+      Cell below{std::move(split->below), below_box, {}};
+      Cell above{std::move(split->above), above_box, {}};
+      if (track) {
+        relink(store, id, below, above, below_id, above_id, *split, polygon.plane, tol.distance);
+      }
+      store[id] = Cell{};
+      store.push_back(std::move(below));
+      store.push_back(std::move(above));
+      next.push_back(below_id);
+      next.push_back(above_id);
+    }
+    std::swap(live, next);
+  }
+  std::vector<int> local(store.size(), -1);
+  out.pieces.reserve(live.size());
+  for (std::size_t k = 0; k < live.size(); ++k) {
+    local[live[k]] = static_cast<int>(k);
+    out.pieces.push_back(std::move(store[live[k]].work));
+  }
+  if (track) {
+    for (std::size_t k = 0; k < live.size(); ++k) {
+      for (const Link& link : store[live[k]].links) {
+        if (local[link.other] > static_cast<int>(k)) {
+          out.touching.push_back(
+              {{static_cast<int>(k), link.face}, {local[link.other], link.other_face}});
+        }
       }
     }
-    std::swap(cells, next);
   }
-  out.pieces.reserve(cells.size());
-  for (Cell& cell : cells) out.pieces.push_back(std::move(cell.work));
   return out;
 }
 
@@ -787,14 +939,20 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
 
   std::vector<RegionCut> cuts(regions.size());
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
-    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol);
+    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol,
+                        options.track_contacts);
   });
   std::vector<Piece> pieces;
   std::vector<std::vector<int>> planes;
+  std::vector<FacePair> touching;  // tracked, in the pieces' global indices
   for (RegionCut& cut : cuts) {
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
+    const int offset = static_cast<int>(pieces.size());
+    for (const auto& [a, b] : cut.touching) {
+      touching.push_back({{a.piece + offset, a.face}, {b.piece + offset, b.face}});
+    }
     for (WorkPiece& w : cut.pieces) {
       pieces.push_back(std::move(w.piece));
       planes.push_back(std::move(w.planes));
@@ -833,6 +991,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
   });
 
+  counters.coverage_seconds = secondsSince(assemble_start);
+  const auto contact_start = std::chrono::steady_clock::now();
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
   // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
   const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
@@ -863,8 +1023,45 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     return whole ? FaceSource{FaceKind::Disc, disc} : FaceSource{FaceKind::Fictitious, -1};
   };
   std::vector<FaceSource> sources;
-  const std::vector<PieceContact> contacts =
-      findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
+  std::vector<PieceContact> contacts;
+  if (!options.track_contacts) {
+    contacts = findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
+  } else {
+    // Inside a region: the tracked pairs. Across regions: faces in the kd planes only (two
+    // pieces of different regions can share area only in the plane between them).
+    std::vector<FaceSource> inside_sources, across_sources;
+    const std::vector<PieceContact> inside =
+        decideCandidateContacts(pieces, touching, tol.distance, tol.area, decide, &inside_sources);
+    std::vector<char> kd_plane(plane_ids.size(), 0);
+    for (const Region& region : regions) {
+      for (int id : region.face_plane) {
+        if (id >= 0) kd_plane[plane_ids.find(id)] = 1;
+      }
+    }
+    std::vector<std::vector<int>> across_planes = planes;
+    for (std::vector<int>& list : across_planes) {
+      for (int& id : list) id = kd_plane[id] ? id : -1;
+    }
+    const std::vector<PieceContact> across =
+        findContactsByPlane(pieces, across_planes, tol.distance, tol.area, decide, &across_sources);
+    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
+    std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
+    for (std::size_t k = 0; k < inside.size(); ++k)
+      all.emplace_back(&inside[k], &inside_sources[k]);
+    for (std::size_t k = 0; k < across.size(); ++k)
+      all.emplace_back(&across[k], &across_sources[k]);
+    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) {
+      return std::tie(x.first->piece_a, x.first->piece_b, x.first->face_a, x.first->face_b) <
+             std::tie(y.first->piece_a, y.first->piece_b, y.first->face_a, y.first->face_b);
+    });
+    contacts.reserve(all.size());
+    sources.reserve(all.size());
+    for (const auto& [c, source] : all) {
+      contacts.push_back(*c);
+      sources.push_back(*source);
+    }
+  }
+  counters.contact_seconds = secondsSince(contact_start);
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;

@@ -41,6 +41,13 @@ struct FastCutOptions {
   /// cutting polygons (a region smaller than 1/64 of the domain's longest edge is not
   /// split further).
   int max_discs_per_region = 30;
+  /// FullPlanes: follow, through every split, which faces of a region's cells may touch
+  /// (the two new faces touch each other; a split face's neighbours go to the half or halves
+  /// they reach), and test only those pairs for contacts, plus a geometric search among the
+  /// faces in the planes between regions. False: search every plane geometrically
+  /// (findContactsByPlane over all faces; the method before tracking, kept for comparison).
+  /// Both give the same blocks and adjacency (tested).
+  bool track_contacts = true;
 };
 
 /// Counters of one fast cut.
@@ -53,6 +60,10 @@ struct FastCutReport {
   int inconsistent_contacts = 0;  ///< see AssemblyReport (0 in a sound cut)
   double cut_seconds = 0.0;       ///< wall time of the splitting
   double assemble_seconds = 0.0;  ///< wall time of contacts, gluing, materials, adjacency
+  double coverage_seconds = 0.0;  ///< FullPlanes: part of assemble_seconds spent classifying
+                                  ///< faces in disc planes (Cover)
+  double contact_seconds = 0.0;   ///< part of assemble_seconds spent finding and deciding
+                                  ///< contacts (the rest: assembleBlocks)
 };
 
 /// Cuts the domain pieces of `input` by every disc of input.network with cuts == true, in

@@ -221,8 +221,8 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
 
 namespace {
 
-/// The faces of all pieces in plane order, for findContactsByPlane: one flat table, the
-/// points of each face and the inward unit normals of its edges in two flat arrays.
+/// Faces of pieces in one flat table: per face its plane, box and the range of its points
+/// and of the inward unit normals of its edges in two flat arrays.
 struct PlaneFaces {
   struct Face {
     int piece, face;
@@ -231,52 +231,103 @@ struct PlaneFaces {
     double offset;
     geometry::Box box;
   };
-  std::vector<Face> faces;  ///< grouped by plane; in a plane, in piece and face order
+  std::vector<Face> faces;  ///< findContactsByPlane: grouped by plane, in a plane in piece and
+                            ///< face order; decideCandidateContacts: in first-use order
   std::vector<Vec3> points;
   std::vector<Vec3> inward;  ///< per point k: unit normal of edge k -> k+1 towards the
                              ///< face's inside (zero for an edge of zero length)
   std::vector<std::pair<std::size_t, std::size_t>> groups;  ///< [begin, end) of each plane
                                                             ///< with two faces or more
+
+  /// Fills faces[k] from face f of piece i (its points go to points[begin..]).
+  void fill(std::span<const Piece> pieces, int i, int f, std::size_t k, std::uint32_t begin) {
+    const geometry::Polyhedron& shape = pieces[i].shape;
+    Face& d = faces[k];
+    d.piece = i;
+    d.face = f;
+    d.begin = begin;
+    const std::vector<int>& loop = shape.faces[f];
+    d.end = begin + static_cast<std::uint32_t>(loop.size());
+    Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
+    d.box = {shape.vertices[loop[0]], shape.vertices[loop[0]]};
+    std::uint32_t at = d.begin;
+    for (std::size_t v = 0; v < loop.size(); ++v) {
+      const Vec3& p = shape.vertices[loop[v]];
+      const Vec3& q = shape.vertices[loop[v + 1 == loop.size() ? 0 : v + 1]];
+      newell += p.cross(q);
+      mean += p;
+      d.box.min = d.box.min.cwiseMin(p);
+      d.box.max = d.box.max.cwiseMax(p);
+      points[at++] = p;
+    }
+    const double length = newell.norm();
+    d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
+    d.offset = d.normal.dot(mean / static_cast<double>(loop.size()));
+    const std::uint32_t n = d.end - d.begin;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      const Vec3& p = points[d.begin + v];
+      const Vec3& q = points[d.begin + (v + 1 == n ? 0 : v + 1)];
+      const Vec3 in = d.normal.cross(q - p);
+      const double edge = in.norm();
+      inward[d.begin + v] = edge == 0.0 ? Vec3(Vec3::Zero()) : Vec3(in / edge);
+    }
+  }
 };
 
+/// The faces of all pieces with a plane id >= 0, in plane order (faces with a negative id are
+/// left out), for findContactsByPlane.
 PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vector<int>>& planes) {
   // Faces in piece order: their plane ids and sizes.
   std::vector<std::size_t> first_face(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
   }
-  const std::size_t count = first_face.back();
-  std::vector<int> plane(count);
-  std::vector<std::uint32_t> size(count);
+  const std::size_t all = first_face.back();
+  std::vector<int> plane(all);
+  std::size_t count = 0;
   int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
-      plane[first_face[i] + f] = planes[i][f];
-      size[first_face[i] + f] = static_cast<std::uint32_t>(pieces[i].shape.faces[f].size());
-      lowest = std::min(lowest, planes[i][f]);
-      highest = std::max(highest, planes[i][f]);
+      const int id = planes[i][f];
+      plane[first_face[i] + f] = id;
+      if (id < 0) continue;
+      ++count;
+      lowest = std::min(lowest, id);
+      highest = std::max(highest, id);
     }
   }
   // slot[k]: where face k (piece order) goes in plane order, ties in piece and face order
   // (a counting sort by plane id when the ids are dense, else a stable sort).
-  std::vector<std::uint32_t> slot(count);
+  constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(all, kLeftOut);
   if (count > 0 &&
       static_cast<long long>(highest) - lowest < 16LL * static_cast<long long>(count) + 4096) {
     std::vector<std::uint32_t> start(static_cast<std::size_t>(highest - lowest) + 2, 0);
-    for (std::size_t k = 0; k < count; ++k) ++start[plane[k] - lowest + 1];
+    for (std::size_t k = 0; k < all; ++k) {
+      if (plane[k] >= 0) ++start[plane[k] - lowest + 1];
+    }
     for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
-    for (std::size_t k = 0; k < count; ++k) slot[k] = start[plane[k] - lowest]++;
-  } else {
-    std::vector<std::uint32_t> order(count);
-    std::iota(order.begin(), order.end(), 0u);
+    for (std::size_t k = 0; k < all; ++k) {
+      if (plane[k] >= 0) slot[k] = start[plane[k] - lowest]++;
+    }
+  } else if (count > 0) {
+    std::vector<std::uint32_t> order;
+    order.reserve(count);
+    for (std::size_t k = 0; k < all; ++k) {
+      if (plane[k] >= 0) order.push_back(static_cast<std::uint32_t>(k));
+    }
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return plane[a] < plane[b]; });
     for (std::size_t k = 0; k < count; ++k) slot[order[k]] = static_cast<std::uint32_t>(k);
   }
   std::vector<std::uint32_t> sorted_size(count), sorted_plane(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    sorted_size[slot[k]] = size[k];
-    sorted_plane[slot[k]] = static_cast<std::uint32_t>(plane[k] - lowest);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+      const std::uint32_t k = slot[first_face[i] + f];
+      if (k == kLeftOut) continue;
+      sorted_size[k] = static_cast<std::uint32_t>(pieces[i].shape.faces[f].size());
+      sorted_plane[k] = static_cast<std::uint32_t>(plane[first_face[i] + f] - lowest);
+    }
   }
   std::vector<std::uint32_t> first_point(count + 1, 0);
   for (std::size_t k = 0; k < count; ++k) first_point[k + 1] = first_point[k] + sorted_size[k];
@@ -289,39 +340,11 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vect
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const geometry::Polyhedron& shape = pieces[i].shape;
-                        for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
                           const std::uint32_t k = slot[first_face[i] + f];
-                          PlaneFaces::Face& d = out.faces[k];
-                          d.piece = static_cast<int>(i);
-                          d.face = static_cast<int>(f);
-                          d.begin = first_point[k];
-                          d.end = first_point[k + 1];
-                          Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
-                          const std::vector<int>& loop = shape.faces[f];
-                          d.box = {shape.vertices[loop[0]], shape.vertices[loop[0]]};
-                          std::uint32_t at = d.begin;
-                          for (std::size_t v = 0; v < loop.size(); ++v) {
-                            const Vec3& p = shape.vertices[loop[v]];
-                            const Vec3& q = shape.vertices[loop[v + 1 == loop.size() ? 0 : v + 1]];
-                            newell += p.cross(q);
-                            mean += p;
-                            d.box.min = d.box.min.cwiseMin(p);
-                            d.box.max = d.box.max.cwiseMax(p);
-                            out.points[at++] = p;
-                          }
-                          const double length = newell.norm();
-                          d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
-                          d.offset = d.normal.dot(mean / static_cast<double>(loop.size()));
-                          const std::uint32_t n = d.end - d.begin;
-                          for (std::uint32_t v = 0; v < n; ++v) {
-                            const Vec3& p = out.points[d.begin + v];
-                            const Vec3& q = out.points[d.begin + (v + 1 == n ? 0 : v + 1)];
-                            const Vec3 inward = d.normal.cross(q - p);
-                            const double edge = inward.norm();
-                            out.inward[d.begin + v] =
-                                edge == 0.0 ? Vec3(Vec3::Zero()) : Vec3(inward / edge);
-                          }
+                          if (k == kLeftOut) continue;
+                          out.fill(pieces, static_cast<int>(i), static_cast<int>(f), k,
+                                   first_point[k]);
                         }
                       }
                     });
@@ -399,150 +422,148 @@ class LocalClusters {
   std::vector<int> parent_, label_;
 };
 
-}  // namespace
-
-std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
-                                              const std::vector<std::vector<int>>& planes,
-                                              double tolerance, double min_area,
-                                              const ContactDecision& decide,
-                                              std::vector<FaceSource>* sources) {
-  const PlaneFaces table = planeFaces(pieces, planes);
+/// The pair tests of the contact search on one face table.
+class PairTests {
+ public:
   using Face = PlaneFaces::Face;
-  const std::vector<Vec3>& points = table.points;
-  const auto inPlaneOf = [&](const Face& a, const Face& b) {
-    for (std::uint32_t k = b.begin; k < b.end; ++k) {
-      if (std::abs(a.normal.dot(points[k]) - a.offset) > tolerance) return false;
-    }
-    return true;
-  };
-  // The two faces lie in one plane: the smaller face's points near the larger face's plane
-  // (the plane of a tiny face is too uncertain to test a large one against; see coplanar).
-  const auto coplanarFaces = [&](const Face& a, const Face& b) {
+  PairTests(const PlaneFaces& table, double tolerance, double min_area)
+      : table_(table), points_(table.points), tolerance_(tolerance), min_area_(min_area) {}
+
+  const Face& face(std::uint32_t k) const { return table_.faces[k]; }
+
+  /// Different pieces, opposite normals (within ~2.6 degrees; the plane test decides).
+  bool viable(const Face& a, const Face& b) const {
+    return a.piece != b.piece && a.normal.dot(b.normal) <= -0.999;
+  }
+  /// Both sides of one cut: bitwise the same loop.
+  bool mirrored(const Face& a, const Face& b) const {
+    return sameLoop(points_, a.begin, a.end, b.begin, b.end);
+  }
+  /// The two faces lie in one plane: the smaller face's points near the larger face's plane
+  /// (the plane of a tiny face is too uncertain to test a large one against; see coplanar).
+  bool coplanarFaces(const Face& a, const Face& b) const {
     const bool a_larger =
         (a.box.max - a.box.min).squaredNorm() >= (b.box.max - b.box.min).squaredNorm();
     return a_larger ? inPlaneOf(a, b) : inPlaneOf(b, a);
-  };
-  // True when an edge line of face e has every point of face x on its outer side or within
-  // `tolerance` of it: the faces share at most a strip of that width (area below min_area),
-  // decided without constructing points (most candidate pairs only touch along an edge).
-  const auto separated = [&](const Face& e, const Face& x) {
-    for (std::uint32_t k = e.begin; k < e.end; ++k) {
-      const Vec3& unit = table.inward[k];
-      if (unit.x() == 0.0 && unit.y() == 0.0 && unit.z() == 0.0) continue;
-      const Vec3& p = points[k];
-      bool outside = true;
-      for (std::uint32_t j = x.begin; j < x.end && outside; ++j) {
-        outside = unit.dot(points[j] - p) <= tolerance;
-      }
-      if (outside) return true;
-    }
-    return false;
-  };
-  const auto loopOf = [&](const Face& f, std::vector<Vec3>& out) {
-    out.assign(points.begin() + f.begin, points.begin() + f.end);
-  };
-  const auto contactOf = [](const Face& a, const Face& b, double area) {
+  }
+  void loopOf(const Face& f, std::vector<Vec3>& out) const {
+    out.assign(points_.begin() + f.begin, points_.begin() + f.end);
+  }
+  static PieceContact contactOf(const Face& a, const Face& b, double area) {
     return a.piece < b.piece ? PieceContact{a.piece, a.face, b.piece, b.face, area}
                              : PieceContact{b.piece, b.face, a.piece, a.face, area};
-  };
+  }
   /// The overlap of a candidate pair whose faces are not the same loop, into `overlap`
   /// (fewer than 3 points when they do not touch with area), and its area (m2). Separated
-  /// faces share at most a strip thinner than `tolerance`: never a real contact.
-  const auto overlapOf = [&](const Face& a, const Face& b, std::vector<Vec3>& loop_a,
-                             std::vector<Vec3>& loop_b, std::vector<Vec3>& overlap) {
+  /// faces share at most a strip thinner than the tolerance: never a real contact.
+  double overlapOf(const Face& a, const Face& b, std::vector<Vec3>& loop_a,
+                   std::vector<Vec3>& loop_b, std::vector<Vec3>& overlap) const {
     overlap.clear();
     if (separated(a, b) || separated(b, a) || !coplanarFaces(a, b)) return 0.0;
     loopOf(a, loop_a);
     loopOf(b, loop_b);
     faceOverlap(loop_a, loop_b, a.normal, overlap);
     return overlap.size() >= 3 ? geometry::polygonArea(overlap) : 0.0;
-  };
-  /// Which of the pair tests to run: both sides of one cut (same loop) or the others.
-  const auto mirrored = [&](const Face& a, const Face& b) {
-    return sameLoop(points, a.begin, a.end, b.begin, b.end);
-  };
-  const auto viable = [&](const Face& a, const Face& b) {
-    return a.piece != b.piece && a.normal.dot(b.normal) <= -0.999;
-  };
-  const std::size_t group_count = table.groups.size();
-  std::vector<std::vector<PieceContact>> found(group_count);
-  std::vector<std::vector<FaceSource>> decided(group_count);
+  }
+  bool real(const std::vector<Vec3>& overlap, double area) const {
+    return realContact(overlap, area, tolerance_, min_area_);
+  }
 
-  if (!decide) {
-    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
-      const auto [begin, end] = table.groups[g];
-      std::vector<Vec3> loop_a, loop_b, overlap;
-      for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
-        const Face& a = table.faces[ka];
-        const Face& b = table.faces[kb];
-        if (!viable(a, b)) continue;
-        double area = 0.0;
-        if (mirrored(a, b)) {
-          // The common case: both sides of one cut, neither split further since. Shared
-          // points are bitwise equal (the splitter computes each crossing point once).
-          if (!coplanarFaces(a, b)) continue;
-          loopOf(a, overlap);
-          area = geometry::polygonArea(overlap);
-        } else {
-          area = overlapOf(a, b, loop_a, loop_b, overlap);
-        }
-        if (realContact(overlap, area, tolerance, min_area)) {
-          found[g].push_back(contactOf(a, b, area));
-        }
+ private:
+  bool inPlaneOf(const Face& a, const Face& b) const {
+    for (std::uint32_t k = b.begin; k < b.end; ++k) {
+      if (std::abs(a.normal.dot(points_[k]) - a.offset) > tolerance_) return false;
+    }
+    return true;
+  }
+  /// True when an edge line of face e has every point of face x on its outer side or within
+  /// the tolerance of it: the faces share at most a strip of that width, decided without
+  /// constructing points (most candidate pairs only touch along an edge).
+  bool separated(const Face& e, const Face& x) const {
+    for (std::uint32_t k = e.begin; k < e.end; ++k) {
+      const Vec3& unit = table_.inward[k];
+      if (unit.x() == 0.0 && unit.y() == 0.0 && unit.z() == 0.0) continue;
+      const Vec3& p = points_[k];
+      bool outside = true;
+      for (std::uint32_t j = x.begin; j < x.end && outside; ++j) {
+        outside = unit.dot(points_[j] - p) <= tolerance_;
       }
-    });
-  } else {
-    // Pass 1: the mirrored pairs (cheap), decided; the other candidates wait.
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> waiting(group_count);
-    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
-      const auto [begin, end] = table.groups[g];
-      std::vector<Vec3> loop;
-      for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
-        const Face& a = table.faces[ka];
-        const Face& b = table.faces[kb];
-        if (!viable(a, b)) continue;
-        if (!mirrored(a, b)) {
-          waiting[g].emplace_back(ka, kb);
-          continue;
-        }
-        if (!coplanarFaces(a, b)) continue;
-        loopOf(a, loop);
-        const double area = geometry::polygonArea(loop);
-        if (!realContact(loop, area, tolerance, min_area)) continue;
-        found[g].push_back(contactOf(a, b, area));
-        decided[g].push_back(decide(found[g].back(), true));
+      if (outside) return true;
+    }
+    return false;
+  }
+  const PlaneFaces& table_;
+  const std::vector<Vec3>& points_;
+  double tolerance_, min_area_;
+};
+
+using TablePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+/// Finds and decides the contacts among candidate pairs of table faces given in `batches`
+/// (`candidates(g)` gives batch g): first every mirrored pair (both sides of one cut), then,
+/// per batch, the others whose pieces are not yet glued. Contacts and their sources go to
+/// found[g] / decided[g]. Deterministic: the batches are fixed, not the threads.
+template <class Candidates>
+void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t batches,
+                   const Candidates& candidates, const ContactDecision& decide,
+                   std::vector<std::vector<PieceContact>>& found,
+                   std::vector<std::vector<FaceSource>>& decided) {
+  // Pass 1: the mirrored pairs (cheap), decided; the other candidates wait.
+  std::vector<TablePairs> waiting(batches);
+  tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
+    std::vector<Vec3> loop;
+    for (const auto& [ka, kb] : candidates(g)) {
+      const PlaneFaces::Face& a = tests.face(ka);
+      const PlaneFaces::Face& b = tests.face(kb);
+      if (!tests.viable(a, b)) continue;
+      if (!tests.mirrored(a, b)) {
+        waiting[g].emplace_back(ka, kb);
+        continue;
       }
-    });
-    UnionFind clusters(pieces.size());
-    for (std::size_t g = 0; g < group_count; ++g) {
-      for (std::size_t k = 0; k < found[g].size(); ++k) {
-        if (decided[g][k].kind == FaceKind::Fictitious) {
-          clusters.unite(found[g][k].piece_a, found[g][k].piece_b);
-        }
+      if (!tests.coplanarFaces(a, b)) continue;
+      tests.loopOf(a, loop);
+      const double area = geometry::polygonArea(loop);
+      if (!tests.real(loop, area)) continue;
+      found[g].push_back(PairTests::contactOf(a, b, area));
+      decided[g].push_back(decide(found[g].back(), true));
+    }
+  });
+  UnionFind clusters(piece_count);
+  for (std::size_t g = 0; g < batches; ++g) {
+    for (std::size_t k = 0; k < found[g].size(); ++k) {
+      if (decided[g][k].kind == FaceKind::Fictitious) {
+        clusters.unite(found[g][k].piece_a, found[g][k].piece_b);
       }
     }
-    std::vector<int> root(pieces.size());
-    for (std::size_t i = 0; i < pieces.size(); ++i) root[i] = clusters.find(static_cast<int>(i));
-    // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the group).
-    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
-      LocalClusters local;
-      std::vector<Vec3> loop_a, loop_b, overlap;
-      for (const auto& [ka, kb] : waiting[g]) {
-        const Face& a = table.faces[ka];
-        const Face& b = table.faces[kb];
-        const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
-        if (ra == rb) continue;
-        const double area = overlapOf(a, b, loop_a, loop_b, overlap);
-        if (!realContact(overlap, area, tolerance, min_area)) continue;
-        found[g].push_back(contactOf(a, b, area));
-        decided[g].push_back(decide(found[g].back(), false));
-        if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
-      }
-    });
   }
+  std::vector<int> root(piece_count);
+  for (std::size_t i = 0; i < piece_count; ++i) root[i] = clusters.find(static_cast<int>(i));
+  // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the batch).
+  tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
+    LocalClusters local;
+    std::vector<Vec3> loop_a, loop_b, overlap;
+    for (const auto& [ka, kb] : waiting[g]) {
+      const PlaneFaces::Face& a = tests.face(ka);
+      const PlaneFaces::Face& b = tests.face(kb);
+      const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
+      if (ra == rb) continue;
+      const double area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
+      if (!tests.real(overlap, area)) continue;
+      found[g].push_back(PairTests::contactOf(a, b, area));
+      decided[g].push_back(decide(found[g].back(), false));
+      if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
+    }
+  });
+}
+
+/// The contacts of all batches in (piece_a, piece_b, face_a, face_b) order, their decided
+/// sources (when `decide`) in the same order into `sources`.
+std::vector<PieceContact> sortedContacts(const std::vector<std::vector<PieceContact>>& found,
+                                         const std::vector<std::vector<FaceSource>>& decided,
+                                         bool with_sources, std::vector<FaceSource>* sources) {
   std::vector<PieceContact> contacts;
   std::vector<FaceSource> contact_sources;
-  for (std::size_t g = 0; g < group_count; ++g) {
+  for (std::size_t g = 0; g < found.size(); ++g) {
     contacts.insert(contacts.end(), found[g].begin(), found[g].end());
     contact_sources.insert(contact_sources.end(), decided[g].begin(), decided[g].end());
   }
@@ -559,12 +580,110 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
   for (std::uint32_t k : order) sorted.push_back(contacts[k]);
   if (sources != nullptr) {
     sources->clear();
-    if (decide) {
+    if (with_sources) {
       sources->reserve(order.size());
       for (std::uint32_t k : order) sources->push_back(contact_sources[k]);
     }
   }
   return sorted;
+}
+
+}  // namespace
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  const PlaneFaces table = planeFaces(pieces, planes);
+  const PairTests tests(table, tolerance, min_area);
+  const std::size_t group_count = table.groups.size();
+  std::vector<std::vector<PieceContact>> found(group_count);
+  std::vector<std::vector<FaceSource>> decided(group_count);
+  if (!decide) {
+    tbb::parallel_for(std::size_t{0}, group_count, [&](std::size_t g) {
+      const auto [begin, end] = table.groups[g];
+      std::vector<Vec3> loop_a, loop_b, overlap;
+      for (const auto& [ka, kb] : candidatePairs(table, begin, end, tolerance)) {
+        const PlaneFaces::Face& a = table.faces[ka];
+        const PlaneFaces::Face& b = table.faces[kb];
+        if (!tests.viable(a, b)) continue;
+        double area = 0.0;
+        if (tests.mirrored(a, b)) {
+          // The common case: both sides of one cut, neither split further since. Shared
+          // points are bitwise equal (the splitter computes each crossing point once).
+          if (!tests.coplanarFaces(a, b)) continue;
+          tests.loopOf(a, overlap);
+          area = geometry::polygonArea(overlap);
+        } else {
+          area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
+        }
+        if (tests.real(overlap, area)) found[g].push_back(PairTests::contactOf(a, b, area));
+      }
+    });
+  } else {
+    decideBatches(
+        tests, pieces.size(), group_count,
+        [&](std::size_t g) {
+          return candidatePairs(table, table.groups[g].first, table.groups[g].second, tolerance);
+        },
+        decide, found, decided);
+  }
+  return sortedContacts(found, decided, static_cast<bool>(decide), sources);
+}
+
+std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
+                                                  std::span<const FacePair> candidates,
+                                                  double tolerance, double min_area,
+                                                  const ContactDecision& decide,
+                                                  std::vector<FaceSource>* sources) {
+  // Table slots for the faces the candidates name, in first-use order.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  }
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(first_face.back(), kNone);
+  std::vector<FaceRef> refs;
+  std::vector<std::uint32_t> first_point{0};
+  TablePairs pairs;
+  pairs.reserve(candidates.size());
+  const auto slotOf = [&](const FaceRef& r) {
+    std::uint32_t& k = slot[first_face[r.piece] + r.face];
+    if (k == kNone) {
+      k = static_cast<std::uint32_t>(refs.size());
+      refs.push_back(r);
+      first_point.push_back(first_point.back() +
+                            static_cast<std::uint32_t>(pieces[r.piece].shape.faces[r.face].size()));
+    }
+    return k;
+  };
+  for (const FacePair& c : candidates) pairs.emplace_back(slotOf(c.first), slotOf(c.second));
+  PlaneFaces table;
+  table.faces.resize(refs.size());
+  table.points.resize(first_point.back());
+  table.inward.resize(first_point.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        table.fill(pieces, refs[k].piece, refs[k].face, k, first_point[k]);
+                      }
+                    });
+  const PairTests tests(table, tolerance, min_area);
+  // Fixed batches of candidates (not one per thread), so the result does not depend on the
+  // thread count.
+  constexpr std::size_t kBatch = 4096;
+  const std::size_t batches = (pairs.size() + kBatch - 1) / kBatch;
+  std::vector<std::vector<PieceContact>> found(batches);
+  std::vector<std::vector<FaceSource>> decided(batches);
+  decideBatches(
+      tests, pieces.size(), batches,
+      [&](std::size_t g) {
+        return std::span<const std::pair<std::uint32_t, std::uint32_t>>(
+            pairs.data() + g * kBatch, std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+      },
+      decide, found, decided);
+  return sortedContacts(found, decided, true, sources);
 }
 
 }  // namespace rockmass::blocks

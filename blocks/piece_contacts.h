@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "blocks/block_model.h"
@@ -54,6 +55,28 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               double tolerance, double min_area,
                                               const ContactDecision& decide = {},
                                               std::vector<FaceSource>* sources = nullptr);
+
+/// One face of one piece.
+struct FaceRef {
+  int piece = 0;  ///< index of the piece
+  int face = 0;   ///< its face
+};
+
+/// Two faces that may touch.
+using FacePair = std::pair<FaceRef, FaceRef>;
+
+/// The contacts among explicitly given candidate face pairs (a cutter that tracked which
+/// faces of its pieces may touch while splitting them), tested and decided as
+/// findContactsByPlane with `decide` tests and decides its candidates: the mirrored pairs
+/// first, then the others (in fixed batches of the given order) whose pieces are not glued
+/// yet. Every real contact between two faces of a listed pair whose pieces end in different
+/// clusters is in the result; pairs not listed are never looked at. Sorted as
+/// findContactsByPlane; `sources` gets the decisions in the same order.
+std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
+                                                  std::span<const FacePair> candidates,
+                                                  double tolerance, double min_area,
+                                                  const ContactDecision& decide,
+                                                  std::vector<FaceSource>* sources);
 
 /// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
 /// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into

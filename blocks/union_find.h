@@ -22,6 +22,8 @@ class UnionFind {
     parent_.push_back(static_cast<int>(parent_.size()));
     return parent_.back();
   }
+  /// Number of ids (sets made so far, joined or not).
+  std::size_t size() const { return parent_.size(); }
   /// The root (smallest id) of the set holding `i`.
   int find(int i) {
     while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];

@@ -463,6 +463,46 @@ TEST(FastCutter, ContactSearchWithDecisionsGluesTheSameClusters) {
   }
 }
 
+TEST(FastCutter, TrackedContactsGiveTheSameBlocksAndAdjacencyAsThePlaneSearch) {
+  // FullPlanes follows which faces may touch through the splits (track_contacts) instead of
+  // searching every plane geometrically. Small regions (8 polygons) so that many contacts
+  // cross region faces, which the tracked cut still finds by a search in the kd planes.
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    DiscSceneSpec spec;
+    spec.discs = 40;
+    spec.seed = seed;
+    const FractureNetwork network = randomDiscNetwork(spec);
+    FastCutOptions tracked;
+    tracked.max_discs_per_region = 8;
+    FastCutOptions searched = tracked;
+    searched.track_contacts = false;
+    FastCutReport report;
+    const BlockModel a = cutFast(boxCutInput(network, 12), tracked, &report);
+    const BlockModel b = cutFast(boxCutInput(network, 12), searched);
+    EXPECT_GT(report.regions, 4);  // the scene really has region faces to glue across
+    EXPECT_EQ(report.inconsistent_contacts, 0);
+    ASSERT_EQ(a.blocks.size(), b.blocks.size());
+    EXPECT_GT(a.blocks.size(), 3u);
+    for (std::size_t i = 0; i < a.blocks.size(); ++i) {
+      // The same splits make the same pieces: volumes are bitwise equal.
+      EXPECT_EQ(a.blocks[i].mass.volume, b.blocks[i].mass.volume);
+      EXPECT_EQ(a.blocks[i].pieces.size(), b.blocks[i].pieces.size());
+    }
+    ASSERT_EQ(a.adjacency.size(), b.adjacency.size());
+    EXPECT_GT(a.adjacency.size(), a.blocks.size());
+    for (std::size_t k = 0; k < a.adjacency.size(); ++k) {
+      const Adjacency& x = a.adjacency[k];
+      const Adjacency& y = b.adjacency[k];
+      EXPECT_EQ(x.block_a, y.block_a);
+      EXPECT_EQ(x.block_b, y.block_b);
+      EXPECT_EQ(x.source, y.source);
+      // The same contacts; each overlap polygon may be clipped from the other face, so the
+      // areas agree to round-off (1e-12 relative, far above 1e-16 per clip).
+      EXPECT_NEAR(x.area, y.area, 1e-12 * std::max(1.0, y.area));
+    }
+  }
+}
+
 TEST(FastCutter, Deterministic) {
   DiscSceneSpec spec;
   spec.discs = 30;
