@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "geometry/fisher.h"
 #include "geometry/fracture_network.h"
 #include "geometry/random.h"
 
@@ -355,6 +358,72 @@ TEST(EmbreeScene, HitsAreSortedByDistance) {
     EXPECT_EQ(hits[1].t, 1.0);
     EXPECT_EQ(hits[2].t, 2.0);
     EXPECT_EQ(hits[3].t, 3.0);
+  }
+}
+
+// The exact form decides rim hits with a faster test than Disc::intersectLine (inverse
+// semi-axes, falling back to intersectLine within 1e-12 of the rim): on segments aimed at
+// points 0, +-1, +-2, +-4 ulps-scale steps (1e-16 .. 4e-15 relative) around the rim of a
+// tilted ellipse with awkward semi-axes, and through a square polygon disc, the hit and
+// its t must be exactly (bit for bit) what intersectLine gives.
+TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
+  Disc ellipse;
+  ellipse.id = 11;
+  ellipse.center = Vec3(0.3, -0.2, 1.1);
+  ellipse.normal = Vec3(0.3, -0.5, 1.0).normalized();
+  Vec3 unused;
+  geometry::orthonormalBasis(ellipse.normal, ellipse.major, unused);
+  ellipse.a = 2.9;
+  ellipse.b = 0.7;
+  Disc square;
+  square.id = 12;
+  square.normal = Vec3::UnitZ();
+  square.major = Vec3::UnitX();
+  square.polygon = {{-1, -1, 4}, {1, -1, 4}, {1, 1, 4}, {-1, 1, 4}};
+  square.center = Vec3(0, 0, 4);
+  square.a = std::sqrt(2.0);
+  square.b = std::sqrt(2.0);
+  const FractureNetwork network = networkOf({ellipse, square});
+  const ScanlineScene scene(network, DiscForm::ExactEllipse);
+  const Vec3 dir = Vec3(0.1, 0.2, 1.0).normalized();
+  int hits = 0;
+  int misses = 0;
+  for (int k = 0; k < 90; ++k) {
+    const double phi = 0.07 * k;
+    const Vec3 rim =
+        ellipse.a * std::cos(phi) * ellipse.major + ellipse.b * std::sin(phi) * ellipse.minor();
+    for (double scale :
+         {1.0 - 4e-15, 1.0 - 2e-16, 1.0 - 1e-16, 1.0, 1.0 + 1e-16, 1.0 + 2e-16, 1.0 + 4e-15}) {
+      const Vec3 target = ellipse.center + scale * rim;
+      const Vec3 start = target - 1.5 * dir;
+      const Vec3 end = start + 3.0 * dir;
+      const std::vector<ScanlineHit> got = scene.hits(start, end);
+      // The brute force's line: start and the unit direction of the segment.
+      const double length = (end - start).norm();
+      const std::optional<double> expected = ellipse.intersectLine(start, (end - start) / length);
+      const bool expect_hit = expected && *expected >= 0.0 && *expected <= length;
+      ASSERT_EQ(got.size(), expect_hit ? 1u : 0u) << "phi " << phi << " scale " << scale;
+      if (expect_hit) {
+        EXPECT_EQ(got[0].disc_id, 11);
+        EXPECT_EQ(got[0].t, *expected);  // same bits
+        ++hits;
+      } else {
+        ++misses;
+      }
+    }
+  }
+  // Both outcomes must occur, or the segments missed the rim they were aimed at.
+  EXPECT_GT(hits, 90);
+  EXPECT_GT(misses, 90);
+  // The polygon disc goes through Disc::intersectLine itself: inside, on the edge x = 1
+  // (the crossing-number test counts the left/bottom edges in), and outside.
+  for (const auto& [x, inside] : {std::pair{0.5, true}, std::pair{1.0 + 1e-12, false},
+                                  std::pair{0.999999, true}, std::pair{1.5, false}}) {
+    const std::vector<ScanlineHit> got = scene.hits({x, 0.2, 3}, {x, 0.2, 5});
+    ASSERT_EQ(got.size(), inside ? 1u : 0u) << "x " << x;
+    if (inside) {
+      EXPECT_EQ(got[0].t, 1.0);
+    }
   }
 }
 
