@@ -75,6 +75,13 @@ struct DiscTest {
   std::int64_t id = 0;          ///< Disc::id
 };
 
+/// Asks for both cache lines of `test` without waiting for them.
+void prefetchTest(const DiscTest& test) {
+  const char* first = reinterpret_cast<const char*>(&test);
+  __builtin_prefetch(first);
+  __builtin_prefetch(first + sizeof(DiscTest) - 1);
+}
+
 /// What one hits() call carries through Embree's callbacks (lives on the caller's stack).
 struct Query {
   const std::vector<Disc>* discs = nullptr;                    ///< the scene's discs
@@ -105,6 +112,8 @@ void intersectDisc(const RTCIntersectFunctionNArguments* args) {
   // rtcIntersect1 only: one ray, and the query's double-precision segment describes it.
   assert(args->N == 1);
   if (args->valid[0] == 0) return;
+  // Start loading the disc's record now (no wait): it arrives while traversal goes on.
+  prefetchTest((*query.tests)[args->primID]);
   query.found->push_back({0.0, static_cast<std::int64_t>(args->primID)});
 }
 
@@ -139,25 +148,36 @@ void prefetchDisc(const Disc& disc) {
 /// the two differ by a few rounding errors (relative 1e-15), far inside this band.
 constexpr double kRimBand = 1e-12;
 
+/// Not a crossing (a NaN fails every comparison, so `t >= 0 && t <= L` rejects it).
+constexpr double kNoCrossing = std::numeric_limits<double>::quiet_NaN();
+
+/// Disc::intersectLine as a plain double: kNoCrossing for no crossing.
+double intersectLineOrNaN(const Query& query, std::size_t index) {
+  const std::optional<double> t = (*query.discs)[index].intersectLine(query.start, query.dir);
+  return t ? *t : kNoCrossing;
+}
+
 /// Exact form: the distance along the segment at which `query` crosses disc `index`, inside
-/// [0, L], exactly as Disc::intersectLine followed by the [0, L] check decides it. The
-/// plane distance t is computed by the same expression as intersectLine (same bits); the
-/// ellipse test multiplies by the precomputed inverse semi-axes instead of dividing, and
-/// falls back to intersectLine itself when x^2 + y^2 lies within kRimBand of 1.
-std::optional<double> crossing(const Query& query, std::size_t index) {
+/// [0, L] (else kNoCrossing), exactly as Disc::intersectLine followed by the [0, L] check
+/// decides it. The plane distance t is computed by the same expression as intersectLine
+/// (same bits); the ellipse test multiplies by the precomputed inverse semi-axes instead of
+/// dividing, and falls back to intersectLine itself when x^2 + y^2 lies within kRimBand of
+/// 1. A plain double, not std::optional: returning the optional through memory cost a
+/// store-forwarding stall per candidate (perf).
+double crossing(const Query& query, std::size_t index) {
   const DiscTest& test = (*query.tests)[index];
   const double denominator = test.normal.dot(query.dir);
-  if (std::abs(denominator) <= 1e-300) return std::nullopt;
+  if (std::abs(denominator) <= 1e-300) return kNoCrossing;
   const double t = test.normal.dot(test.center - query.start) / denominator;
-  if (!(t >= 0.0 && t <= query.length)) return std::nullopt;
-  if (test.inv_a == 0.0) return (*query.discs)[index].intersectLine(query.start, query.dir);
+  if (!(t >= 0.0 && t <= query.length)) return kNoCrossing;
+  if (test.inv_a == 0.0) return intersectLineOrNaN(query, index);
   const Vec3 local = query.start + t * query.dir - test.center;
   const double x = local.dot(test.major) * test.inv_a;
   const double y = local.dot(test.minor) * test.inv_b;
   const double r2 = x * x + y * y;
-  if (r2 > 1.0 + kRimBand) return std::nullopt;
+  if (r2 > 1.0 + kRimBand) return kNoCrossing;
   if (r2 < 1.0 - kRimBand) return t;
-  return (*query.discs)[index].intersectLine(query.start, query.dir);
+  return intersectLineOrNaN(query, index);
 }
 
 /// Exact form, after traversal: `found` holds a disc index per crossed box (each once). The
@@ -165,19 +185,13 @@ std::optional<double> crossing(const Query& query, std::size_t index) {
 /// instead of queueing, then each candidate is tested (crossing()); hits in [0, L] are kept.
 void finishExact(const Query& query, std::vector<ScanlineHit>& found) {
   const std::vector<DiscTest>& tests = *query.tests;
-  for (const ScanlineHit& candidate : found) {
-    const char* line =
-        reinterpret_cast<const char*>(&tests[static_cast<std::size_t>(candidate.disc_id)]);
-    __builtin_prefetch(line);
-    __builtin_prefetch(line + sizeof(DiscTest) - 1);
-  }
   std::size_t kept = 0;
   for (const ScanlineHit& candidate : found) {
     // In place: slot `kept` <= the current slot, which has been read already.
     const auto index = static_cast<std::size_t>(candidate.disc_id);
-    const std::optional<double> t = crossing(query, index);
-    // Closed interval [0, L], decided in double precision.
-    if (t && *t >= 0.0 && *t <= query.length) found[kept++] = {*t, tests[index].id};
+    const double t = crossing(query, index);
+    // Closed interval [0, L], decided in double precision (false for kNoCrossing).
+    if (t >= 0.0 && t <= query.length) found[kept++] = {t, tests[index].id};
   }
   found.resize(kept);
 }
@@ -386,6 +400,7 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
   impl.scene = rtcNewScene(impl.device);
   // Watertight triangles where a fan edge must never let a ray through (see the top).
   if (form == DiscForm::Triangulated) rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
   if (!impl.discs.empty()) {
     if (form == DiscForm::ExactEllipse) {
       impl.addDiscTests();
