@@ -148,50 +148,39 @@ void prefetchDisc(const Disc& disc) {
 /// the two differ by a few rounding errors (relative 1e-15), far inside this band.
 constexpr double kRimBand = 1e-12;
 
-/// Not a crossing (a NaN fails every comparison, so `t >= 0 && t <= L` rejects it).
-constexpr double kNoCrossing = std::numeric_limits<double>::quiet_NaN();
-
-/// Disc::intersectLine as a plain double: kNoCrossing for no crossing.
-double intersectLineOrNaN(const Query& query, std::size_t index) {
-  const std::optional<double> t = (*query.discs)[index].intersectLine(query.start, query.dir);
-  return t ? *t : kNoCrossing;
-}
-
-/// Exact form: the distance along the segment at which `query` crosses disc `index`, inside
-/// [0, L] (else kNoCrossing), exactly as Disc::intersectLine followed by the [0, L] check
-/// decides it. The plane distance t is computed by the same expression as intersectLine
-/// (same bits); the ellipse test multiplies by the precomputed inverse semi-axes instead of
-/// dividing, and falls back to intersectLine itself when x^2 + y^2 lies within kRimBand of
-/// 1. A plain double, not std::optional: returning the optional through memory cost a
-/// store-forwarding stall per candidate (perf).
-double crossing(const Query& query, std::size_t index) {
-  const DiscTest& test = (*query.tests)[index];
-  const double denominator = test.normal.dot(query.dir);
-  if (std::abs(denominator) <= 1e-300) return kNoCrossing;
-  const double t = test.normal.dot(test.center - query.start) / denominator;
-  if (!(t >= 0.0 && t <= query.length)) return kNoCrossing;
-  if (test.inv_a == 0.0) return intersectLineOrNaN(query, index);
-  const Vec3 local = query.start + t * query.dir - test.center;
-  const double x = local.dot(test.major) * test.inv_a;
-  const double y = local.dot(test.minor) * test.inv_b;
-  const double r2 = x * x + y * y;
-  if (r2 > 1.0 + kRimBand) return kNoCrossing;
-  if (r2 < 1.0 - kRimBand) return t;
-  return intersectLineOrNaN(query, index);
-}
-
-/// Exact form, after traversal: `found` holds a disc index per crossed box (each once). The
-/// packed tests of all candidates are prefetched first, so that their memory loads overlap
-/// instead of queueing, then each candidate is tested (crossing()); hits in [0, L] are kept.
+/// Exact form, after traversal: `found` holds a disc index per crossed box (each once, their
+/// records prefetched by the callback); keeps, in place, the candidates the segment crosses
+/// inside [0, L] with their t, exactly as Disc::intersectLine followed by the [0, L] check
+/// decides. t is computed by intersectLine's own expression (same bits); the ellipse test
+/// multiplies by the precomputed inverse semi-axes instead of dividing, and intersectLine
+/// itself decides polygon discs and any x^2 + y^2 within kRimBand of 1. The common path
+/// has no data-dependent branch (whether a box candidate is a hit is a coin flip, and
+/// mispredicted branches behind the division's latency cost more than the arithmetic).
 void finishExact(const Query& query, std::vector<ScanlineHit>& found) {
   const std::vector<DiscTest>& tests = *query.tests;
+  const double length = query.length;
   std::size_t kept = 0;
-  for (const ScanlineHit& candidate : found) {
-    // In place: slot `kept` <= the current slot, which has been read already.
-    const auto index = static_cast<std::size_t>(candidate.disc_id);
-    const double t = crossing(query, index);
-    // Closed interval [0, L], decided in double precision (false for kNoCrossing).
-    if (t >= 0.0 && t <= query.length) found[kept++] = {t, tests[index].id};
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    // In place: slot `kept` <= i, and candidate i is read before slot `kept` is written.
+    const auto index = static_cast<std::size_t>(found[i].disc_id);
+    const DiscTest& test = tests[index];
+    const double denominator = test.normal.dot(query.dir);
+    const double t = test.normal.dot(test.center - query.start) / denominator;
+    const Vec3 local = query.start + t * query.dir - test.center;
+    const double x = local.dot(test.major) * test.inv_a;
+    const double y = local.dot(test.minor) * test.inv_b;
+    const double r2 = x * x + y * y;
+    if (test.inv_a == 0.0 || std::abs(r2 - 1.0) <= kRimBand) [[unlikely]] {
+      const std::optional<double> exact =
+          (*query.discs)[index].intersectLine(query.start, query.dir);
+      if (exact && *exact >= 0.0 && *exact <= length) found[kept++] = {*exact, test.id};
+      continue;
+    }
+    // intersectLine's verdict (its parallel-line guard, then x^2 + y^2 <= 1) and [0, L];
+    // a NaN or infinite t fails the comparisons. Written as a select, not a branch.
+    const bool hit = (std::abs(denominator) > 1e-300) & (t >= 0.0) & (t <= length) & (r2 < 1.0);
+    found[kept] = {t, test.id};
+    kept += static_cast<std::size_t>(hit);
   }
   found.resize(kept);
 }
