@@ -427,6 +427,36 @@ TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
   }
 }
 
+// Polygon and ellipse discs in one scene, listed polygon first: the triangulated form
+// reorders the discs (ellipses first, so that a quad's disc is a division) and must still
+// name every disc right; both forms must agree on the crossings (hand-computed below).
+TEST(EmbreeScene, PolygonAndEllipseDiscsMixInBothForms) {
+  Disc square;
+  square.id = 12;
+  square.polygon = {{-1, -1, 4}, {1, -1, 4}, {1, 1, 4}, {-1, 1, 4}};
+  square.center = Vec3(0, 0, 4);
+  square.a = square.b = std::sqrt(2.0);
+  Disc triangle;
+  triangle.id = 13;
+  triangle.polygon = {{-1, -1, 6}, {2, -1, 6}, {0.5, 2, 6}};
+  triangle.center = Vec3(0.5, 0, 6);  // its centroid
+  triangle.a = triangle.b = 2.0;
+  Disc low = horizontalDisc(7, 0.0);
+  Disc high = horizontalDisc(8, 2.0);
+  const FractureNetwork network = networkOf({square, low, triangle, high});
+  for (DiscForm form : {DiscForm::ExactEllipse, DiscForm::Triangulated}) {
+    const ScanlineScene scene(network, form);
+    // x = 0.5: inside all four (the triangle spans x in [-0.4, 1.4] at y = 0.2).
+    const std::vector<ScanlineHit> all = scene.hits({0.5, 0.2, -1}, {0.5, 0.2, 7});
+    EXPECT_EQ(ids(all), (std::vector<std::int64_t>{7, 8, 12, 13}));
+    ASSERT_EQ(all.size(), 4u);
+    EXPECT_NEAR(all[0].t, 1.0, 1e-12);
+    EXPECT_NEAR(all[3].t, 7.0, 1e-12);
+    // x = 1.5: inside the ellipses (1.5^2/4 + 0.2^2 = 0.6), outside both polygons.
+    EXPECT_EQ(ids(scene.hits({1.5, 0.2, -1}, {1.5, 0.2, 7})), (std::vector<std::int64_t>{7, 8}));
+  }
+}
+
 TEST(EmbreeScene, MovedSceneStillAnswers) {
   ScanlineScene scene(networkOf({horizontalDisc(5, 0.0)}), DiscForm::ExactEllipse);
   ScanlineScene moved(std::move(scene));
