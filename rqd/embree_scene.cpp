@@ -22,11 +22,13 @@
 //
 // Scene flags, measured in bench/rqd_bench.cpp: RTC_SCENE_FLAG_ROBUST (watertight Pluecker
 // triangle test, conservative box tests) costs about 40 % on the triangulated scene; it is
-// set there only, because a ray through a fan edge or the fan centre must find the disc
+// set there only, because a ray through an edge two triangles share must find the disc
 // (tested). The exact form's boxes are padded far beyond float rounding (below), so robust
-// traversal adds nothing there and is off. The triangulated mesh is a fan of quads, two
-// fan triangles each (Embree intersects a quad as two triangles sharing its diagonal,
-// watertight in robust mode): half the primitives of a triangle fan, about 30 % faster.
+// traversal adds nothing there and is off. The triangulated mesh is made of quads (Embree
+// intersects a quad as two triangles sharing its diagonal, watertight in robust mode): half
+// the primitives of triangles; an ellipse's quads are strips across it rather than a fan
+// from its centre (addTriangles). Both forms build their BVH at high quality (spatial
+// splits for the quads): 5-15 % faster queries in bench/rqd_bench.cpp.
 //
 // Precision: doubles in, Embree is float inside. Coordinates are shifted to the centre of
 // the discs' bounds before rounding to float, to keep float errors small.
@@ -38,10 +40,10 @@
 //   1e-12 of 1, and polygon discs), so the result is the double-precision brute force
 //   result, hit for hit.
 // - Triangulated form: Embree decides in float whether a triangle is hit, so a segment
-//   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim or of a
-//   fan edge may be found or missed differently than the double-precision polygon test;
-//   hits near a disc's rim may therefore differ between the two forms. The t of every hit
-//   found is re-evaluated in double with Disc::intersectLine (the fan lies in the disc's
+//   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim may be
+//   found or missed differently than the double-precision polygon test; hits near a disc's
+//   rim may therefore differ between the two forms. The t of every hit found is evaluated
+//   in double by Disc::intersectLine's plane expression (the triangles lie in the disc's
 //   plane), so the distances returned are exact.
 #include "rqd/embree_scene.h"
 
@@ -214,8 +216,9 @@ void dropRepeatedDiscs(std::vector<ScanlineHit>& hits) {
 }
 
 /// Triangulated form, after traversal: `found` holds a disc index per quad hit. One disc is
-/// one crossing (two quads sharing the edge the segment passes through, or the fan centre,
-/// give the same crossing): each disc once, its t evaluated in double, kept in [0, L].
+/// one crossing (two triangles sharing the edge the segment passes through, or a spatial
+/// split's two references to one quad, give the same crossing): each disc once, its t evaluated in
+/// double, kept in [0, L].
 void finishTriangulated(const Query& query, std::vector<ScanlineHit>& found) {
   sortHits(found, /*by_id=*/true);
   dropRepeatedDiscs(found);
@@ -311,39 +314,54 @@ struct ScanlineScene::Impl {
     rtcReleaseGeometry(geometry);
   }
 
-  /// Triangulated form: each disc's outline fanned from its centre, two fan triangles per
-  /// quad (c, v_k, v_k+1, v_k+2), convex for an ellipse; an odd count ends with a triangle
-  /// (a quad whose last two indices are equal, Embree's triangle-as-quad). Polygon discs
-  /// may be non-convex: one fan triangle per quad.
+  /// Triangulated form. An ellipse's outline (a convex n-gon) is cut into strips across its
+  /// major axis: with chain A = v_0, v_1, ..., v_m and chain B = v_0, v_(n-1), ..., v_(n-m)
+  /// (m = floor(n / 2)), strip i is the quad (A_i, A_i+1, B_i+1, B_i), a triangle where two
+  /// of its corners coincide (the first strip, and the last for even n). m primitives per
+  /// disc, as many as a fan of quads, but thin and disjoint: a fan's wedges all reach the
+  /// centre, so their boxes overlap there and a segment near a disc's centre visited all of
+  /// them (the strips are about 30 % faster, bench/rqd_bench.cpp). Polygon discs may be
+  /// non-convex: fanned from their centroid (Disc::center), one triangle per quad.
   void addTriangles(int segments) {
     std::vector<Vec3> vertices;
     std::vector<std::uint32_t> quads;
     for (std::size_t d = 0; d < discs.size(); ++d) {
       const Disc& disc = discs[d];
       const std::vector<Vec3> outline = disc.outline(segments);
-      // Ellipses are fanned from their centre, polygons from their centroid: both are
-      // Disc::center (see geometry/disc.h).
-      const auto first = static_cast<std::uint32_t>(vertices.size());
-      vertices.push_back(disc.center);
-      vertices.insert(vertices.end(), outline.begin(), outline.end());
       const auto n = static_cast<std::uint32_t>(outline.size());
-      const auto rim = [first, n](std::uint32_t k) { return first + 1 + k % n; };
-      const std::uint32_t step = disc.polygon.empty() ? 2 : 1;
-      for (std::uint32_t k = 0; k < n; k += step) {
-        const std::uint32_t last = step == 2 && k + 1 < n ? rim(k + 2) : rim(k + 1);
-        quads.insert(quads.end(), {first, rim(k), rim(k + 1), last});
-        if (step == 1) polygon_quad_disc.push_back(static_cast<std::uint32_t>(d));
-      }
-      if (step == 2) {
-        // The discs are ordered ellipses first (constructor), each with the same count.
-        const std::uint32_t count = (n + 1) / 2;
-        if (ellipse_quads == 0) quads_per_ellipse = count;
-        if (count != quads_per_ellipse || !polygon_quad_disc.empty()) {
-          throw std::logic_error("triangulated scene: ellipse discs must come first, with " +
-                                 std::to_string(quads_per_ellipse) + " quads each");
+      const auto first = static_cast<std::uint32_t>(vertices.size());
+      if (!disc.polygon.empty()) {
+        vertices.push_back(disc.center);
+        vertices.insert(vertices.end(), outline.begin(), outline.end());
+        for (std::uint32_t k = 0; k < n; ++k) {
+          const std::uint32_t next = first + 1 + (k + 1) % n;
+          quads.insert(quads.end(), {first, first + 1 + k, next, next});
+          polygon_quad_disc.push_back(static_cast<std::uint32_t>(d));
         }
-        ellipse_quads += count;
+        continue;
       }
+      vertices.insert(vertices.end(), outline.begin(), outline.end());
+      const std::uint32_t m = n / 2;
+      const auto chain_a = [first](std::uint32_t i) { return first + i; };
+      const auto chain_b = [first, n](std::uint32_t i) { return first + (n - i) % n; };
+      for (std::uint32_t i = 0; i < m; ++i) {
+        const std::uint32_t a0 = chain_a(i), a1 = chain_a(i + 1);
+        const std::uint32_t b0 = chain_b(i), b1 = chain_b(i + 1);
+        if (a0 == b0) {
+          quads.insert(quads.end(), {a1, b1, a0, a0});  // first strip: triangle
+        } else if (a1 == b1) {
+          quads.insert(quads.end(), {a0, a1, b0, b0});  // last strip, even n: triangle
+        } else {
+          quads.insert(quads.end(), {a0, a1, b1, b0});
+        }
+      }
+      // The discs are ordered ellipses first (constructor), each with the same count.
+      if (ellipse_quads == 0) quads_per_ellipse = m;
+      if (m != quads_per_ellipse || !polygon_quad_disc.empty()) {
+        throw std::logic_error("triangulated scene: ellipse discs must come first, with " +
+                               std::to_string(quads_per_ellipse) + " quads each");
+      }
+      ellipse_quads += m;
     }
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
     auto* vertex_buffer = static_cast<float*>(
@@ -399,7 +417,7 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
                              "); check that the CPU supports SSE2");
   }
   impl.scene = rtcNewScene(impl.device);
-  // Watertight triangles where a fan edge must never let a ray through (see the top).
+  // Watertight triangles: a shared edge must never let a ray through (see the top).
   if (form == DiscForm::Triangulated) rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
   if (!impl.discs.empty()) {

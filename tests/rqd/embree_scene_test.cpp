@@ -297,30 +297,37 @@ FractureNetwork networkOf(std::vector<Disc> discs) {
   return network;
 }
 
-TEST(EmbreeScene, SharedFanEdgesCountTheDiscOnce) {
+TEST(EmbreeScene, SharedTriangleEdgesCountTheDiscOnce) {
   const FractureNetwork network = networkOf({horizontalDisc(7, 0.0)});
   const Disc& disc = network.discs.front();
   const std::vector<Vec3> outline = disc.outline(kSegments);
+  const auto vertex = [&](int k) { return outline[static_cast<std::size_t>(k % kSegments)]; };
+  // Points on the edges two triangles share in the triangulated form's strips (see
+  // embree_scene.cpp: chains A_i = v_i and B_i = v_(n-i)): the chord A_i B_i between strips
+  // i - 1 and i, and the diagonal A_i+1 B_i splitting strip i into two triangles; also
+  // the centre and the old fan edges (any interior point must give one crossing).
+  std::vector<Vec3> points{Vec3::Zero(), 0.5 * vertex(3), 0.5 * vertex(10)};
+  for (int i = 1; i < kSegments / 2; ++i) {
+    points.push_back(0.5 * (vertex(i) + vertex(kSegments - i)));  // chord midpoint
+    // On the diagonal (the last strip, i = n/2 - 1, is a triangle: no diagonal).
+    if (i + 1 < kSegments / 2) points.push_back(0.3 * vertex(i + 1) + 0.7 * vertex(kSegments - i));
+  }
   for (DiscForm form : {DiscForm::ExactEllipse, DiscForm::Triangulated}) {
     const ScanlineScene scene(network, form, kSegments);
-    // Through the fan centre, where all 24 triangles meet.
+    // Straight down through the centre.
     std::vector<ScanlineHit> hits = scene.hits({0, 0, -1}, {0, 0, 1});
     ASSERT_EQ(hits.size(), 1u);
     EXPECT_EQ(hits[0].disc_id, 7);
     EXPECT_EQ(hits[0].t, 1.0);
-    // Through the middle of the fan edge from the centre to outline point 0 (on +x), and
-    // obliquely through points of the fan edges to outline points 3 and 10.
-    hits = scene.hits({1, 0, -1}, {1, 0, 1});
-    ASSERT_EQ(hits.size(), 1u);
-    EXPECT_EQ(hits[0].disc_id, 7);
-    for (int k : {3, 10}) {
-      const Vec3 on_edge = 0.5 * outline[static_cast<std::size_t>(k)];
-      const Vec3 offset(0.3, -0.2, 1.0);
-      hits = scene.hits(on_edge - offset, on_edge + offset);
-      ASSERT_EQ(hits.size(), 1u) << "fan edge " << k;
-      EXPECT_EQ(hits[0].disc_id, 7);
-      // Exact to rounding of the double-precision plane hit: t = |offset|.
-      EXPECT_NEAR(hits[0].t, offset.norm(), 1e-12);
+    // Vertically and obliquely through each shared-edge point.
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      for (const Vec3& offset : {Vec3(0, 0, 1), Vec3(0.3, -0.2, 1.0)}) {
+        hits = scene.hits(points[p] - offset, points[p] + offset);
+        ASSERT_EQ(hits.size(), 1u) << "point " << p;
+        EXPECT_EQ(hits[0].disc_id, 7);
+        // Exact to rounding of the double-precision plane hit: t = |offset|.
+        EXPECT_NEAR(hits[0].t, offset.norm(), 1e-12);
+      }
     }
   }
 }
