@@ -320,7 +320,7 @@ struct ScanlineScene::Impl {
   /// of its corners coincide (the first strip, and the last for even n). m primitives per
   /// disc, as many as a fan of quads, but thin and disjoint: a fan's wedges all reach the
   /// centre, so their boxes overlap there and a segment near a disc's centre visited all of
-  /// them (the strips are about 30 % faster, bench/rqd_bench.cpp). Polygon discs may be
+  /// them (the strips measured 3-8 % faster, bench/rqd_bench.cpp). Polygon discs may be
   /// non-convex: fanned from their centroid (Disc::center), one triangle per quad.
   void addTriangles(int segments) {
     std::vector<Vec3> vertices;
