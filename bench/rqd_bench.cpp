@@ -179,6 +179,25 @@ void BM_EmbreeTriangulatedSegments(benchmark::State& state) {
 }
 BENCHMARK(BM_EmbreeTriangulatedSegments)->Arg(8)->Arg(12)->Arg(16)->Arg(32);
 
+/// Building the scene (both forms build their BVH at high quality): arg 0 the disc count,
+/// arg 1 the form (0 exact, 1 triangulated with 24 segments). Embree builds with its own
+/// TBB threads; the time is wall time.
+void BM_BuildScene(benchmark::State& state) {
+  const FractureNetwork& net = network(static_cast<int>(state.range(0)));
+  const DiscForm form = state.range(1) == 0 ? DiscForm::ExactEllipse : DiscForm::Triangulated;
+  for (auto _ : state) {
+    const ScanlineScene built(net, form);
+    benchmark::DoNotOptimize(&built);
+  }
+}
+BENCHMARK(BM_BuildScene)
+    ->Args({10000, 0})
+    ->Args({10000, 1})
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // ---- 2. Multi-hit rays per core with RQD evaluation -------------------------------------
 
 /// The reference for section 2: the plainest correct all-hits loop on Embree alone, no

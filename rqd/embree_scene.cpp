@@ -2,9 +2,12 @@
 //
 // How all hits along a finite segment are collected: one rtcIntersect1 call per segment,
 // and no hit is ever committed to the ray. Exact form: the user-geometry intersect callback
-// tests the disc in double precision, records a hit inside [0, L] and leaves the ray
-// untouched. Triangulated form: an intersection filter records the disc of each quad hit
-// (an index, nothing else: no disc data is touched during traversal) and rejects it
+// records the index of each disc whose box the ray crosses (touching no disc data) and
+// leaves the ray untouched; after traversal the candidates' packed records are prefetched
+// together and tested in double precision (finishExact). Testing inside the callback made
+// each of the ~11 candidates per ray wait for its own cache miss (43 % of the time in
+// perf); batched, the misses overlap. Triangulated form: an intersection filter records the disc of
+// each quad hit (an index, nothing else: no disc data is touched during traversal) and rejects it
 // (valid = 0). Either way the ray's tfar never shrinks, so Embree visits every primitive
 // whose bounds the segment crosses, in one traversal. We chose this over repeated queries
 // from just past the last hit because (a) it is one traversal instead of k + 1, and (b) a
@@ -19,23 +22,28 @@
 //
 // Scene flags, measured in bench/rqd_bench.cpp: RTC_SCENE_FLAG_ROBUST (watertight Pluecker
 // triangle test, conservative box tests) costs about 40 % on the triangulated scene; it is
-// set there only, because a ray through a fan edge or the fan centre must find the disc
+// set there only, because a ray through an edge two triangles share must find the disc
 // (tested). The exact form's boxes are padded far beyond float rounding (below), so robust
-// traversal adds nothing there and is off. The triangulated mesh is a fan of quads, two
-// fan triangles each (Embree intersects a quad as two triangles sharing its diagonal,
-// watertight in robust mode): half the primitives of a triangle fan, about 30 % faster.
+// traversal adds nothing there and is off. The triangulated mesh is made of quads (Embree
+// intersects a quad as two triangles sharing its diagonal, watertight in robust mode): half
+// the primitives of triangles; an ellipse's quads are strips across it rather than a fan
+// from its centre (addTriangles). Both forms build their BVH at high quality (spatial
+// splits for the quads): 5-15 % faster queries in bench/rqd_bench.cpp.
 //
 // Precision: doubles in, Embree is float inside. Coordinates are shifted to the centre of
 // the discs' bounds before rounding to float, to keep float errors small.
 // - Exact form: Embree (float) only culls by bounding boxes, which are padded by
 //   `bounds_pad` so that float rounding of the ray and boxes can never cull a true hit; the
-//   disc test and t are evaluated in double by Disc::intersectLine on the unshifted data, so
-//   the result is the double-precision brute force result.
+//   disc test and t are evaluated in double on the unshifted data: t by Disc::intersectLine's
+//   own expression, the ellipse test with precomputed inverse semi-axes, and
+//   Disc::intersectLine itself wherever the two could round differently (x^2 + y^2 within
+//   1e-12 of 1, and polygon discs), so the result is the double-precision brute force
+//   result, hit for hit.
 // - Triangulated form: Embree decides in float whether a triangle is hit, so a segment
-//   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim or of a
-//   fan edge may be found or missed differently than the double-precision polygon test;
-//   hits near a disc's rim may therefore differ between the two forms. The t of every hit
-//   found is re-evaluated in double with Disc::intersectLine (the fan lies in the disc's
+//   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim may be
+//   found or missed differently than the double-precision polygon test; hits near a disc's
+//   rim may therefore differ between the two forms. The t of every hit found is evaluated
+//   in double by Disc::intersectLine's plane expression (the triangles lie in the disc's
 //   plane), so the distances returned are exact.
 #include "rqd/embree_scene.h"
 
@@ -56,13 +64,36 @@ using geometry::Vec3;
 
 namespace {
 
+/// What the tests after traversal read of one disc, packed in disc order: the terms of
+/// Disc::intersectLine, with the minor axis and the inverse semi-axes precomputed. Two cache
+/// lines, aligned: the triangulated form reads only the first (centre and normal).
+struct alignas(64) DiscTest {
+  Vec3 center = Vec3::Zero();   ///< disc centre (m)
+  Vec3 normal = Vec3::UnitZ();  ///< unit normal
+  Vec3 major = Vec3::UnitX();   ///< unit major axis
+  Vec3 minor = Vec3::UnitY();   ///< unit minor axis, normal x major as Disc::minor()
+  double inv_a = 0.0;           ///< 1 / a (1/m); 0 for a polygon disc (always the full test)
+  double inv_b = 0.0;           ///< 1 / b (1/m)
+  std::int64_t id = 0;          ///< Disc::id
+};
+
+/// Asks for both cache lines of `test` without waiting for them.
+void prefetchTest(const DiscTest& test) {
+  const char* first = reinterpret_cast<const char*>(&test);
+  __builtin_prefetch(first);
+  __builtin_prefetch(first + sizeof(DiscTest) - 1);
+}
+
 /// What one hits() call carries through Embree's callbacks (lives on the caller's stack).
 struct Query {
-  const std::vector<Disc>* discs = nullptr;                    ///< the scene's discs
-  const std::vector<std::uint32_t>* primitive_disc = nullptr;  ///< quad -> disc index
-  Vec3 start = Vec3::Zero();                                   ///< segment start, unshifted (m)
-  Vec3 dir = Vec3::UnitX();                                    ///< unit direction of the segment
-  double length = 0.0;                                         ///< segment length L (m)
+  const std::vector<Disc>* discs = nullptr;      ///< the scene's discs
+  const std::vector<DiscTest>* tests = nullptr;  ///< packed tests, disc order
+  std::uint32_t ellipse_quads = 0;      ///< triangulated: quads of the ellipse discs (first)
+  std::uint32_t quads_per_ellipse = 1;  ///< triangulated: quads per ellipse disc
+  const std::vector<std::uint32_t>* polygon_quad_disc = nullptr;  ///< polygon quad -> disc
+  Vec3 start = Vec3::Zero();                                      ///< segment start, unshifted (m)
+  Vec3 dir = Vec3::UnitX();                                       ///< unit direction of the segment
+  double length = 0.0;                                            ///< segment length L (m)
   double float_t_shift = 0.0;  ///< Embree ray t minus segment t (m): the ray starts early
   std::vector<ScanlineHit>* found = nullptr;  ///< hits in [0, L], possibly repeated
 };
@@ -77,19 +108,17 @@ const QueryContext& queryContext(const RTCIntersectContext* context) {
   return *reinterpret_cast<const QueryContext*>(context);
 }
 
-void record(Query& query, const Disc& disc, std::optional<double> t) {
-  // Closed interval [0, L], decided in double precision.
-  if (t && *t >= 0.0 && *t <= query.length) query.found->push_back({*t, disc.id});
-}
-
-/// Exact form: double-precision ray-ellipse (or ray-polygon) test; never commits a hit.
+/// Exact form: records the disc whose (padded) box the ray crosses, as a candidate in
+/// `disc_id` (the disc's index); finishExact tests the candidates after traversal. Touches
+/// no disc data and never commits a hit.
 void intersectDisc(const RTCIntersectFunctionNArguments* args) {
   Query& query = *queryContext(args->context).query;
-  const Disc& disc = (*query.discs)[args->primID];
   // rtcIntersect1 only: one ray, and the query's double-precision segment describes it.
   assert(args->N == 1);
   if (args->valid[0] == 0) return;
-  record(query, disc, disc.intersectLine(query.start, query.dir));
+  // Start loading the disc's record now (no wait): it arrives while traversal goes on.
+  prefetchTest((*query.tests)[args->primID]);
+  query.found->push_back({0.0, static_cast<std::int64_t>(args->primID)});
 }
 
 /// Exact form: occlusion queries are not used; report nothing.
@@ -97,7 +126,10 @@ void occludedDisc(const RTCOccludedFunctionNArguments*) {}
 
 /// Triangulated form: records the index of the disc whose quad was hit (in `disc_id`) and
 /// Embree's float distance, both fixed up by finishTriangulated, and rejects the hit, so
-/// that traversal continues.
+/// that traversal continues. The ellipse discs come first and have the same number of
+/// quads each, so their disc index is a division (a quad -> disc table of 4 bytes per quad
+/// missed the cache on nearly every hit: 12 % of the time in perf); polygon discs use a
+/// table. The disc's record is prefetched for finishTriangulated.
 void filterTriangleHit(const RTCFilterFunctionNArguments* args) {
   Query& query = *queryContext(args->context).query;
   for (unsigned int i = 0; i < args->N; ++i) {
@@ -106,8 +138,53 @@ void filterTriangleHit(const RTCFilterFunctionNArguments* args) {
     const unsigned int primitive = RTCHitN_primID(args->hit, args->N, i);
     const double float_t =
         static_cast<double>(RTCRayN_tfar(args->ray, args->N, i)) - query.float_t_shift;
-    query.found->push_back({float_t, (*query.primitive_disc)[primitive]});
+    const std::uint32_t disc = primitive < query.ellipse_quads
+                                   ? primitive / query.quads_per_ellipse
+                                   : (*query.polygon_quad_disc)[primitive - query.ellipse_quads];
+    __builtin_prefetch(&(*query.tests)[disc]);
+    query.found->push_back({float_t, disc});
   }
+}
+
+/// Where the fast test's x^2 + y^2 may fall on the other side of 1 than Disc::intersectLine's:
+/// the two differ by a few rounding errors (relative 1e-15), far inside this band.
+constexpr double kRimBand = 1e-12;
+
+/// Exact form, after traversal: `found` holds a disc index per crossed box (each once, their
+/// records prefetched by the callback); keeps, in place, the candidates the segment crosses
+/// inside [0, L] with their t, exactly as Disc::intersectLine followed by the [0, L] check
+/// decides. t is computed by intersectLine's own expression (same bits); the ellipse test
+/// multiplies by the precomputed inverse semi-axes instead of dividing, and intersectLine
+/// itself decides polygon discs and any x^2 + y^2 within kRimBand of 1. The common path
+/// has no data-dependent branch (whether a box candidate is a hit is a coin flip, and
+/// mispredicted branches behind the division's latency cost more than the arithmetic).
+void finishExact(const Query& query, std::vector<ScanlineHit>& found) {
+  const std::vector<DiscTest>& tests = *query.tests;
+  const double length = query.length;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    // In place: slot `kept` <= i, and candidate i is read before slot `kept` is written.
+    const auto index = static_cast<std::size_t>(found[i].disc_id);
+    const DiscTest& test = tests[index];
+    const double denominator = test.normal.dot(query.dir);
+    const double t = test.normal.dot(test.center - query.start) / denominator;
+    const Vec3 local = query.start + t * query.dir - test.center;
+    const double x = local.dot(test.major) * test.inv_a;
+    const double y = local.dot(test.minor) * test.inv_b;
+    const double r2 = x * x + y * y;
+    if (test.inv_a == 0.0 || std::abs(r2 - 1.0) <= kRimBand) [[unlikely]] {
+      const std::optional<double> exact =
+          (*query.discs)[index].intersectLine(query.start, query.dir);
+      if (exact && *exact >= 0.0 && *exact <= length) found[kept++] = {*exact, test.id};
+      continue;
+    }
+    // intersectLine's verdict (its parallel-line guard, then x^2 + y^2 <= 1) and [0, L];
+    // a NaN or infinite t fails the comparisons. Written as a select, not a branch.
+    const bool hit = (std::abs(denominator) > 1e-300) & (t >= 0.0) & (t <= length) & (r2 < 1.0);
+    found[kept] = {t, test.id};
+    kept += static_cast<std::size_t>(hit);
+  }
+  found.resize(kept);
 }
 
 /// Sorts `hits` by (t, disc id), or by disc id alone when `by_id`: insertion sort for the
@@ -139,23 +216,22 @@ void dropRepeatedDiscs(std::vector<ScanlineHit>& hits) {
 }
 
 /// Triangulated form, after traversal: `found` holds a disc index per quad hit. One disc is
-/// one crossing (two quads sharing the edge the segment passes through, or the fan centre,
-/// give the same crossing): each disc once, its t evaluated in double, kept in [0, L].
+/// one crossing (two triangles sharing the edge the segment passes through, or a spatial
+/// split's two references to one quad, give the same crossing): each disc once, its t evaluated in
+/// double, kept in [0, L].
 void finishTriangulated(const Query& query, std::vector<ScanlineHit>& found) {
   sortHits(found, /*by_id=*/true);
   dropRepeatedDiscs(found);
   std::size_t kept = 0;
   for (const ScanlineHit& raw : found) {
-    const Disc& disc = (*query.discs)[static_cast<std::size_t>(raw.disc_id)];
-    std::optional<double> t = disc.intersectLine(query.start, query.dir);
-    if (!t) {
-      // Float says hit, double says just outside the rim: keep Embree's verdict, with the
-      // double-precision distance to the disc's plane (the plane formula of intersectLine).
-      // A segment in the disc's plane (in double) keeps Embree's float distance.
-      const double denominator = disc.normal.dot(query.dir);
-      t = denominator != 0.0 ? disc.normal.dot(disc.center - query.start) / denominator : raw.t;
-    }
-    if (*t >= 0.0 && *t <= query.length) found[kept++] = {*t, disc.id};
+    const DiscTest& test = (*query.tests)[static_cast<std::size_t>(raw.disc_id)];
+    // Disc::intersectLine's plane distance (same expression, same bits); Embree has decided
+    // the hit, so where double precision would put the point just outside the rim, Embree's
+    // verdict stands. A segment in the disc's plane (in double) keeps Embree's float t.
+    const double denominator = test.normal.dot(query.dir);
+    const double t =
+        denominator != 0.0 ? test.normal.dot(test.center - query.start) / denominator : raw.t;
+    if (t >= 0.0 && t <= query.length) found[kept++] = {t, test.id};
   }
   found.resize(kept);
 }
@@ -169,9 +245,12 @@ bool hasArea(const Disc& disc) {
 
 struct ScanlineScene::Impl {
   DiscForm form = DiscForm::ExactEllipse;
-  std::vector<Disc> discs;                    ///< the discs in the scene (primitive order)
-  std::vector<std::uint32_t> primitive_disc;  ///< triangulated form: quad -> disc index
-  Vec3 offset = Vec3::Zero();                 ///< subtracted from coordinates given to Embree (m)
+  std::vector<Disc> discs;                       ///< the discs in the scene (primitive order)
+  std::vector<DiscTest> tests;                   ///< the discs' packed tests (disc order)
+  std::uint32_t ellipse_quads = 0;               ///< triangulated form: quads of the ellipse discs
+  std::uint32_t quads_per_ellipse = 1;           ///< triangulated form: quads per ellipse disc
+  std::vector<std::uint32_t> polygon_quad_disc;  ///< triangulated form: polygon quad -> disc
+  Vec3 offset = Vec3::Zero();  ///< subtracted from coordinates given to Embree (m)
   /// Padding of the exact form's boxes and of the ray's ends (m): covers float rounding of
   /// shifted coordinates (relative 6e-8) and of the ray along segments far longer than the
   /// scene, with a wide margin; it only costs a few extra double-precision disc tests.
@@ -207,6 +286,22 @@ struct ScanlineScene::Impl {
     out.upper_z = static_cast<float>(high.z()) + pad;
   }
 
+  void addDiscTests() {
+    tests.reserve(discs.size());
+    for (const Disc& disc : discs) {
+      DiscTest& test = tests.emplace_back();
+      test.center = disc.center;
+      test.normal = disc.normal;
+      test.major = disc.major;
+      test.minor = disc.minor();
+      if (disc.polygon.empty()) {
+        test.inv_a = 1.0 / disc.a;
+        test.inv_b = 1.0 / disc.b;
+      }
+      test.id = disc.id;
+    }
+  }
+
   void addUserGeometry() {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned int>(discs.size()));
@@ -219,29 +314,54 @@ struct ScanlineScene::Impl {
     rtcReleaseGeometry(geometry);
   }
 
-  /// Triangulated form: each disc's outline fanned from its centre, two fan triangles per
-  /// quad (c, v_k, v_k+1, v_k+2), convex for an ellipse; an odd count ends with a triangle
-  /// (a quad whose last two indices are equal, Embree's triangle-as-quad). Polygon discs
-  /// may be non-convex: one fan triangle per quad.
+  /// Triangulated form. An ellipse's outline (a convex n-gon) is cut into strips across its
+  /// major axis: with chain A = v_0, v_1, ..., v_m and chain B = v_0, v_(n-1), ..., v_(n-m)
+  /// (m = floor(n / 2)), strip i is the quad (A_i, A_i+1, B_i+1, B_i), a triangle where two
+  /// of its corners coincide (the first strip, and the last for even n). m primitives per
+  /// disc, as many as a fan of quads, but thin and disjoint: a fan's wedges all reach the
+  /// centre, so their boxes overlap there and a segment near a disc's centre visited all of
+  /// them (the strips measured 3-8 % faster, bench/rqd_bench.cpp). Polygon discs may be
+  /// non-convex: fanned from their centroid (Disc::center), one triangle per quad.
   void addTriangles(int segments) {
     std::vector<Vec3> vertices;
     std::vector<std::uint32_t> quads;
     for (std::size_t d = 0; d < discs.size(); ++d) {
       const Disc& disc = discs[d];
       const std::vector<Vec3> outline = disc.outline(segments);
-      // Ellipses are fanned from their centre, polygons from their centroid: both are
-      // Disc::center (see geometry/disc.h).
-      const auto first = static_cast<std::uint32_t>(vertices.size());
-      vertices.push_back(disc.center);
-      vertices.insert(vertices.end(), outline.begin(), outline.end());
       const auto n = static_cast<std::uint32_t>(outline.size());
-      const auto rim = [first, n](std::uint32_t k) { return first + 1 + k % n; };
-      const std::uint32_t step = disc.polygon.empty() ? 2 : 1;
-      for (std::uint32_t k = 0; k < n; k += step) {
-        const std::uint32_t last = step == 2 && k + 1 < n ? rim(k + 2) : rim(k + 1);
-        quads.insert(quads.end(), {first, rim(k), rim(k + 1), last});
-        primitive_disc.push_back(static_cast<std::uint32_t>(d));
+      const auto first = static_cast<std::uint32_t>(vertices.size());
+      if (!disc.polygon.empty()) {
+        vertices.push_back(disc.center);
+        vertices.insert(vertices.end(), outline.begin(), outline.end());
+        for (std::uint32_t k = 0; k < n; ++k) {
+          const std::uint32_t next = first + 1 + (k + 1) % n;
+          quads.insert(quads.end(), {first, first + 1 + k, next, next});
+          polygon_quad_disc.push_back(static_cast<std::uint32_t>(d));
+        }
+        continue;
       }
+      vertices.insert(vertices.end(), outline.begin(), outline.end());
+      const std::uint32_t m = n / 2;
+      const auto chain_a = [first](std::uint32_t i) { return first + i; };
+      const auto chain_b = [first, n](std::uint32_t i) { return first + (n - i) % n; };
+      for (std::uint32_t i = 0; i < m; ++i) {
+        const std::uint32_t a0 = chain_a(i), a1 = chain_a(i + 1);
+        const std::uint32_t b0 = chain_b(i), b1 = chain_b(i + 1);
+        if (a0 == b0) {
+          quads.insert(quads.end(), {a1, b1, a0, a0});  // first strip: triangle
+        } else if (a1 == b1) {
+          quads.insert(quads.end(), {a0, a1, b0, b0});  // last strip, even n: triangle
+        } else {
+          quads.insert(quads.end(), {a0, a1, b1, b0});
+        }
+      }
+      // The discs are ordered ellipses first (constructor), each with the same count.
+      if (ellipse_quads == 0) quads_per_ellipse = m;
+      if (m != quads_per_ellipse || !polygon_quad_disc.empty()) {
+        throw std::logic_error("triangulated scene: ellipse discs must come first, with " +
+                               std::to_string(quads_per_ellipse) + " quads each");
+      }
+      ellipse_quads += m;
     }
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
     auto* vertex_buffer = static_cast<float*>(
@@ -257,6 +377,7 @@ struct ScanlineScene::Impl {
     }
     std::copy(quads.begin(), quads.end(), index_buffer);
     rtcSetGeometryIntersectFilterFunction(geometry, &filterTriangleHit);
+    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -274,6 +395,10 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
   for (const Disc& disc : network.discs) {
     if (hasArea(disc)) impl.discs.push_back(disc);
   }
+  // Ellipses first: the triangulated form computes their disc index from the quad index.
+  // (The order of the discs is not visible: hits are sorted by t, then disc id.)
+  std::stable_partition(impl.discs.begin(), impl.discs.end(),
+                        [](const Disc& disc) { return disc.polygon.empty(); });
   if (!impl.discs.empty()) {
     geometry::Box all = impl.discs.front().bounds();
     for (const Disc& disc : impl.discs) {
@@ -292,9 +417,11 @@ ScanlineScene::ScanlineScene(const geometry::FractureNetwork& network, DiscForm 
                              "); check that the CPU supports SSE2");
   }
   impl.scene = rtcNewScene(impl.device);
-  // Watertight triangles where a fan edge must never let a ray through (see the top).
+  // Watertight triangles: a shared edge must never let a ray through (see the top).
   if (form == DiscForm::Triangulated) rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
   if (!impl.discs.empty()) {
+    impl.addDiscTests();
     if (form == DiscForm::ExactEllipse) {
       impl.addUserGeometry();
     } else {
@@ -329,7 +456,10 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
   Query query;
   query.found = &found;
   query.discs = &impl.discs;
-  query.primitive_disc = &impl.primitive_disc;
+  query.ellipse_quads = impl.ellipse_quads;
+  query.quads_per_ellipse = impl.quads_per_ellipse;
+  query.polygon_quad_disc = &impl.polygon_quad_disc;
+  query.tests = &impl.tests;
   query.start = start;
   query.dir = (end - start) / length;
   query.length = length;
@@ -357,7 +487,11 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
   ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl.scene, &context.embree, &ray_hit);
 
-  if (impl.form == DiscForm::Triangulated) finishTriangulated(query, found);
+  if (impl.form == DiscForm::Triangulated) {
+    finishTriangulated(query, found);
+  } else {
+    finishExact(query, found);
+  }
   sortHits(found, /*by_id=*/false);
   // Exact form: one primitive per disc, so repeats are not expected; equal t and id sort
   // together, and dropping them keeps "each disc at most once" unconditional.

@@ -16,7 +16,7 @@ namespace rockmass::rqd {
 /// How discs are represented in the ray-casting scene.
 enum class DiscForm {
   ExactEllipse,  ///< analytic ray-ellipse (or ray-polygon) test in double precision
-  Triangulated,  ///< each disc's outline fanned into triangles (two per Embree quad),
+  Triangulated,  ///< each disc's outline cut into triangles (strips of Embree quads),
                  ///< intersected by Embree in float, watertight (robust mode)
 };
 
@@ -30,11 +30,12 @@ struct ScanlineHit {
 class ScanlineScene {
  public:
   /// Builds the scene from all discs of `network` (including those that do not cut blocks).
-  /// Triangulated form: each disc's outline(segments) fanned from its centre, two fan
-  /// triangles per Embree quad (polygon discs: their polygon, fanned from the centroid, one
-  /// triangle per quad since they may be non-convex). `segments` (>= 3) is ignored for the
-  /// exact form. Discs without area (a or b not positive) are left out. Throws
-  /// std::invalid_argument for segments < 3 and std::runtime_error when Embree fails.
+  /// Triangulated form: each ellipse's outline(segments), a convex polygon, cut into strips
+  /// across its major axis, one Embree quad (two triangles) per strip (polygon discs: their
+  /// polygon, fanned from the centroid, one triangle per quad since they may be non-convex).
+  /// `segments` (>= 3) is ignored for the exact form. Discs without area (a or b not positive) are
+  /// left out. Throws std::invalid_argument for segments < 3 and std::runtime_error when Embree
+  /// fails.
   ScanlineScene(const geometry::FractureNetwork& network, DiscForm form, int segments = 24);
   ~ScanlineScene();
   ScanlineScene(ScanlineScene&&) noexcept;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,30 @@ void requireValidScanline(std::span<const double> hits, double length, double me
                                   " m comes before hit #" + std::to_string(i - 1) + " at " +
                                   std::to_string(hits[i - 1]) + " m");
     }
+  }
+}
+
+/// requireValidScanline, with a branch-free pass first: scanlines are checked once per call
+/// of rqd() (millions of times in a volume), and the detailed message is built only when
+/// something is wrong.
+void requireValidScanlineFast(std::span<const double> hits, double length, double merge_distance) {
+  bool ok = length > 0.0 && length <= std::numeric_limits<double>::max() && merge_distance >= 0.0 &&
+            merge_distance <= std::numeric_limits<double>::max();
+  double previous = 0.0;
+  for (double hit : hits) {
+    ok &= (hit >= previous) & (hit <= length);
+    previous = hit;
+  }
+  if (!ok) [[unlikely]]
+    requireValidScanline(hits, length, merge_distance);
+}
+
+/// Throws std::invalid_argument unless every threshold is finite and >= 0.
+void requireValidThresholds(std::span<const double> thresholds) {
+  bool ok = true;
+  for (double t : thresholds) ok &= (t >= 0.0) & (t <= std::numeric_limits<double>::max());
+  if (!ok) [[unlikely]] {
+    for (double t : thresholds) requireNonNegative(t, "RQD threshold (m)");
   }
 }
 
@@ -72,12 +97,12 @@ std::vector<double> rqd(std::span<const double> hits, double length,
 
 void rqd(std::span<const double> hits, double length, std::span<const double> thresholds,
          std::span<double> out, double merge_distance) {
-  for (double t : thresholds) requireNonNegative(t, "RQD threshold (m)");
+  requireValidThresholds(thresholds);
   if (out.size() != thresholds.size()) {
     throw std::invalid_argument("rqd: " + std::to_string(out.size()) + " outputs for " +
                                 std::to_string(thresholds.size()) + " thresholds");
   }
-  requireValidScanline(hits, length, merge_distance);
+  requireValidScanlineFast(hits, length, merge_distance);
   std::fill(out.begin(), out.end(), 0.0);
   forEachPiece(hits, length, merge_distance, [&](double piece) {
     // Branch-free (a select, not a jump): whether a piece passes a threshold is as good as

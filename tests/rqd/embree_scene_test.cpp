@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "geometry/fisher.h"
 #include "geometry/fracture_network.h"
 #include "geometry/random.h"
 
@@ -294,30 +297,37 @@ FractureNetwork networkOf(std::vector<Disc> discs) {
   return network;
 }
 
-TEST(EmbreeScene, SharedFanEdgesCountTheDiscOnce) {
+TEST(EmbreeScene, SharedTriangleEdgesCountTheDiscOnce) {
   const FractureNetwork network = networkOf({horizontalDisc(7, 0.0)});
   const Disc& disc = network.discs.front();
   const std::vector<Vec3> outline = disc.outline(kSegments);
+  const auto vertex = [&](int k) { return outline[static_cast<std::size_t>(k % kSegments)]; };
+  // Points on the edges two triangles share in the triangulated form's strips (see
+  // embree_scene.cpp: chains A_i = v_i and B_i = v_(n-i)): the chord A_i B_i between strips
+  // i - 1 and i, and the diagonal A_i+1 B_i splitting strip i into two triangles; also
+  // the centre and the old fan edges (any interior point must give one crossing).
+  std::vector<Vec3> points{Vec3::Zero(), 0.5 * vertex(3), 0.5 * vertex(10)};
+  for (int i = 1; i < kSegments / 2; ++i) {
+    points.push_back(0.5 * (vertex(i) + vertex(kSegments - i)));  // chord midpoint
+    // On the diagonal (the last strip, i = n/2 - 1, is a triangle: no diagonal).
+    if (i + 1 < kSegments / 2) points.push_back(0.3 * vertex(i + 1) + 0.7 * vertex(kSegments - i));
+  }
   for (DiscForm form : {DiscForm::ExactEllipse, DiscForm::Triangulated}) {
     const ScanlineScene scene(network, form, kSegments);
-    // Through the fan centre, where all 24 triangles meet.
+    // Straight down through the centre.
     std::vector<ScanlineHit> hits = scene.hits({0, 0, -1}, {0, 0, 1});
     ASSERT_EQ(hits.size(), 1u);
     EXPECT_EQ(hits[0].disc_id, 7);
     EXPECT_EQ(hits[0].t, 1.0);
-    // Through the middle of the fan edge from the centre to outline point 0 (on +x), and
-    // obliquely through points of the fan edges to outline points 3 and 10.
-    hits = scene.hits({1, 0, -1}, {1, 0, 1});
-    ASSERT_EQ(hits.size(), 1u);
-    EXPECT_EQ(hits[0].disc_id, 7);
-    for (int k : {3, 10}) {
-      const Vec3 on_edge = 0.5 * outline[static_cast<std::size_t>(k)];
-      const Vec3 offset(0.3, -0.2, 1.0);
-      hits = scene.hits(on_edge - offset, on_edge + offset);
-      ASSERT_EQ(hits.size(), 1u) << "fan edge " << k;
-      EXPECT_EQ(hits[0].disc_id, 7);
-      // Exact to rounding of the double-precision plane hit: t = |offset|.
-      EXPECT_NEAR(hits[0].t, offset.norm(), 1e-12);
+    // Vertically and obliquely through each shared-edge point.
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      for (const Vec3& offset : {Vec3(0, 0, 1), Vec3(0.3, -0.2, 1.0)}) {
+        hits = scene.hits(points[p] - offset, points[p] + offset);
+        ASSERT_EQ(hits.size(), 1u) << "point " << p;
+        EXPECT_EQ(hits[0].disc_id, 7);
+        // Exact to rounding of the double-precision plane hit: t = |offset|.
+        EXPECT_NEAR(hits[0].t, offset.norm(), 1e-12);
+      }
     }
   }
 }
@@ -355,6 +365,102 @@ TEST(EmbreeScene, HitsAreSortedByDistance) {
     EXPECT_EQ(hits[1].t, 1.0);
     EXPECT_EQ(hits[2].t, 2.0);
     EXPECT_EQ(hits[3].t, 3.0);
+  }
+}
+
+// The exact form decides rim hits with a faster test than Disc::intersectLine (inverse
+// semi-axes, falling back to intersectLine within 1e-12 of the rim): on segments aimed at
+// points 0, +-1, +-2, +-4 ulps-scale steps (1e-16 .. 4e-15 relative) around the rim of a
+// tilted ellipse with awkward semi-axes, and through a square polygon disc, the hit and
+// its t must be exactly (bit for bit) what intersectLine gives.
+TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
+  Disc ellipse;
+  ellipse.id = 11;
+  ellipse.center = Vec3(0.3, -0.2, 1.1);
+  ellipse.normal = Vec3(0.3, -0.5, 1.0).normalized();
+  Vec3 unused;
+  geometry::orthonormalBasis(ellipse.normal, ellipse.major, unused);
+  ellipse.a = 2.9;
+  ellipse.b = 0.7;
+  Disc square;
+  square.id = 12;
+  square.normal = Vec3::UnitZ();
+  square.major = Vec3::UnitX();
+  square.polygon = {{-1, -1, 4}, {1, -1, 4}, {1, 1, 4}, {-1, 1, 4}};
+  square.center = Vec3(0, 0, 4);
+  square.a = std::sqrt(2.0);
+  square.b = std::sqrt(2.0);
+  const FractureNetwork network = networkOf({ellipse, square});
+  const ScanlineScene scene(network, DiscForm::ExactEllipse);
+  const Vec3 dir = Vec3(0.1, 0.2, 1.0).normalized();
+  int hits = 0;
+  int misses = 0;
+  for (int k = 0; k < 90; ++k) {
+    const double phi = 0.07 * k;
+    const Vec3 rim =
+        ellipse.a * std::cos(phi) * ellipse.major + ellipse.b * std::sin(phi) * ellipse.minor();
+    for (double scale :
+         {1.0 - 4e-15, 1.0 - 2e-16, 1.0 - 1e-16, 1.0, 1.0 + 1e-16, 1.0 + 2e-16, 1.0 + 4e-15}) {
+      const Vec3 target = ellipse.center + scale * rim;
+      const Vec3 start = target - 1.5 * dir;
+      const Vec3 end = start + 3.0 * dir;
+      const std::vector<ScanlineHit> got = scene.hits(start, end);
+      // The brute force's line: start and the unit direction of the segment.
+      const double length = (end - start).norm();
+      const std::optional<double> expected = ellipse.intersectLine(start, (end - start) / length);
+      const bool expect_hit = expected && *expected >= 0.0 && *expected <= length;
+      ASSERT_EQ(got.size(), expect_hit ? 1u : 0u) << "phi " << phi << " scale " << scale;
+      if (expect_hit) {
+        EXPECT_EQ(got[0].disc_id, 11);
+        EXPECT_EQ(got[0].t, *expected);  // same bits
+        ++hits;
+      } else {
+        ++misses;
+      }
+    }
+  }
+  // Both outcomes must occur, or the segments missed the rim they were aimed at.
+  EXPECT_GT(hits, 90);
+  EXPECT_GT(misses, 90);
+  // The polygon disc goes through Disc::intersectLine itself: inside, on the edge x = 1
+  // (the crossing-number test counts the left/bottom edges in), and outside.
+  for (const auto& [x, inside] : {std::pair{0.5, true}, std::pair{1.0 + 1e-12, false},
+                                  std::pair{0.999999, true}, std::pair{1.5, false}}) {
+    const std::vector<ScanlineHit> got = scene.hits({x, 0.2, 3}, {x, 0.2, 5});
+    ASSERT_EQ(got.size(), inside ? 1u : 0u) << "x " << x;
+    if (inside) {
+      EXPECT_EQ(got[0].t, 1.0);
+    }
+  }
+}
+
+// Polygon and ellipse discs in one scene, listed polygon first: the triangulated form
+// reorders the discs (ellipses first, so that a quad's disc is a division) and must still
+// name every disc right; both forms must agree on the crossings (hand-computed below).
+TEST(EmbreeScene, PolygonAndEllipseDiscsMixInBothForms) {
+  Disc square;
+  square.id = 12;
+  square.polygon = {{-1, -1, 4}, {1, -1, 4}, {1, 1, 4}, {-1, 1, 4}};
+  square.center = Vec3(0, 0, 4);
+  square.a = square.b = std::sqrt(2.0);
+  Disc triangle;
+  triangle.id = 13;
+  triangle.polygon = {{-1, -1, 6}, {2, -1, 6}, {0.5, 2, 6}};
+  triangle.center = Vec3(0.5, 0, 6);  // its centroid
+  triangle.a = triangle.b = 2.0;
+  Disc low = horizontalDisc(7, 0.0);
+  Disc high = horizontalDisc(8, 2.0);
+  const FractureNetwork network = networkOf({square, low, triangle, high});
+  for (DiscForm form : {DiscForm::ExactEllipse, DiscForm::Triangulated}) {
+    const ScanlineScene scene(network, form);
+    // x = 0.5: inside all four (the triangle spans x in [-0.4, 1.4] at y = 0.2).
+    const std::vector<ScanlineHit> all = scene.hits({0.5, 0.2, -1}, {0.5, 0.2, 7});
+    EXPECT_EQ(ids(all), (std::vector<std::int64_t>{7, 8, 12, 13}));
+    ASSERT_EQ(all.size(), 4u);
+    EXPECT_NEAR(all[0].t, 1.0, 1e-12);
+    EXPECT_NEAR(all[3].t, 7.0, 1e-12);
+    // x = 1.5: inside the ellipses (1.5^2/4 + 0.2^2 = 0.6), outside both polygons.
+    EXPECT_EQ(ids(scene.hits({1.5, 0.2, -1}, {1.5, 0.2, 7})), (std::vector<std::int64_t>{7, 8}));
   }
 }
 
