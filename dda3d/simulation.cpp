@@ -222,6 +222,7 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
       blocks_.empty() ? 1.0 : std::cbrt(total_volume / static_cast<double>(blocks_.size()));
   penalty_ = settings_.penalty > 0.0 ? settings_.penalty
                                      : settings_.penalty_factor * young_max * block_length;
+  initial_penalty_ = penalty_;
   dt_ = settings_.time_step;
 
   const auto attach = [&](int block, const Vec3& p, const std::string& what) {
@@ -833,7 +834,10 @@ StepReport Simulation::step() {
   timings_.detect_contacts += secondsSince(start);
   const std::vector<Contact> at_start = contacts_;
   const double allowed = settings_.allowed_penetration_ratio * half_domain_;
-  const double penalty_cap = 1e4 * (settings_.penalty > 0.0 ? settings_.penalty : penalty_);
+  // Capped at 1e4 x the initial penalty for the whole run: a cap taken from the current
+  // penalty let it climb 1e4 per step (to 1e34 N/m on the Xiangjiaba model while another
+  // fault kept the steps failing), until K was not positive definite in floating point.
+  const double penalty_cap = 1e4 * initial_penalty_;
   double dt = dt_;
   Eigen::VectorXd solution;
   for (int attempt = 1;; ++attempt) {

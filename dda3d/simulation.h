@@ -270,6 +270,7 @@ class Simulation {
   int dofs_ = 12;
   double half_domain_ = 1.0;
   double penalty_ = 0.0;
+  double initial_penalty_ = 0.0;  ///< N/m, penalty_ at the start (caps its growth)
   double dt_ = 0.0;
   double time_ = 0.0;
   double work_of_loads_ = 0.0;
