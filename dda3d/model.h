@@ -44,10 +44,14 @@ struct DdaPointLoad {
   geometry::Vec3 force = geometry::Vec3::Zero();  ///< N
 };
 
-/// A material point held at its initial position by a penalty spring (Shi's fixed point).
+/// A material point held at its initial position by a penalty spring (Shi's fixed point),
+/// or, with a `direction`, held only along it (a roller: free to slide across it).
 struct DdaFixedPoint {
   int block = -1;                                 ///< index into DdaModel::blocks
   geometry::Vec3 point = geometry::Vec3::Zero();  ///< initial position (m)
+  /// Zero: held in every direction. A unit vector: only the displacement along it is held
+  /// (a roller support on a plane with this normal).
+  geometry::Vec3 direction = geometry::Vec3::Zero();
 };
 
 /// Hydrostatic pressure p(z) = unit_weight * max(0, level - z) acting on one face of one

@@ -112,6 +112,7 @@ std::vector<std::string> ActiveTerms::names() const {
                                               {point_loads, "point_loads"},
                                               {surface_pressure, "surface_pressure"},
                                               {fixed_points, "fixed_points"},
+                                              {rollers, "rollers"},
                                               {fixed_blocks, "fixed_blocks"},
                                               {contact_normal, "contact_normal"},
                                               {contact_shear, "contact_shear"},
@@ -131,6 +132,7 @@ ActiveTerms& ActiveTerms::operator|=(const ActiveTerms& o) {
   point_loads |= o.point_loads;
   surface_pressure |= o.surface_pressure;
   fixed_points |= o.fixed_points;
+  rollers |= o.rollers;
   fixed_blocks |= o.fixed_blocks;
   contact_normal |= o.contact_normal;
   contact_shear |= o.contact_shear;
@@ -227,14 +229,21 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
 
   const auto attach = [&](int block, const Vec3& p, const std::string& what) {
     checkBlockIndex(model_, block, what);
-    return MaterialPoint{block, p, p};
+    return MaterialPoint{block, p, p, Vec3::Zero()};
   };
   for (const DdaMonitor& m : model_.monitors)
     monitor_points_.push_back(attach(m.block, m.point, "monitor " + m.name));
   for (const DdaPointLoad& l : model_.point_loads)
     load_points_.push_back(attach(l.block, l.point, "a point load"));
-  for (const DdaFixedPoint& f : model_.fixed_points)
+  for (const DdaFixedPoint& f : model_.fixed_points) {
     fixed_points_.push_back(attach(f.block, f.point, "a fixed point"));
+    if (!f.direction.isZero(0.0)) {
+      if (!(std::abs(f.direction.norm() - 1.0) < 1e-9)) {
+        throw std::invalid_argument("a roller's direction must be a unit vector");
+      }
+      fixed_points_.back().direction = f.direction;
+    }
+  }
   for (const DdaPressure& p : model_.pressures) {
     checkBlockIndex(model_, p.block, "a pressure entry");
     const DdaBlock& b = model_.blocks[static_cast<std::size_t>(p.block)];
@@ -442,9 +451,17 @@ void Simulation::assembleBlockTerms(double dt) {
     if (block.fixed) continue;
     const DisplacementMatrix t = displacementMatrix(fp.current, block.centroid);
     const std::size_t m = static_cast<std::size_t>(block.dof_offset);
-    base_k_[m] += fixed_k * t.transpose() * t;
-    base_f_[m] -= fixed_k * t.transpose() * (fp.current - fp.initial);
-    step.fixed_points = true;
+    if (fp.direction.isZero(0.0)) {
+      base_k_[m] += fixed_k * t.transpose() * t;
+      base_f_[m] -= fixed_k * t.transpose() * (fp.current - fp.initial);
+      step.fixed_points = true;
+    } else {
+      // A roller: the spring acts along its direction n only, energy 1/2 k (n . u)^2.
+      const BlockVector e = t.transpose() * fp.direction;
+      base_k_[m] += fixed_k * e * e.transpose();
+      base_f_[m] -= fixed_k * e * fp.direction.dot(fp.current - fp.initial);
+      step.rollers = true;
+    }
   }
   for (std::size_t m = 0; m < base_f_.size(); ++m) base_f_[m] += load_f_[m];
   step.bolts = !model_.bolts.empty();
@@ -992,8 +1009,10 @@ double Simulation::springEnergy() const {
 double Simulation::pointSpringEnergy() const {
   double energy = 0.0;
   for (const MaterialPoint& fp : fixed_points_) {
-    energy += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ *
-              (fp.current - fp.initial).squaredNorm();
+    const Vec3 u = fp.current - fp.initial;
+    const double held =
+        fp.direction.isZero(0.0) ? u.squaredNorm() : fp.direction.dot(u) * fp.direction.dot(u);
+    energy += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ * held;
   }
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
     const DdaBolt& bolt = model_.bolts[k];

@@ -93,6 +93,7 @@ struct ActiveTerms {
   bool point_loads = false;
   bool surface_pressure = false;
   bool fixed_points = false;
+  bool rollers = false;  ///< fixed points held along one direction only
   bool fixed_blocks = false;
   bool contact_normal = false;
   bool contact_shear = false;
@@ -231,6 +232,8 @@ class Simulation {
     int block;
     geometry::Vec3 initial;
     geometry::Vec3 current;
+    /// Fixed points: zero, or the only direction held (a roller).
+    geometry::Vec3 direction = geometry::Vec3::Zero();
   };
 
   void detectContacts();

@@ -933,8 +933,24 @@ class SceneReader {
                 [&](const Cursor& c) { scene_.structures.push_back(readStructure(c)); });
     if (const auto loads = m.get("loads")) scene_.loads = readLoads(*loads);
     if (const auto supports = m.get("supports")) {
-      scene_.fixed_faces = supports->map({"fixed"}).at("fixed").distinctChoices(
-          "face", {"bottom", "top", "west", "east", "south", "north"});
+      const Cursor s = supports->map({"fixed", "rollers"});
+      const std::vector<std::string> names{"bottom", "top", "west", "east", "south", "north"};
+      if (const auto fixed = s.get("fixed"))
+        scene_.fixed_faces = fixed->distinctChoices("face", names);
+      if (const auto rollers = s.get("rollers")) {
+        scene_.roller_faces = rollers->distinctChoices("face", names);
+        for (const std::string& face : scene_.roller_faces) {
+          if (std::find(scene_.fixed_faces.begin(), scene_.fixed_faces.end(), face) !=
+              scene_.fixed_faces.end()) {
+            rollers->fail("face '" + face +
+                          "' is already in supports.fixed; a face is fixed "
+                          "or on rollers, not both");
+          }
+        }
+      }
+      if (!s.get("fixed") && !s.get("rollers")) {
+        supports->fail("supports needs `fixed` or `rollers` (a list of domain faces)");
+      }
     }
     UniqueNames monitor_names;
     forEachItem(m, "monitors", [&](const Cursor& c) {

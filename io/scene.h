@@ -193,9 +193,11 @@ struct Scene {
   int default_joint = -1;                 ///< joint used where none is named (-1: not given)
   std::vector<StructureSpec> structures;  ///< structures
   Loads loads;                            ///< loads
-  std::vector<std::string> fixed_faces;   ///< supports.fixed: bottom, top, west, east, south, north
-  std::vector<Monitor> monitors;          ///< measure points
-  Analysis analysis;                      ///< what to compute
+  /// supports.rollers: faces (same names) whose blocks are held only normal to the face.
+  std::vector<std::string> roller_faces;
+  std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
+  std::vector<Monitor> monitors;         ///< measure points
+  Analysis analysis;                     ///< what to compute
 };
 
 /// Reads and validates a scene. Relative paths inside it are resolved against its folder;

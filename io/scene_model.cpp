@@ -88,6 +88,34 @@ bool touches(const blocks::Block& block, const DomainFace& face, const geometry:
   return false;
 }
 
+/// The vertices of the faces of `block` that lie on `face` with positive area (the faces
+/// `touches` finds), each once, in order of appearance: where a roller holds the block.
+std::vector<geometry::Vec3> pointsOnDomainFace(const blocks::Block& block, const DomainFace& face,
+                                               const geometry::Box& domain, double tol,
+                                               bool box_domain) {
+  std::vector<geometry::Vec3> points;
+  for (const blocks::Piece& piece : block.pieces) {
+    for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+      const blocks::FaceSource source =
+          f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
+      const bool from_face =
+          box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id;
+      if (!from_face && !liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) {
+        continue;
+      }
+      if (areaOnDomainFace(piece, static_cast<int>(f), face, domain, tol) <= tol * tol) continue;
+      for (int v : piece.shape.faces[f]) {
+        const geometry::Vec3& p = piece.shape.vertices[static_cast<std::size_t>(v)];
+        const bool seen = std::any_of(points.begin(), points.end(), [&](const geometry::Vec3& q) {
+          return (q - p).norm() <= tol;
+        });
+        if (!seen) points.push_back(p);
+      }
+    }
+  }
+  return points;
+}
+
 /// "(x, y, z)" for messages.
 std::string pointText(const geometry::Vec3& p) {
   return "(" + formatDouble(p.x()) + ", " + formatDouble(p.y()) + ", " + formatDouble(p.z()) + ")";
@@ -307,6 +335,22 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
     out.fixed = held[b];
     for (const blocks::Piece& piece : block.pieces) out.pieces.push_back(piece.shape);
     model.blocks.push_back(std::move(out));
+  }
+
+  // Rollers: a block on a roller face (and not held by a fixed one) is held normal to the
+  // face at every vertex of its faces on it, free to slide in the face's plane.
+  const double tol = tolerance(blocks);
+  for (const std::string& name : scene.roller_faces) {
+    const DomainFace face = domainFace(name);
+    geometry::Vec3 normal = geometry::Vec3::Zero();
+    normal[face.axis] = face.max_side ? 1.0 : -1.0;
+    for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+      if (model.blocks[b].fixed) continue;
+      for (const geometry::Vec3& p : pointsOnDomainFace(blocks.blocks[b], face, blocks.domain, tol,
+                                                        scene.domain_mesh.empty())) {
+        model.fixed_points.push_back({static_cast<int>(b), p, normal});
+      }
+    }
   }
 
   for (const Monitor& monitor : scene.monitors) {

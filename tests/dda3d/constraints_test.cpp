@@ -111,6 +111,40 @@ TEST(FixedPoint, HoldsABlockWithinThePenaltyCompliance) {
   }
 }
 
+TEST(Roller, HoldsNormalToItsPlaneAndLetsTheBlockFallAlongIt) {
+  // A 1 m cube against a wall x = -0.5 on rollers (4 points at the corners of its x-min face,
+  // direction -x), under gravity -z and a push of 1e4 N into the wall (-x) at its centroid.
+  // Along z nothing holds it: it falls freely, z = -g t^2 / 2 (Bossak is exact for a
+  // constant acceleration; 1e-9 relative). Along x the four springs take the push:
+  // u_x = -F / (4 k) (static deflection, 1e-3 relative: the rollers stay parallel).
+  constexpr double kPush = 1e4;
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 0, false));
+  for (double y : {-0.5, 0.5}) {
+    for (double z : {-0.5, 0.5}) {
+      model.fixed_points.push_back(DdaFixedPoint{0, Vec3(-0.5, y, z), Vec3(-1, 0, 0)});
+    }
+  }
+  model.point_loads.push_back(DdaPointLoad{0, Vec3(0, 0, 0), Vec3(-kPush, 0, 0)});
+  model.monitors.push_back(DdaMonitor{"c", Vec3(0, 0, 0), 0});
+  model.gravity = Vec3(0, 0, -kG);
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 1e-3;
+  settings.max_displacement_ratio = 0.5;  // a free fall: no contact, let it move
+  Simulation sim(model, settings);
+  for (int k = 0; k < 100; ++k) sim.step();
+  const double t = sim.time();
+  const Vec3 u = sim.monitors()[0].displacement;
+  EXPECT_NEAR(u.z(), -0.5 * kG * t * t, 1e-9 * 0.5 * kG * t * t);
+  const double k_roller = settings.fixed_point_penalty_ratio * sim.penalty();
+  EXPECT_NEAR(u.x(), -kPush / (4.0 * k_roller), 1e-3 * kPush / (4.0 * k_roller));
+  EXPECT_NEAR(u.y(), 0.0, 1e-12);
+  EXPECT_TRUE(sim.activeTerms().rollers);
+  EXPECT_FALSE(sim.activeTerms().fixed_points);
+}
+
 TEST(FixedBlock, NeverMovesUnderALoadedBlock) {
   DdaModel model;
   scenes::setRock(model, 30.0);
