@@ -41,7 +41,7 @@ struct Block {
   /// Sum over pieces and folded slivers (volume m3, moments about the origin).
   geometry::MassProperties mass;
   /// Volume of the slivers of this block that soundPiece folded away (m3; each below
-  /// 1e-12 of the domain volume): counted in `mass`, in no piece, so block volumes and
+  /// 1e-15 of the domain volume): counted in `mass`, in no piece, so block volumes and
   /// masses stay those of the cut.
   double folded_volume = 0.0;
   geometry::Box bounds;  ///< bounding box of all pieces

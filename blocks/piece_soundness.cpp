@@ -90,7 +90,7 @@ SoundnessTolerances soundnessTolerances(const geometry::Box& domain) {
   SoundnessTolerances t;
   t.distance = 1e-7 * domain.diagonal();
   t.area = t.distance * t.distance;
-  t.volume = 1e-12 * domain.volume();
+  t.volume = 1e-15 * domain.volume();
   return t;
 }
 

@@ -94,7 +94,7 @@ TEST(PieceSoundness, PlaneGrazingACornerOfThreePlanesFoldsTheSliver) {
   // x = 5, y = 5, z = 5 make 8 octants; x + y + z = 15 + eps passes eps / sqrt(3) from their
   // common corner. It cuts 6 of the 7 octants it meets in two (the octant x, y, z < 5 lies
   // below it), and from the octant x, y, z > 5 only the tetrahedron with legs eps: volume
-  // eps^3 / 6 = 1.7e-13 m3, below the volume tolerance 1e-12 x 1000 m3, a block of its own.
+  // eps^3 / 6 = 1.7e-13 m3, below the volume tolerance 1e-15 x 1000 m3, a block of its own.
   // Sound: it is folded away, 1 + 6 x 2 + 1 = 14 blocks remain.
   const double eps = 1e-4;
   const BothCuts cuts(
@@ -114,11 +114,12 @@ TEST(PieceSoundness, PlaneGrazingACornerOfThreePlanesFoldsTheSliver) {
 }
 
 TEST(PieceSoundness, NearlyCoplanarDiscsLeaveNoWedgeSliver) {
-  // z = 5 and a plane through (5, 5, 5) tilted by 1e-12 rad about the y axis: between them,
-  // two wedges 5 m long and at most 5e-12 m thick (volume 10 x 5 x 5e-12 / 2 = 1.25e-10 m3
-  // each, below the 1e-9 m3 tolerance). The exact cutter makes them; sound, both cutters
-  // give the two halves only, each 500 m3 within the wedges' volume.
-  const double angle = 1e-12;
+  // z = 5 and a plane through (5, 5, 5) tilted by 1e-15 rad about the y axis: between them,
+  // two wedges 5 m long and at most 5e-15 m thick (volume 10 x 5 x 5e-15 / 2 = 1.25e-13 m3
+  // each, below the 1e-12 m3 tolerance). The exact cutter makes them (rationally); the fast
+  // cutter puts both discs in one plane. Sound, both give the two halves only, each 500 m3
+  // within the wedges' volume.
+  const double angle = 1e-15;
   const BothCuts cuts(cubeNetwork({circle({5, 5, 5}, Vec3::UnitZ()),
                                    circle({5, 5, 5}, Vec3(std::sin(angle), 0, std::cos(angle)))}));
   expectSoundAndAgreeing(cuts);
@@ -191,7 +192,7 @@ TEST(PieceSoundness, TinyCornerFaceIsMergedBackIntoTheCorner) {
 
 TEST(PieceSoundness, TinyPieceIsFoldedAndThinSlabIsKept) {
   const SoundnessTolerances tolerances = soundnessTolerances({Vec3::Zero(), Vec3::Constant(10)});
-  // A tetrahedron with legs 1e-5 m: 1.7e-16 m3, far below 1e-12 x 1000 m3: folded.
+  // A tetrahedron with legs 1e-5 m: 1.7e-16 m3, below 1e-15 x 1000 m3: folded.
   Piece tiny;
   tiny.shape.vertices = {{5, 5, 5}, {5 + 1e-5, 5, 5}, {5, 5 + 1e-5, 5}, {5, 5, 5 + 1e-5}};
   tiny.shape.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
