@@ -50,8 +50,10 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
   for (const io::StructureSpec& s : scene.structures) {
     if (!s.mesh.empty()) {
       throw io::InputError(scene_path + ": structures: " + s.name +
-                           ": mesh structures need the mesh import, which is not built yet; " +
-                           "give a prism");
+                           ": mesh: " + s.mesh.filename().string() +
+                           ": structures given as a mesh (structures[].mesh) cannot be cut into "
+                           "blocks yet by either cutter; give the structure as "
+                           "structures[].prism");
     }
     blocks::StructureSolid solid;
     solid.material = s.material;

@@ -7,12 +7,14 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 
 #include "blocks/convex_split.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/piece_soundness.h"
 #include "blocks/slab_material.h"
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
@@ -215,18 +217,47 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
   }
 
+  // The face labels the contacts refer to, before soundPiece renumbers faces.
+  std::vector<std::vector<FaceSource>> face_sources(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) face_sources[i] = all[i].face_sources;
+  // Sound rock pieces (piece_soundness.h), after the gluing, as the exact cutter does: slivers
+  // are folded away, near vertices merged; a block of slivers only disappears.
+  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
+  std::vector<std::optional<SoundPiece>> sound(rock_count);
+  std::vector<SoundPieceReport> sound_reports(rock_count);
+  tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
+    sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+  });
+  std::vector<bool> folded(all.size(), false);
+  for (std::size_t i = 0; i < rock_count; ++i) {
+    addToReport(all[i], sound[i], sound_reports[i], local_report.soundness);
+    if (sound[i]) {
+      all[i] = std::move(sound[i]->piece);
+    } else {
+      folded[i] = true;
+    }
+  }
+  sound.clear();
+
   const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
                             tolerances.distance);
-  // Clusters in the order of their roots (smallest piece), each listing its pieces ascending.
+  // Clusters in the order of their roots (smallest piece), each listing its kept pieces
+  // ascending.
   std::vector<int> cluster_of(all.size(), -1);
   std::vector<std::vector<int>> unordered_pieces;
   for (std::size_t i = 0; i < all.size(); ++i) {
+    if (folded[i]) continue;
     const int root = clusters.find(static_cast<int>(i));
     if (cluster_of[root] < 0) {
       cluster_of[root] = static_cast<int>(unordered_pieces.size());
       unordered_pieces.emplace_back();
     }
     unordered_pieces[cluster_of[root]].push_back(static_cast<int>(i));
+  }
+  std::vector<std::vector<int>> folded_pieces(unordered_pieces.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const int cluster = cluster_of[clusters.find(static_cast<int>(i))];
+    if (folded[i] && cluster >= 0) folded_pieces[cluster].push_back(static_cast<int>(i));
   }
   // Mass properties, boxes and materials per block, in parallel (each block on its own).
   std::vector<Block> unordered(unordered_pieces.size());
@@ -245,6 +276,11 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
       const geometry::Box box = geometry::bounds(all[i].shape);
       b.bounds.min = b.bounds.min.cwiseMin(box.min);
       b.bounds.max = b.bounds.max.cwiseMax(box.max);
+    }
+    for (int i : folded_pieces[k]) {  // folded slivers keep their mass
+      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      b.mass += m;
+      b.folded_volume += m.volume;
     }
     const int structure = structure_of[list.front()];
     if (structure >= 0) {
@@ -270,17 +306,21 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   for (const geometry::Polyhedron& p : input.domain_pieces) {
     model.domain_volume += geometry::massProperties(p).volume;
   }
-  std::vector<int> block_of(all.size());
-  std::vector<std::vector<FaceSource>> face_sources(all.size());
+  std::vector<int> block_of(all.size(), 0);  // 0: folded, in no block
   for (std::size_t k = 0; k < pending.size(); ++k) {
     Block& b = pending[k].block;
     b.id = static_cast<int>(k) + 1;
     for (int i : pending[k].pieces) {
       block_of[i] = b.id;
-      face_sources[i] = all[i].face_sources;
       b.pieces.push_back(std::move(all[i]));
     }
     model.blocks.push_back(std::move(b));
+  }
+  // A folded piece's contacts count for the block of its cluster, when that block exists.
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    for (int i : folded_pieces[static_cast<std::size_t>(order[k])]) {
+      block_of[i] = static_cast<int>(k) + 1;
+    }
   }
 
   // Adjacency: real contacts between different blocks. The source is the structure when
@@ -289,7 +329,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const PieceContact& c = contacts[k];
     int a = block_of[c.piece_a], b = block_of[c.piece_b];
-    if (a == b) continue;
+    if (a == b || a == 0 || b == 0) continue;
     const FaceSource source_a = face_sources[c.piece_a][c.face_a];
     const FaceSource source_b = face_sources[c.piece_b][c.face_b];
     if (const FaceSource* source = decided(k)) {

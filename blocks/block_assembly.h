@@ -8,6 +8,7 @@
 #include "blocks/block_model.h"
 #include "blocks/cutter.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/piece_soundness.h"
 
 namespace rockmass::blocks {
 
@@ -56,11 +57,14 @@ std::vector<int> blockOrder(const std::vector<Block>& blocks, const geometry::Bo
 /// What the assembly noticed.
 struct AssemblyReport {
   int inconsistent_contacts = 0;  ///< contacts fictitious on one side only (treated as real)
+  SoundnessReport soundness;      ///< slivers folded, vertices merged (piece_soundness.h)
 };
 
 /// Glues the rock pieces into blocks across `rock_contacts` (their contacts among
 /// themselves, as findPieceContacts gives them) that are fictitious on both sides (one
-/// union-find), adds each structure as one block, assigns materials (structures: their own;
+/// union-find), makes every rock piece sound (soundPiece: slivers folded away after the
+/// gluing, near vertices merged; a block of slivers only disappears), adds each structure as
+/// one block, assigns materials (structures: their own;
 /// rock blocks: SlabMaterials::ofBlock), numbers the blocks 1..N in blockOrder, and lists the
 /// adjacency: one entry per (block_a, block_b, source) with the summed contact area, sorted. Pieces
 /// keep their face provenance. Contacts between structures and rock are found here.

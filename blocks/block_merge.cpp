@@ -104,6 +104,7 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume) {
     for (int m : in_group) {
       Block& source = model.blocks[static_cast<std::size_t>(m)];
       block.mass += source.mass;
+      block.folded_volume += source.folded_volume;
       block.bounds.min = block.bounds.min.cwiseMin(source.bounds.min);
       block.bounds.max = block.bounds.max.cwiseMax(source.bounds.max);
       for (Piece& piece : source.pieces) block.pieces.push_back(std::move(piece));

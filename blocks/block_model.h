@@ -35,11 +35,16 @@ struct Piece {
 /// A block: one or more convex pieces glued across fictitious faces; one rigid or
 /// deformable body for the DDA.
 struct Block {
-  int id = 0;                     ///< 1..N in a deterministic order
-  int material = -1;              ///< index into the scene's materials
-  std::vector<Piece> pieces;      ///< convex decomposition
-  geometry::MassProperties mass;  ///< sum over pieces (volume m3, moments about the origin)
-  geometry::Box bounds;           ///< bounding box of all pieces
+  int id = 0;                 ///< 1..N in a deterministic order
+  int material = -1;          ///< index into the scene's materials
+  std::vector<Piece> pieces;  ///< convex decomposition
+  /// Sum over pieces and folded slivers (volume m3, moments about the origin).
+  geometry::MassProperties mass;
+  /// Volume of the slivers of this block that soundPiece folded away (m3; each below
+  /// 1e-15 of the domain volume): counted in `mass`, in no piece, so block volumes and
+  /// masses stay those of the cut.
+  double folded_volume = 0.0;
+  geometry::Box bounds;  ///< bounding box of all pieces
 };
 
 /// Two blocks touching across real (non-fictitious) faces.

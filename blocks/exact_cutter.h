@@ -29,6 +29,7 @@
 
 #include "blocks/block_model.h"
 #include "blocks/cutter.h"
+#include "blocks/piece_soundness.h"
 
 namespace rockmass::blocks {
 
@@ -50,14 +51,18 @@ struct ExactCutOptions {
 
 /// What the exact cutter measured while it ran.
 struct ExactCutReport {
-  int regions = 0;               ///< regions of the kd split
-  int disc_region_pairs = 0;     ///< Nef differences done (discs summed over regions)
-  int pieces = 0;                ///< convex pieces in all blocks
+  int regions = 0;            ///< regions of the kd split
+  int disc_region_pairs = 0;  ///< Nef differences done (discs summed over regions)
+  int pieces = 0;             ///< convex pieces in all blocks (slivers folded away)
+  /// Slivers folded away and vertices merged (piece_soundness.h): the emitted pieces sum to
+  /// the domain volume minus soundness.folded_volume, within soundness.volume_change.
+  SoundnessReport soundness;
   double split_seconds = 0.0;    ///< exact splitting of cells, summed over regions (s)
   double nef_seconds = 0.0;      ///< Nef referee: construction and differences, summed (s)
   double extract_seconds = 0.0;  ///< classification, provenance, exact volumes, summed (s)
   double glue_seconds = 0.0;     ///< union of pieces into blocks, materials, adjacency (s)
-  /// With check_exact_volume: the rational sum of all rock piece volumes (m3) as "p/q".
+  /// With check_exact_volume: the rational sum of the volumes of all exact rock cells (m3)
+  /// as "p/q", slivers included (before soundPiece folds them away).
   std::string rock_volume_exact;
   /// With check_exact_volume: the domain volume as a rational "p/q" (m3).
   std::string domain_volume_exact;

@@ -378,6 +378,8 @@ BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCu
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;
+  counters.soundness = assembly.soundness;
+  counters.pieces -= assembly.soundness.folded_pieces;
   counters.assemble_seconds = secondsSince(assemble_start);
   if (report) *report = counters;
   return model;
@@ -1065,6 +1067,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;
+  counters.soundness = assembly.soundness;
+  counters.pieces -= assembly.soundness.folded_pieces;
   counters.assemble_seconds = secondsSince(assemble_start);
   if (report) *report = counters;
   return model;

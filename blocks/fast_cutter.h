@@ -55,7 +55,8 @@ struct FastCutReport {
   int cutting_polygons = 0;       ///< convex polygons cut (a non-convex disc gives several)
   long long piece_tests = 0;      ///< (polygon, piece) pairs whose bounding boxes met
   long long splits = 0;           ///< plane splits made
-  int pieces = 0;                 ///< convex rock pieces at the end
+  int pieces = 0;                 ///< convex rock pieces at the end (slivers folded away)
+  SoundnessReport soundness;      ///< slivers folded, vertices merged (piece_soundness.h)
   int regions = 0;                ///< kd regions (FullPlanes; 1 for EdgePlanes)
   int inconsistent_contacts = 0;  ///< see AssemblyReport (0 in a sound cut)
   double cut_seconds = 0.0;       ///< wall time of the splitting

@@ -132,7 +132,8 @@ double signedArea(const std::vector<Vec2>& polygon) {
 }
 
 std::optional<PolygonSection> sectionPolyhedron(const Polyhedron& polyhedron,
-                                                const SectionPlane& plane, double tolerance) {
+                                                const SectionPlane& plane, double tolerance,
+                                                FaceInPlane face_in_plane) {
   std::vector<double> d;
   d.reserve(polyhedron.vertices.size());
   double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
@@ -141,7 +142,12 @@ std::optional<PolygonSection> sectionPolyhedron(const Polyhedron& polyhedron,
     lowest = std::min(lowest, d.back());
     highest = std::max(highest, d.back());
   }
-  if (!(lowest < -tolerance && highest > tolerance)) return std::nullopt;  // touches at most
+  // On the positive side with a face in the plane: that face is the section (Above).
+  const bool face_above =
+      face_in_plane == FaceInPlane::Above && lowest >= -tolerance && highest > tolerance;
+  if (!face_above && !(lowest < -tolerance && highest > tolerance)) {
+    return std::nullopt;  // touches at most
+  }
 
   std::vector<Vec2> points;
   double scale = 0.0;
@@ -164,13 +170,21 @@ std::optional<PolygonSection> sectionPolyhedron(const Polyhedron& polyhedron,
   section.points = convexHull(std::move(points), eps);
   if (section.points.size() < 3) return std::nullopt;
 
-  // Each edge lies in the face whose plane passes nearest its midpoint.
+  // Each edge lies in the face whose plane passes nearest its midpoint, other than a face
+  // that lies in the plane (face_above: the section itself).
+  std::vector<bool> in_plane(polyhedron.faces.size(), false);
+  for (std::size_t f = 0; f < polyhedron.faces.size() && face_above; ++f) {
+    in_plane[f] = std::all_of(polyhedron.faces[f].begin(), polyhedron.faces[f].end(), [&](int v) {
+      return std::abs(d[static_cast<std::size_t>(v)]) <= tolerance;
+    });
+  }
   for (std::size_t k = 0; k < section.points.size(); ++k) {
     const Vec3 mid =
         plane.lift(0.5 * (section.points[k] + section.points[(k + 1) % section.points.size()]));
     int best = -1;
     double best_distance = std::numeric_limits<double>::infinity();
     for (std::size_t f = 0; f < polyhedron.faces.size(); ++f) {
+      if (in_plane[f]) continue;
       const Vec3 n = faceNormal(polyhedron, static_cast<int>(f));
       const Vec3& v0 = polyhedron.vertices[static_cast<std::size_t>(polyhedron.faces[f][0])];
       const double distance = std::abs(n.dot(mid - v0));

@@ -42,12 +42,22 @@ struct PolygonSection {
   std::vector<int> edge_faces;
 };
 
+/// What sectionPolyhedron gives for a polyhedron that has a face in the plane.
+enum class FaceInPlane {
+  Skip,   ///< nothing: the plane only touches it
+  Above,  ///< the face, when the polyhedron lies on the plane's positive side: the section
+          ///< just above the plane. The sections of a partition into polyhedra then tile the
+          ///< plane even where it coincides with their faces (a cut or a region face).
+};
+
 /// The section of a convex polyhedron by `plane`, or nothing when the plane does not cross
-/// its interior: a plane that only touches it (at a vertex, along an edge or over a whole
-/// face, within `tolerance` metres) gives nothing, so that a face shared by two pieces is
-/// not drawn twice as a zero-area polygon.
+/// its interior: a plane that only touches it (at a vertex, along an edge, or over a whole
+/// face with FaceInPlane::Skip, within `tolerance` metres) gives nothing, so that a face
+/// shared by two pieces is not drawn twice. With FaceInPlane::Above, a face in the plane of
+/// a polyhedron on the positive side is its section (its edges lie in the neighbouring faces).
 std::optional<PolygonSection> sectionPolyhedron(const Polyhedron& polyhedron,
-                                                const SectionPlane& plane, double tolerance = 1e-9);
+                                                const SectionPlane& plane, double tolerance = 1e-9,
+                                                FaceInPlane face_in_plane = FaceInPlane::Skip);
 
 /// The trace of a fracture in `plane`, clipped to `box`: zero, one or (for a non-convex
 /// polygon) several segments, as (u, v) end points. `segments` = 0 cuts the exact ellipse;

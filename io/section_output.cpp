@@ -108,7 +108,11 @@ Section sectionOf(const blocks::BlockModel& model, const geometry::FractureNetwo
   for (const blocks::Block& block : model.blocks) {
     for (std::size_t p = 0; p < block.pieces.size(); ++p) {
       const blocks::Piece& piece = block.pieces[p];
-      const auto cut = geometry::sectionPolyhedron(piece.shape, plane, tolerance);
+      // A plane on the faces of pieces (a cut, or the exact cutter's region faces, which
+      // lie at the domain's mid-planes) takes the pieces above it: the polygons tile the
+      // section as the pieces tile the domain.
+      const auto cut =
+          geometry::sectionPolyhedron(piece.shape, plane, tolerance, geometry::FaceInPlane::Above);
       if (!cut) continue;
       SectionPolygon polygon;
       polygon.block = block.id;

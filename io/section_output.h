@@ -42,7 +42,10 @@ struct Section {
 
 /// Cuts every piece of `model` and every disc of `network` (clipped to the network's
 /// domain; ellipses as the `disc_segments`-gons the cutters use, 0 for exact ellipses)
-/// with `plane`. Pieces the plane only touches are left out (see sectionPolyhedron).
+/// with `plane`. Pieces the plane only touches are left out, except that where the plane
+/// lies on faces of pieces, the pieces above it (on the normal's side) give those faces
+/// (sectionPolyhedron with FaceInPlane::Above): the polygons always tile the section of the
+/// domain, even on a disc plane or on a face between two kd regions of the cutters.
 Section sectionOf(const blocks::BlockModel& model, const geometry::FractureNetwork& network,
                   const geometry::SectionPlane& plane, const std::string& label, int disc_segments);
 

@@ -127,5 +127,30 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   EXPECT_EQ(exact_summary["adjacencies"], summary["adjacencies"]);
 }
 
+TEST(BlocksCli, MeshStructureIsExitTwoNamingTheSceneKey) {
+  // A structure given as a closed mesh (structures[].mesh, a 4 x 4 x 4 m cube on the rock
+  // top): neither cutter builds blocks from it yet; both stop with exit code 2 and say which
+  // scene key to change, before any output is written.
+  test::TempDir dir("blocks_cli_mesh_structure");
+  test::writeFile(dir.path() / "cube.obj",
+                  "v 8 8 0\nv 12 8 0\nv 12 12 0\nv 8 12 0\nv 8 8 4\nv 12 8 4\nv 12 12 4\n"
+                  "v 8 12 4\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
+                  "f 4 1 5 8\n");
+  std::string text = kScene;
+  text.replace(text.find("    prism: {profile"),
+               text.find("    material: concrete") - text.find("    prism: {profile"),
+               "    mesh: cube.obj\n");
+  const fs::path scene = test::writeFile(dir.path() / "scene.yaml", text);
+  for (const char* cutter : {"exact", "fast"}) {
+    const test::CliResult r = test::runCli("blocks " + scene.string() + " -o " +
+                                           (dir.path() / cutter).string() + " --cutter " + cutter);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(scene.string() + ": structures: dam: mesh:"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("structures[].prism"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path() / cutter / "blocks.csv"));
+  }
+}
+
 }  // namespace
 }  // namespace rockmass

@@ -94,6 +94,31 @@ TEST(PlaneSection, TouchingOrMissingPlanesGiveNothing) {
   EXPECT_NEAR(std::abs(signedArea(s->points)), std::sqrt(2.0) / 4.0, 1e-12);
 }
 
+TEST(PlaneSection, FaceInPlaneAboveGivesTheFaceOfThePolyhedronAbove) {
+  // The box [0,2]x[0,1]x[0,3] on the plane y = 0 (normal +y, the box above it): its y_min
+  // face, 2 x 3 = 6 m2, whose four edges lie in the x_min, x_max, z_min and z_max faces
+  // (boxPolyhedron order 0, 1, 4, 5), never in the y_min face (2) itself.
+  const Polyhedron box = boxPolyhedron({{0, 0, 0}, {2, 1, 3}});
+  const auto s = sectionPolyhedron(box, axisPlane(1, 0.0), 1e-9, FaceInPlane::Above);
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(signedArea(s->points), 6.0, 1e-15);
+  std::vector<int> faces = s->edge_faces;
+  std::sort(faces.begin(), faces.end());
+  EXPECT_EQ(faces, (std::vector<int>{0, 1, 4, 5}));
+  // On y = 1 the box lies below the plane: nothing, as with Skip on either face.
+  EXPECT_FALSE(sectionPolyhedron(box, axisPlane(1, 1.0), 1e-9, FaceInPlane::Above));
+  EXPECT_FALSE(sectionPolyhedron(box, axisPlane(1, 0.0), 1e-9, FaceInPlane::Skip));
+  // Touching along an edge or at a vertex from above still gives nothing.
+  EXPECT_FALSE(
+      sectionPolyhedron(box, planeThrough({2, 1, 0}, {1, 1, 0}), 1e-9, FaceInPlane::Above));
+  EXPECT_FALSE(sectionPolyhedron(unitTetrahedron(), planeThrough({1, 0, 0}, {1, 0, 0}), 1e-9,
+                                 FaceInPlane::Above));
+  // A plane within the tolerance of the face (1e-12 below it) is the same case.
+  const auto near = sectionPolyhedron(box, axisPlane(1, -1e-12), 1e-9, FaceInPlane::Above);
+  ASSERT_TRUE(near);
+  EXPECT_NEAR(signedArea(near->points), 6.0, 1e-12);
+}
+
 TEST(PlaneSection, CircleAndEllipseChords) {
   const Box big{Vec3::Constant(-100), Vec3::Constant(100)};
   // A circle of radius 2 in the plane x = 0, centre on the y axis at 0.5 from the plane

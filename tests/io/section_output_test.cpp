@@ -11,6 +11,8 @@
 #include <set>
 #include <sstream>
 
+#include "blocks/disc_scenes.h"
+#include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/disc.h"
 #include "geometry/polyhedron.h"
@@ -155,14 +157,59 @@ TEST(SectionOutput, SvgIsWellFormed) {
   EXPECT_EQ(elements["line"], 15 + 3 + 4 + 1);
 }
 
-TEST(SectionOutput, PlaneOnAFaceLeavesTouchingPiecesOut) {
-  // z = 4 is the plane of disc 1: the pieces above and below only touch it.
+/// Sum of the polygons' areas (m2).
+double sectionArea(const Section& s) {
+  double total = 0.0;
+  for (const SectionPolygon& p : s.polygons) total += geometry::signedArea(p.points);
+  return total;
+}
+
+TEST(SectionOutput, PlaneOnAFaceTakesThePiecesAboveIt) {
+  // z = 4 is the plane of disc 1: the pieces below only touch it, the pieces above have a
+  // face on it. The section is the one just above: the upper block's 10 x 10 face (disc 3's
+  // piece starts at x = 10 there, a line); before, a plane on a face gave no polygon at all.
   const CutCube cube;
   const Section s = sectionOf(cube.model, cube.network, geometry::axisPlane(2, 4.0), "z=4", 0);
-  EXPECT_TRUE(s.polygons.empty());
+  ASSERT_FALSE(s.polygons.empty());
+  // The domain's section is 100 m2; coordinates are small integers (round-off 1e-14).
+  EXPECT_NEAR(sectionArea(s), 100.0, 1e-9);
+  for (const SectionPolygon& p : s.polygons) {
+    const blocks::Block& block = cube.model.blocks[static_cast<std::size_t>(p.block - 1)];
+    EXPECT_GT(block.mass.centroid().z(), 4.0);  // a block above the plane
+    // Its edges: the box's x_min, x_max, y_min, y_max faces, or a cut; never disc 1 itself.
+    for (const blocks::FaceSource& e : p.edges)
+      EXPECT_FALSE(e.kind == blocks::FaceKind::Disc && e.id == 1);
+  }
   // Disc 1 lies in the plane (no trace); disc 2 ends on it (its edge touches: no trace);
   // disc 3 crosses it along x = 10, clipped to the box's edge: a point, so no trace either.
   for (const SectionTrace& t : s.traces) EXPECT_NE(t.disc, 1);
+}
+
+TEST(SectionOutput, SectionsOfAMultiBlockModelTileTheDomainSection) {
+  // 40 random discs (radius 3-7 m) in the 10 m cube, cut by both cutters with at most 4
+  // discs per kd region, so that region faces lie on the mid-planes x = 5 (the first split,
+  // exactly halfway) and others: the Xiangjiaba quick run's section y = 10 was such a
+  // mid-plane and gave 1 polygon instead of thousands. Whatever the plane, the polygons tile
+  // the cube's 100 m2 section: their areas sum to it within 1e-9 relative (issue 6).
+  const geometry::FractureNetwork network =
+      blocks::randomDiscNetwork({.discs = 40, .side = 10.0, .seed = 7});
+  const blocks::CutInput input = blocks::boxCutInput(network);
+  blocks::ExactCutOptions exact_options;
+  exact_options.max_discs_per_region = 4;
+  blocks::FastCutOptions fast_options;
+  fast_options.max_discs_per_region = 4;
+  const blocks::BlockModel exact = blocks::cutExact(input, exact_options);
+  const blocks::BlockModel fast = blocks::cutFast(input, fast_options);
+  ASSERT_GT(exact.blocks.size(), 20u) << "a multi-block model";
+  for (const auto& [axis, offset] :
+       std::vector<std::pair<int, double>>{{0, 5.0}, {1, 5.0}, {2, 5.0}, {1, 3.7}, {0, 2.5}}) {
+    for (const blocks::BlockModel* model : {&exact, &fast}) {
+      const Section s = sectionOf(*model, network, geometry::axisPlane(axis, offset), "", 24);
+      EXPECT_NEAR(sectionArea(s), 100.0, 1e-7) << "axis " << axis << " at " << offset;
+      // Each polygon belongs to a block the plane crosses or bounds from below.
+      EXPECT_GT(s.polygons.size(), 10u);
+    }
+  }
 }
 
 }  // namespace
