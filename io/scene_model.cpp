@@ -67,43 +67,41 @@ double areaOnDomainFace(const blocks::Piece& piece, int f, const DomainFace& fac
   return inside.size() < 3 ? 0.0 : geometry::polygonArea(inside);
 }
 
-/// True when some piece face of `block` came from or lies on the plane of `face` AND
-/// overlaps the face's rectangle with positive area (more than tol^2): a structure standing
-/// on the domain's top whose side is in the plane of a side face, but above the box, is
-/// not held by it.
+/// True when face `f` of `piece` came from or lies on the plane of `face` AND overlaps the
+/// face's rectangle with positive area (more than tol^2): a structure standing on the
+/// domain's top whose side is in the plane of a side face, but above the box, is not on it.
+bool faceOnDomainFace(const blocks::Piece& piece, std::size_t f, const DomainFace& face,
+                      const geometry::Box& domain, double tol, bool box_domain) {
+  const blocks::FaceSource source =
+      f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
+  const bool from_face =
+      box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id;
+  if (!from_face && !liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) {
+    return false;
+  }
+  return areaOnDomainFace(piece, static_cast<int>(f), face, domain, tol) > tol * tol;
+}
+
+/// True when some piece face of `block` is on `face` (faceOnDomainFace).
 bool touches(const blocks::Block& block, const DomainFace& face, const geometry::Box& domain,
              double tol, bool box_domain) {
   for (const blocks::Piece& piece : block.pieces) {
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-      const blocks::FaceSource source =
-          f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
-      const bool from_face =
-          box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id;
-      if (!from_face && !liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) {
-        continue;
-      }
-      if (areaOnDomainFace(piece, static_cast<int>(f), face, domain, tol) > tol * tol) return true;
+      if (faceOnDomainFace(piece, f, face, domain, tol, box_domain)) return true;
     }
   }
   return false;
 }
 
-/// The vertices of the faces of `block` that lie on `face` with positive area (the faces
-/// `touches` finds), each once, in order of appearance: where a roller holds the block.
+/// The vertices of the faces of `block` on `face` (faceOnDomainFace), each once, in order of
+/// appearance: where a roller holds the block.
 std::vector<geometry::Vec3> pointsOnDomainFace(const blocks::Block& block, const DomainFace& face,
                                                const geometry::Box& domain, double tol,
                                                bool box_domain) {
   std::vector<geometry::Vec3> points;
   for (const blocks::Piece& piece : block.pieces) {
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-      const blocks::FaceSource source =
-          f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
-      const bool from_face =
-          box_domain && source.kind == blocks::FaceKind::Boundary && source.id == face.box_id;
-      if (!from_face && !liesOnDomainFace(piece, static_cast<int>(f), face, domain, tol)) {
-        continue;
-      }
-      if (areaOnDomainFace(piece, static_cast<int>(f), face, domain, tol) <= tol * tol) continue;
+      if (!faceOnDomainFace(piece, f, face, domain, tol, box_domain)) continue;
       for (int v : piece.shape.faces[f]) {
         const geometry::Vec3& p = piece.shape.vertices[static_cast<std::size_t>(v)];
         const bool seen = std::any_of(points.begin(), points.end(), [&](const geometry::Vec3& q) {

@@ -124,6 +124,22 @@ TEST(SceneModel, FixedFacesHoldTheBlocksTouchingThem) {
   EXPECT_FALSE(model.blocks[2].fixed || model.blocks[3].fixed);
 }
 
+TEST(SceneModel, RollerFacesHoldTheirBlocksNormalToTheFaceAtItsVertices) {
+  // Bottom fixed, west on rollers: of the two west blocks only the upper one (2; the lower,
+  // 0, is held by the bottom) gets rollers, one per vertex of its face on x = x_min (4
+  // corners), all along the face's outward normal -x.
+  const blocks::BlockModel blocks = fourBlocks();
+  const dda3d::DdaModel model =
+      buildDdaModel(scene("supports: {fixed: [bottom], rollers: [west]}\n"), blocks);
+  ASSERT_EQ(model.fixed_points.size(), 4u);
+  for (const dda3d::DdaFixedPoint& p : model.fixed_points) {
+    EXPECT_EQ(p.block, 2);
+    EXPECT_EQ(p.direction, geometry::Vec3(-1, 0, 0));
+    EXPECT_DOUBLE_EQ(p.point.x(), blocks.domain.min.x());
+  }
+  EXPECT_FALSE(model.blocks[2].fixed);
+}
+
 TEST(SceneModel, FixedFacesByGeometryWithoutProvenance) {
   // A mesh domain (or a cutter that lost the tags): every face Fictitious; the block is still
   // held when a face lies in the bottom plane, within the tolerance (1e-6 of the diagonal

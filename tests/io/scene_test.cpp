@@ -209,6 +209,12 @@ TEST(SceneErrors, BadSupportsName) {
             "west, east, south, north (did you mean 'bottom'?)");
   EXPECT_EQ(errorOf(valid_head + "supports: {fixed: [west, west]}\n"),
             "bad.yaml:3:26: supports.fixed[1]: duplicate face 'west'");
+  // A face is fixed or on rollers, not both (the error names the roller list's line).
+  EXPECT_NE(errorOf(valid_head + "supports: {fixed: [west], rollers: [west]}\n")
+                .find("face 'west' is already in supports.fixed"),
+            std::string::npos);
+  EXPECT_NE(errorOf(valid_head + "supports: {}\n").find("supports needs `fixed` or `rollers`"),
+            std::string::npos);
 }
 
 TEST(SceneErrors, YamlSyntaxError) {
