@@ -8,6 +8,8 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 namespace rockmass::dda3d {
 
 using geometry::Box;
@@ -417,31 +419,52 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   std::vector<std::size_t> first_piece(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b)
     first_piece[b + 1] = first_piece[b] + blocks[b].pieces.size();
+  // Views of the pieces in some pair, built first so that the narrow phase only reads them.
   std::vector<PieceView> views(first_piece.back());
-  const auto viewOf = [&](int block, int piece) -> const PieceView& {
-    PieceView& v =
-        views[first_piece[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece)];
-    if (v.shape == nullptr) v = view(blocks, block, piece);
-    return v;
+  std::vector<std::pair<int, int>> needed(first_piece.back(), {-1, -1});
+  const auto indexOf = [&](int block, int piece) {
+    return first_piece[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece);
   };
-  std::vector<Contact> out;
   for (const PiecePair& pair : pairs) {
-    const PieceView& a = viewOf(pair.block_a, pair.piece_a);
-    const PieceView& b = viewOf(pair.block_b, pair.piece_b);
-    const double gap = reach[static_cast<std::size_t>(pair.block_a)] +
-                       reach[static_cast<std::size_t>(pair.block_b)];
-    const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
-    // Farther apart than the range: nothing below can be recorded (a vertex's foot may sit a
-    // round-off margin outside its face, which the doubled range covers).
-    const double apart = 2.0 * gap + tolerance;
-    if (separatedBeyond(a, b, apart) || separatedBeyond(b, a, apart)) continue;
-    // A persisting vertex contact is kept up to 1e-4 of the pieces' size outside its face:
-    // far above the strain offsets of coincident corners, far below a step's motion.
-    const Range range{gap, depth,
-                      std::max(tolerance, 1e-4 * (a.box.diagonal() + b.box.diagonal()))};
-    vertexToFace(a, b, range, tolerance, previous_face, out);
-    vertexToFace(b, a, range, tolerance, previous_face, out);
-    edgeToEdge(a, b, range, tolerance, out);
+    needed[indexOf(pair.block_a, pair.piece_a)] = {pair.block_a, pair.piece_a};
+    needed[indexOf(pair.block_b, pair.piece_b)] = {pair.block_b, pair.piece_b};
+  }
+  tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t k) {
+    if (needed[k].first >= 0) views[k] = view(blocks, needed[k].first, needed[k].second);
+  });
+  // The narrow phase in chunks of pairs, in parallel; the chunks' entries are joined in pair
+  // order, so the result is the same as a serial loop's (deterministic).
+  constexpr std::size_t kChunk = 128;
+  std::vector<std::vector<Contact>> found((pairs.size() + kChunk - 1) / kChunk);
+  tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
+    const std::size_t end = std::min(pairs.size(), (chunk + 1) * kChunk);
+    for (std::size_t k = chunk * kChunk; k < end; ++k) {
+      const PiecePair& pair = pairs[k];
+      const PieceView& a = views[indexOf(pair.block_a, pair.piece_a)];
+      const PieceView& b = views[indexOf(pair.block_b, pair.piece_b)];
+      const double gap = reach[static_cast<std::size_t>(pair.block_a)] +
+                         reach[static_cast<std::size_t>(pair.block_b)];
+      const double tolerance = 1e-9 * (a.box.diagonal() + b.box.diagonal());
+      // Farther apart than the range: nothing below can be recorded (a vertex's foot may sit
+      // a round-off margin outside its face, which the doubled range covers).
+      const double apart = 2.0 * gap + tolerance;
+      if (separatedBeyond(a, b, apart) || separatedBeyond(b, a, apart)) continue;
+      // A persisting vertex contact is kept up to 1e-4 of the pieces' size outside its face:
+      // far above the strain offsets of coincident corners, far below a step's motion.
+      const Range range{gap, depth,
+                        std::max(tolerance, 1e-4 * (a.box.diagonal() + b.box.diagonal()))};
+      std::vector<Contact>& out = found[chunk];
+      vertexToFace(a, b, range, tolerance, previous_face, out);
+      vertexToFace(b, a, range, tolerance, previous_face, out);
+      edgeToEdge(a, b, range, tolerance, out);
+    }
+  });
+  std::vector<Contact> out;
+  std::size_t total = 0;
+  for (const std::vector<Contact>& f : found) total += f.size();
+  out.reserve(total);
+  for (std::vector<Contact>& f : found) {
+    out.insert(out.end(), std::make_move_iterator(f.begin()), std::make_move_iterator(f.end()));
   }
   return withoutDuplicates(std::move(out));
 }
