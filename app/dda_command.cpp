@@ -241,10 +241,9 @@ int runDda(const DdaOptions& options) {
                cutter.c_str(), run.timings.back().second);
 
   start = Clock::now();
-  blocks::MergeReport glued;
-  const blocks::BlockModel dda_blocks = ddaBlocks(scene, cut.model, &glued);
-  const DdaStage stage = runDdaStage(scene, dda_blocks, options.overrides, out,
-                                     glued.merged > 0 ? std::optional(glued) : std::nullopt);
+  std::optional<blocks::MergeReport> glued;
+  const blocks::BlockModel dda_blocks = ddaBlocks(scene, cut.model, glued);
+  const DdaStage stage = runDdaStage(scene, dda_blocks, options.overrides, out, glued);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();

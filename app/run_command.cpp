@@ -440,9 +440,7 @@ int runAll(const RunOptions& options) {
   std::optional<blocks::BlockModel> dda_blocks;
   std::optional<blocks::MergeReport> glued;
   if (plan.dda || plan.overload || plan.strength_reduction) {
-    blocks::MergeReport merge;
-    dda_blocks = ddaBlocks(scene, cut->model, &merge);
-    if (merge.merged > 0) glued = merge;
+    dda_blocks = ddaBlocks(scene, cut->model, glued);
   }
   if (plan.dda) {
     const auto start = Clock::now();

@@ -93,19 +93,20 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
 }
 
 blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
-                             blocks::MergeReport* report) {
+                             std::optional<blocks::MergeReport>& glued) {
   const double min_volume = scene.analysis.dda ? scene.analysis.dda->min_block_volume : 0.0;
-  blocks::BlockModel glued = model;
-  const blocks::MergeReport merge = blocks::mergeSmallBlocks(glued, min_volume);
+  blocks::BlockModel out = model;
+  const blocks::MergeReport merge = blocks::mergeSmallBlocks(out, min_volume);
+  glued.reset();
   if (merge.merged > 0) {
     std::fprintf(stderr,
                  "dda: %d blocks below %.3g m3 (%.3g m3 in all) glued to a neighbour: %d blocks, "
                  "%d still below (no neighbour of their material)\n",
                  merge.merged, min_volume, merge.merged_volume, merge.blocks_after,
                  merge.left_small);
+    glued = merge;
   }
-  if (report != nullptr) *report = merge;
-  return glued;
+  return out;
 }
 
 }  // namespace rockmass::app

@@ -3,6 +3,7 @@
 // cut itself, so that `dda` cuts exactly as `blocks` does.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -47,9 +48,10 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
 
 /// The blocks a DDA of the scene runs on (`dda`, `overload`, `strength`, `run`): `model`
 /// with the blocks below analysis.dda.min_block_volume glued to a neighbour
-/// (blocks::mergeSmallBlocks); `model` itself when the key is absent or 0. Prints one line
-/// on stderr when it glued any, and fills `report` when given.
+/// (blocks::mergeSmallBlocks); `model` itself when the key is absent or 0. When it glued
+/// any, prints one line on stderr and sets `glued` (the summaries' glued_blocks); else
+/// leaves `glued` empty.
 blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
-                             blocks::MergeReport* report = nullptr);
+                             std::optional<blocks::MergeReport>& glued);
 
 }  // namespace rockmass::app

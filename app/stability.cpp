@@ -97,10 +97,8 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   start = Clock::now();
   const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
-  blocks::MergeReport merge;
-  const dda3d::DdaModel model = io::buildDdaModel(scene, ddaBlocks(scene, cut.model, &merge));
-  const std::optional<blocks::MergeReport> glued =
-      merge.merged > 0 ? std::optional(merge) : std::nullopt;
+  std::optional<blocks::MergeReport> glued;
+  const dda3d::DdaModel model = io::buildDdaModel(scene, ddaBlocks(scene, cut.model, glued));
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
                model.blocks.size(), model.pressures.size(), search.factors.size());
 

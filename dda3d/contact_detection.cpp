@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
+#include <numeric>
 #include <tuple>
 #include <utility>
 
@@ -54,7 +54,6 @@ std::vector<Plane> facePlanes(const Polyhedron& piece) {
   return planes;
 }
 
-/// True when q (on the face's plane) lies inside the convex face, within `tolerance` (m).
 /// Largest signed distance of p outside the planes of a convex piece (<= 0: inside).
 double outsideDistance(const std::vector<Plane>& planes, const Vec3& p) {
   double outside = -std::numeric_limits<double>::infinity();
@@ -62,6 +61,7 @@ double outsideDistance(const std::vector<Plane>& planes, const Vec3& p) {
   return outside;
 }
 
+/// True when q (on the face's plane) lies inside the convex face, within `tolerance` (m).
 bool insideFace(const Polyhedron& piece, const std::vector<int>& face, const Vec3& normal,
                 const Vec3& q, double tolerance) {
   for (std::size_t k = 0; k < face.size(); ++k) {
@@ -392,19 +392,36 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
   // full penalty spring, so the copies would make that corner several times stiffer than
   // the others (6 copies at a corner of a multi-piece Xiangjiaba block). The first copy
   // found is kept (a deterministic order, so that contacts carry over between steps).
-  using Key = std::tuple<int, int, double, double, double>;
-  std::map<Key, std::vector<Vec3>> seen;
+  // Runs every step: entries are grouped by a stable sort on (block i, block j, point)
+  // rather than a map of per-point lists.
+  const auto key = [&](std::size_t k) {
+    const Contact& c = contacts[k];
+    return std::tie(c.block_i, c.block_j, c.point.x(), c.point.y(), c.point.z());
+  };
+  std::vector<std::size_t> order(contacts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return key(x) < key(y); });
+  std::vector<char> keep(contacts.size(), 1);
+  for (std::size_t first = 0; first < order.size();) {
+    std::size_t end = first + 1;
+    while (end < order.size() && key(order[end]) == key(order[first])) ++end;
+    // Within a group (found order), drop an entry whose normal matches a kept one's.
+    for (std::size_t k = first + 1; k < end; ++k) {
+      const Vec3& n = contacts[order[k]].normal;
+      for (std::size_t m = first; m < k; ++m) {
+        if (keep[order[m]] && contacts[order[m]].normal.dot(n) > 1.0 - kDuplicateNormalSlack) {
+          keep[order[k]] = 0;
+          break;
+        }
+      }
+    }
+    first = end;
+  }
   std::vector<Contact> kept;
   kept.reserve(contacts.size());
-  for (Contact& c : contacts) {
-    std::vector<Vec3>& normals =
-        seen[Key{c.block_i, c.block_j, c.point.x(), c.point.y(), c.point.z()}];
-    const bool duplicate = std::any_of(normals.begin(), normals.end(), [&](const Vec3& n) {
-      return n.dot(c.normal) > 1.0 - kDuplicateNormalSlack;
-    });
-    if (duplicate) continue;
-    normals.push_back(c.normal);
-    kept.push_back(std::move(c));
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    if (keep[k]) kept.push_back(std::move(contacts[k]));
   }
   return kept;
 }

@@ -824,17 +824,12 @@ std::string singularBlockHint(const std::vector<BlockState>& blocks, const Block
     }
   }
   const int diagonal = system.firstIndefiniteDiagonal();
-  if (diagonal >= 0) {
-    for (std::size_t i = 0; i < blocks.size(); ++i) {
-      if (blocks[i].dof_offset == diagonal) {
-        if (!system.diagonalBlock(diagonal).allFinite()) {
-          return "the diagonal of block " + std::to_string(i) + " (volume " +
-                 std::to_string(blocks[i].volume) + " m3) has NaN or infinite entries";
-        }
-        return "the diagonal of block " + std::to_string(i) + " (volume " +
-               std::to_string(blocks[i].volume) + " m3) is not positive definite";
-      }
-    }
+  for (std::size_t i = 0; diagonal >= 0 && i < blocks.size(); ++i) {
+    if (blocks[i].dof_offset != diagonal) continue;
+    return "the diagonal of block " + std::to_string(i) + " (volume " +
+           std::to_string(blocks[i].volume) + " m3) " +
+           (system.diagonalBlock(diagonal).allFinite() ? "is not positive definite"
+                                                       : "has NaN or infinite entries");
   }
   return "every block's mass matrix is positive definite: look for an unrestrained "
          "mechanism or contact springs far stiffer than the blocks";
