@@ -1,12 +1,15 @@
 // rockmass dda: cut the scene into blocks exactly as `rockmass blocks` does, run the 3D DDA
 // of analysis.dda on them, and write history.csv, dda.pvd + frames and summary.json.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <chrono>
 
 #include "app/command.h"
 #include "app/scene_blocks.h"
@@ -159,6 +162,9 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   const double end = duration * (1.0 - 1e-9);
   int step = 0;
   int next_report = 1;
+  // Progress every 10 % of the simulated time, and at least every 30 s of wall time (a
+  // large model may take minutes per 10 %).
+  auto last_report = std::chrono::steady_clock::now();
   while (sim.time() < end) {
     const dda3d::PhaseTimings before = sim.timings();
     const dda3d::StepReport report = sim.step();
@@ -170,7 +176,10 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
                             contactRecords(sim, blocks));
     }
-    if (sim.time() >= next_report * 0.1 * duration) {
+    const auto now = std::chrono::steady_clock::now();
+    if (sim.time() >= next_report * 0.1 * duration ||
+        now - last_report > std::chrono::seconds(30)) {
+      last_report = now;
       std::fprintf(stderr,
                    "dda: %3d%%  step %d  t = %.4g s  dt = %.3g s  contacts %d (%d open)  "
                    "iterations %d\n",

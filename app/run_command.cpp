@@ -57,7 +57,7 @@ constexpr int kQuickDdaSteps = 10;
 constexpr int kQuickBallDirections = 200;
 constexpr int kQuickGridDirections = 20;
 /// Steps per run to equilibrium of a quick overload / strength-reduction run (at most).
-constexpr int kQuickEquilibriumSteps = 20;
+constexpr int kQuickEquilibriumSteps = 40;
 /// Factors of each quick overload / strength-reduction list (at most; evenly picked).
 constexpr std::size_t kQuickFactors = 4;
 /// Bisection tolerance of a quick overload / strength-reduction search (at least).

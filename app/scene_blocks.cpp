@@ -6,6 +6,7 @@
 
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
+#include "blocks/piece_coarsening.h"
 #include "blocks/prism.h"
 #include "io/input_error.h"
 
@@ -106,6 +107,12 @@ blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& m
                  merge.left_small);
     glued = merge;
   }
+  const blocks::CoarseningReport coarse = blocks::coarsenPieces(out);
+  std::fprintf(stderr,
+               "dda: convex pieces merged where their union is convex: %d -> %d pieces, %d -> %d "
+               "piece vertices\n",
+               coarse.pieces_before, coarse.pieces_after, coarse.vertices_before,
+               coarse.vertices_after);
   return out;
 }
 
