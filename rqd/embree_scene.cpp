@@ -224,27 +224,34 @@ void dropRepeatedDiscs(std::vector<ScanlineHit>& hits) {
              hits.end());
 }
 
-/// Triangulated form, after traversal: `found` holds a disc index per quad hit. One disc is
-/// one crossing (two triangles sharing the edge the segment passes through, or a spatial
-/// split's two references to one quad, give the same crossing): each disc once, its t evaluated in
-/// double, kept in [0, L].
+/// Triangulated form, after traversal: `found` holds a disc index per quad hit. Evaluates the
+/// t of each in double and keeps those in [0, L], with their Disc::id. Repeats of one disc
+/// (two triangles sharing the edge the segment passes through, or a spatial split's two
+/// references to one quad) get the same t, to the bit, so the caller's one sort by (t, id)
+/// makes them adjacent and drops them: no sort by disc first. Only a segment lying in a disc's
+/// plane (in double) keeps Embree's float t, which may differ between repeats: then the
+/// repeats are dropped here first, by disc.
 void finishTriangulated(const Query& query, std::vector<ScanlineHit>& found) {
-  sortHits(found, /*by_id=*/true);
-  dropRepeatedDiscs(found);
   std::size_t kept = 0;
-  for (const ScanlineHit& raw : found) {
-    const DiscTest& test = (*query.tests)[static_cast<std::size_t>(raw.disc_id)];
+  bool in_plane = false;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const ScanlineHit raw = found[i];
+    const auto index = static_cast<std::size_t>(raw.disc_id);
+    const DiscTest& test = (*query.tests)[index];
     // Disc::intersectLine's plane distance (same expression, same bits); Embree has decided
     // the hit, so where double precision would put the point just outside the rim, Embree's
-    // verdict stands. A segment in the disc's plane (in double) keeps Embree's float t.
+    // verdict stands.
     const double denominator = test.normal.dot(query.dir);
+    in_plane |= denominator == 0.0;
     const double t =
         denominator != 0.0 ? test.normal.dot(test.center - query.start) / denominator : raw.t;
-    if (t >= 0.0 && t <= query.length) {
-      found[kept++] = {t, (*query.ids)[static_cast<std::size_t>(raw.disc_id)]};
-    }
+    if (t >= 0.0 && t <= query.length) found[kept++] = {t, (*query.ids)[index]};
   }
   found.resize(kept);
+  if (in_plane) [[unlikely]] {
+    sortHits(found, /*by_id=*/true);
+    dropRepeatedDiscs(found);
+  }
 }
 
 bool hasArea(const Disc& disc) {
@@ -513,8 +520,9 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
     finishExact(query, found);
   }
   sortHits(found, /*by_id=*/false);
-  // Exact form: one primitive per disc, so repeats are not expected; equal t and id sort
-  // together, and dropping them keeps "each disc at most once" unconditional.
+  // Triangulated form: repeats of a disc have equal t and id, so they are adjacent now.
+  // Exact form: one primitive per disc, so repeats are not expected; dropping them keeps
+  // "each disc at most once" unconditional.
   dropRepeatedDiscs(found);
 }
 
