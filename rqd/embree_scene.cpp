@@ -315,10 +315,20 @@ struct ScanlineScene::Impl {
       test.center = disc.center;
       test.normal = disc.normal;
       if (disc.polygon.empty()) {
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3; ++k) {
           test.major_over_a[k] = static_cast<float>(disc.major[k] / disc.a);
+        }
         test.aspect = static_cast<float>(disc.a / disc.b);
-        largest_aspect = std::max({largest_aspect, disc.a / disc.b, disc.b / disc.a});
+        // Semi-axes beyond float's range (a below 1e-38 m, or a/b above 3e38): aspect 0,
+        // so that Disc::intersectLine decides this disc every time.
+        const bool in_float_range = std::isfinite(test.aspect) && test.aspect > 0.0F &&
+                                    std::all_of(test.major_over_a.begin(), test.major_over_a.end(),
+                                                [](float v) { return std::isfinite(v); });
+        if (in_float_range) {
+          largest_aspect = std::max({largest_aspect, disc.a / disc.b, disc.b / disc.a});
+        } else {
+          test.aspect = 0.0F;
+        }
       }
       ids.push_back(disc.id);
     }

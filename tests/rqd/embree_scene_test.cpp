@@ -438,6 +438,35 @@ TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
   }
 }
 
+// Semi-axes outside float's range: the exact form keeps its per-disc axes in float (1 / a
+// and a / b), which would overflow here; such discs must go to Disc::intersectLine, which
+// finds a segment through the centre (x = y = 0) and misses one 1 m to the side.
+TEST(EmbreeScene, ExactFormHandlesSemiAxesBeyondFloatRange) {
+  Disc tiny;  // 1 / a overflows float
+  tiny.id = 21;
+  tiny.center = Vec3(0, 0, 1);
+  tiny.normal = Vec3::UnitZ();
+  tiny.major = Vec3::UnitX();
+  tiny.a = 1e-39;
+  tiny.b = 1e-39;
+  Disc sliver;  // a / b overflows float
+  sliver.id = 22;
+  sliver.center = Vec3(0, 0, 2);
+  sliver.normal = Vec3::UnitZ();
+  sliver.major = Vec3::UnitX();
+  sliver.a = 1.0;
+  sliver.b = 1e-39;
+  const FractureNetwork network = networkOf({tiny, sliver});
+  const ScanlineScene scene(network, DiscForm::ExactEllipse);
+  const std::vector<ScanlineHit> through = scene.hits({0, 0, 0}, {0, 0, 3});
+  ASSERT_EQ(through.size(), 2u);
+  EXPECT_EQ(through[0].disc_id, 21);
+  EXPECT_EQ(through[0].t, 1.0);
+  EXPECT_EQ(through[1].disc_id, 22);
+  EXPECT_EQ(through[1].t, 2.0);
+  EXPECT_TRUE(scene.hits({0, 1, 0}, {0, 1, 3}).empty());
+}
+
 // Polygon and ellipse discs in one scene, listed polygon first: the triangulated form
 // reorders the discs (ellipses first, so that a quad's disc is a division) and must still
 // name every disc right; both forms must agree on the crossings (hand-computed below).
