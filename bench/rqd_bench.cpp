@@ -214,7 +214,11 @@ class PlainEmbreeScene {
  public:
   enum class Primitive { Triangles, OrientedDiscs };
 
-  PlainEmbreeScene(const FractureNetwork& net, Primitive primitive) {
+  /// `occluded`: the loop runs rtcOccluded1 with an occlusion filter instead of
+  /// rtcIntersect1 with an intersection filter (what ScanlineScene does: no ordering of the
+  /// nodes' children, the same primitives visited).
+  PlainEmbreeScene(const FractureNetwork& net, Primitive primitive, bool occluded = false)
+      : occluded_(occluded) {
     device_ = rtcNewDevice(nullptr);
     scene_ = rtcNewScene(device_);
     if (primitive == Primitive::Triangles) {
@@ -251,7 +255,11 @@ class PlainEmbreeScene {
     ray.ray.tfar = static_cast<float>(length);
     ray.ray.mask = ~0u;
     ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context.embree, &ray);
+    if (occluded_) {
+      rtcOccluded1(scene_, &context.embree, &ray.ray);
+    } else {
+      rtcIntersect1(scene_, &context.embree, &ray);
+    }
     std::sort(out.begin(), out.end());
   }
 
@@ -270,6 +278,7 @@ class PlainEmbreeScene {
   }
   void attach(RTCGeometry geometry) {
     rtcSetGeometryIntersectFilterFunction(geometry, &collect);
+    rtcSetGeometryOccludedFilterFunction(geometry, &collect);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene_, geometry);
     rtcReleaseGeometry(geometry);
@@ -320,14 +329,17 @@ class PlainEmbreeScene {
     attach(geometry);
   }
 
+  bool occluded_ = false;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
 };
 
-void plainEmbreeRays(benchmark::State& state, PlainEmbreeScene::Primitive primitive) {
-  static std::map<PlainEmbreeScene::Primitive, std::unique_ptr<PlainEmbreeScene>> cache;
-  auto& slot = cache[primitive];
-  if (!slot) slot = std::make_unique<PlainEmbreeScene>(network(10000), primitive);
+void plainEmbreeRays(benchmark::State& state, PlainEmbreeScene::Primitive primitive,
+                     bool occluded = false) {
+  static std::map<std::pair<PlainEmbreeScene::Primitive, bool>, std::unique_ptr<PlainEmbreeScene>>
+      cache;
+  auto& slot = cache[{primitive, occluded}];
+  if (!slot) slot = std::make_unique<PlainEmbreeScene>(network(10000), primitive, occluded);
   std::vector<std::pair<float, unsigned int>> hits;
   std::int64_t total = 0;
   std::size_t i = 0;
@@ -345,8 +357,13 @@ void BM_PlainEmbreeTriangles(benchmark::State& state) {
 void BM_PlainEmbreeDiscs(benchmark::State& state) {
   plainEmbreeRays(state, PlainEmbreeScene::Primitive::OrientedDiscs);
 }
+/// The same on Embree's oriented disc points, by rtcOccluded1 and an occlusion filter.
+void BM_PlainEmbreeDiscsOccluded(benchmark::State& state) {
+  plainEmbreeRays(state, PlainEmbreeScene::Primitive::OrientedDiscs, /*occluded=*/true);
+}
 BENCHMARK(BM_PlainEmbreeTriangles);
 BENCHMARK(BM_PlainEmbreeDiscs);
+BENCHMARK(BM_PlainEmbreeDiscsOccluded);
 
 /// One scanline: all hits, then RQD for the 11 thresholds (as an RQD ball or volume does).
 double scanlineRqd(const ScanlineScene& s, const Vec3& start, const Vec3& end,
@@ -381,6 +398,91 @@ void BM_RqdRaysTriangulated(benchmark::State& state) {
 }
 BENCHMARK(BM_RqdRaysExact);
 BENCHMARK(BM_RqdRaysTriangulated);
+
+// ---- 2b. Paired ratios: interleaved batches, robust to a changing machine load -----------
+//
+// The benchmarks above run one after the other, so on a machine shared with other jobs
+// their ratios also measure how the load changed between them. Here the contenders take
+// turns in small batches of the same segments inside one benchmark, and each one's thread
+// CPU time is summed: every contender sees the same load, caches evicted by the same
+// neighbours. The counters are the ratios (> 1: ours faster).
+
+double threadCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+/// Times `run(segment)` over `count` segments from `first` (cycled), thread CPU seconds.
+template <typename Run>
+double timeBatch(std::size_t first, std::size_t count, Run&& run) {
+  const double start = threadCpuSeconds();
+  for (std::size_t k = 0; k < count; ++k) run(segments()[(first + k) % kSegmentCount]);
+  return threadCpuSeconds() - start;
+}
+
+/// Ours with RQD (arg 0: exact; 1: triangulated, 24 segments) against the plain Embree disc
+/// loop (rtcIntersect1, as documented, and rtcOccluded1): batches of 2048 segments in turn
+/// (about 2 ms each: long enough for each contender's working set to be loaded once per
+/// batch, as in a long run, short enough that load changes hit all three alike).
+void BM_PairedRqdVsPlainDiscs(benchmark::State& state) {
+  const DiscForm form = state.range(0) == 0 ? DiscForm::ExactEllipse : DiscForm::Triangulated;
+  const ScanlineScene& ours = scene(10000, form);
+  static const PlainEmbreeScene plain(network(10000), PlainEmbreeScene::Primitive::OrientedDiscs);
+  static const PlainEmbreeScene plain_occluded(network(10000),
+                                               PlainEmbreeScene::Primitive::OrientedDiscs, true);
+  std::vector<ScanlineHit> hits;
+  std::vector<double> distances;
+  std::vector<double> values(kThresholds.size());
+  std::vector<std::pair<float, unsigned int>> plain_hits;
+  constexpr std::size_t kBatch = 2048;
+  double t_ours = 0.0, t_plain = 0.0, t_plain_occluded = 0.0;
+  std::size_t first = 0;
+  for (auto _ : state) {
+    t_plain += timeBatch(first, kBatch, [&](const Segment& s) { plain.hits(s, plain_hits); });
+    t_ours += timeBatch(first, kBatch, [&](const Segment& s) {
+      benchmark::DoNotOptimize(scanlineRqd(ours, s.start, s.end, hits, distances, values));
+    });
+    t_plain_occluded +=
+        timeBatch(first, kBatch, [&](const Segment& s) { plain_occluded.hits(s, plain_hits); });
+    first += kBatch;
+  }
+  const double rays = static_cast<double>(state.iterations() * kBatch);
+  state.counters["ours_rays_per_s"] = rays / t_ours;
+  state.counters["plain_rays_per_s"] = rays / t_plain;
+  state.counters["ratio_vs_plain"] = t_plain / t_ours;
+  state.counters["ratio_vs_plain_occluded"] = t_plain_occluded / t_ours;
+}
+BENCHMARK(BM_PairedRqdVsPlainDiscs)->Arg(0)->Arg(1)->MinTime(3.0);
+
+/// Speed-up over brute force at 10^4 discs (arg 0: exact; n > 0: triangulated with n
+/// segments): 16 brute-force segments (about 1.6 ms), then all 4096 segments through Embree
+/// (2-10 ms), in turn. The brute force streams every disc through the cache and so evicts
+/// Embree's BVH: each Embree batch starts cold, which short batches would overweight.
+void BM_PairedSpeedup(benchmark::State& state) {
+  const int segments_arg = static_cast<int>(state.range(0));
+  const ScanlineScene& s = segments_arg == 0 ? scene(10000, DiscForm::ExactEllipse)
+                                             : scene(10000, DiscForm::Triangulated, segments_arg);
+  const FractureNetwork& net = network(10000);
+  std::vector<ScanlineHit> hits;
+  constexpr std::size_t kBrute = 16;
+  constexpr std::size_t kEmbree = kSegmentCount;
+  double t_brute = 0.0, t_embree = 0.0;
+  std::size_t first = 0;
+  for (auto _ : state) {
+    t_brute += timeBatch(first, kBrute,
+                         [&](const Segment& segment) { bruteForceHits(net.discs, segment, hits); });
+    t_embree += timeBatch(
+        first, kEmbree, [&](const Segment& segment) { s.hits(segment.start, segment.end, hits); });
+    first += kBrute;
+  }
+  const double per_brute = t_brute / static_cast<double>(state.iterations() * kBrute);
+  const double per_embree = t_embree / static_cast<double>(state.iterations() * kEmbree);
+  state.counters["brute_us"] = 1e6 * per_brute;
+  state.counters["embree_us"] = 1e6 * per_embree;
+  state.counters["speedup"] = per_brute / per_embree;
+}
+BENCHMARK(BM_PairedSpeedup)->Arg(0)->Arg(24)->Arg(8)->MinTime(3.0);
 
 // ---- 3. An RQD ball and an RQD volume -----------------------------------------------------
 
@@ -552,12 +654,21 @@ int main(int argc, char** argv) {
       "\nMulti-hit rays per second, ours with RQD (11 thresholds) over a plain Embree "
       "multi-hit loop without RQD\n(same run, one thread, CPU time; target >= 1):\n");
   for (const char* ours : {"BM_RqdRaysExact", "BM_RqdRaysTriangulated"}) {
-    for (const char* plain : {"BM_PlainEmbreeDiscs", "BM_PlainEmbreeTriangles"}) {
+    for (const char* plain :
+         {"BM_PlainEmbreeDiscs", "BM_PlainEmbreeDiscsOccluded", "BM_PlainEmbreeTriangles"}) {
       if (t.count(ours) && t.count(plain)) {
-        std::printf("  %-24s / %-24s = %.3f  (%.0f k / %.0f k rays/s)\n", ours, plain,
+        std::printf("  %-24s / %-28s = %.3f  (%.0f k / %.0f k rays/s)\n", ours, plain,
                     t.at(plain) / t.at(ours), 1e6 / t.at(ours), 1e6 / t.at(plain));
       }
     }
+  }
+  std::printf("\nPaired (interleaved batches, thread CPU time; robust to load changes):\n");
+  for (const auto& [name, value] : reporter.counterValues("ratio_vs_plain")) {
+    std::printf("  %-36s ours / plain Embree discs = %.3f (intersect), %.3f (occluded)\n",
+                name.c_str(), value, reporter.counterValues("ratio_vs_plain_occluded").at(name));
+  }
+  for (const auto& [name, value] : reporter.counterValues("speedup")) {
+    std::printf("  %-36s speed-up over brute force at 10^4 discs = %.1fx\n", name.c_str(), value);
   }
   std::printf("\nRatios (same run, CPU time):\n");
   const auto ratio = [&](const std::string& a, const std::string& b) {

@@ -1,12 +1,15 @@
 // Ray-casting scene of fracture discs on Embree 3.
 //
-// How all hits along a finite segment are collected: one rtcIntersect1 call per segment,
-// and no hit is ever committed to the ray. Exact form: the user-geometry intersect callback
+// How all hits along a finite segment are collected: one rtcOccluded1 call per segment,
+// and no hit is ever reported to Embree, so the query never ends early. (An occlusion query
+// rather than rtcIntersect1: the same primitives are visited, but Embree's any-hit
+// traversal does not order each node's children by distance, which nothing here needs:
+// 6-10 % faster in bench/rqd_bench.cpp.) Exact form: the user-geometry occluded callback
 // records the index of each disc whose box the ray crosses (touching no disc data) and
 // leaves the ray untouched; after traversal the candidates' packed records are prefetched
 // together and tested in double precision (finishExact). Testing inside the callback made
 // each of the ~11 candidates per ray wait for its own cache miss (43 % of the time in
-// perf); batched, the misses overlap. Triangulated form: an intersection filter records the disc of
+// perf); batched, the misses overlap. Triangulated form: an occlusion filter records the disc of
 // each quad hit (an index, nothing else: no disc data is touched during traversal) and rejects it
 // (valid = 0). Either way the ray's tfar never shrinks, so Embree visits every primitive
 // whose bounds the segment crosses, in one traversal. We chose this over repeated queries
@@ -34,11 +37,12 @@
 // the discs' bounds before rounding to float, to keep float errors small.
 // - Exact form: Embree (float) only culls by bounding boxes, which are padded by
 //   `bounds_pad` so that float rounding of the ray and boxes can never cull a true hit; the
-//   disc test and t are evaluated in double on the unshifted data: t by Disc::intersectLine's
-//   own expression, the ellipse test with precomputed inverse semi-axes, and
-//   Disc::intersectLine itself wherever the two could round differently (x^2 + y^2 within
-//   1e-12 of 1, and polygon discs), so the result is the double-precision brute force
-//   result, hit for hit.
+//   disc test and t are evaluated in double on the unshifted data: t and the crossing point
+//   by Disc::intersectLine's own expressions (centre and normal kept in double), the
+//   ellipse test against axes stored in float (one 64-byte record per disc, half the cache
+//   footprint of double axes), and Disc::intersectLine itself wherever the float axes could
+//   tip the verdict (x^2 + y^2 within 1e-5 x the largest aspect ratio of 1, and polygon
+//   discs), so the result is the double-precision brute force result, hit for hit.
 // - Triangulated form: Embree decides in float whether a triangle is hit, so a segment
 //   passing within ~1e-6 (relative to the coordinates' magnitude) of a disc's rim may be
 //   found or missed differently than the double-precision polygon test; hits near a disc's
@@ -50,6 +54,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -64,30 +69,25 @@ using geometry::Vec3;
 
 namespace {
 
-/// What the tests after traversal read of one disc, packed in disc order: the terms of
-/// Disc::intersectLine, with the minor axis and the inverse semi-axes precomputed. Two cache
-/// lines, aligned: the triangulated form reads only the first (centre and normal).
+/// What the tests after traversal read of one disc, packed in disc order in one cache line
+/// (64 bytes; 0.64 MB at 10^4 discs): the centre and normal of Disc::intersectLine in double,
+/// so that t has the same bits, and the in-plane axes in float for the ellipse test, which
+/// is decided by Disc::intersectLine itself wherever float axes could change the verdict
+/// (finishExact). The triangulated form reads only the centre and normal.
 struct alignas(64) DiscTest {
-  Vec3 center = Vec3::Zero();   ///< disc centre (m)
-  Vec3 normal = Vec3::UnitZ();  ///< unit normal
-  Vec3 major = Vec3::UnitX();   ///< unit major axis
-  Vec3 minor = Vec3::UnitY();   ///< unit minor axis, normal x major as Disc::minor()
-  double inv_a = 0.0;           ///< 1 / a (1/m); 0 for a polygon disc (always the full test)
-  double inv_b = 0.0;           ///< 1 / b (1/m)
-  std::int64_t id = 0;          ///< Disc::id
+  Vec3 center = Vec3::Zero();                  ///< disc centre (m)
+  Vec3 normal = Vec3::UnitZ();                 ///< unit normal
+  std::array<float, 3> major_over_a{0, 0, 0};  ///< unit major axis / a (1/m), rounded to float
+  float aspect = 0.0F;  ///< a / b, rounded to float; 0 for a polygon disc (always the full test)
 };
-
-/// Asks for both cache lines of `test` without waiting for them.
-void prefetchTest(const DiscTest& test) {
-  const char* first = reinterpret_cast<const char*>(&test);
-  __builtin_prefetch(first);
-  __builtin_prefetch(first + sizeof(DiscTest) - 1);
-}
+static_assert(sizeof(DiscTest) == 64, "one cache line per disc");
 
 /// What one hits() call carries through Embree's callbacks (lives on the caller's stack).
 struct Query {
-  const std::vector<Disc>* discs = nullptr;      ///< the scene's discs
-  const std::vector<DiscTest>* tests = nullptr;  ///< packed tests, disc order
+  const std::vector<Disc>* discs = nullptr;        ///< the scene's discs
+  const std::vector<DiscTest>* tests = nullptr;    ///< packed tests, disc order
+  const std::vector<std::int64_t>* ids = nullptr;  ///< Disc::id, disc order
+  double rim_band = 0.0;  ///< exact form: |x^2 + y^2 - 1| below which intersectLine decides
   std::uint32_t ellipse_quads = 0;      ///< triangulated: quads of the ellipse discs (first)
   std::uint32_t quads_per_ellipse = 1;  ///< triangulated: quads per ellipse disc
   const std::vector<std::uint32_t>* polygon_quad_disc = nullptr;  ///< polygon quad -> disc
@@ -110,19 +110,18 @@ const QueryContext& queryContext(const RTCIntersectContext* context) {
 
 /// Exact form: records the disc whose (padded) box the ray crosses, as a candidate in
 /// `disc_id` (the disc's index); finishExact tests the candidates after traversal. Touches
-/// no disc data and never commits a hit.
-void intersectDisc(const RTCIntersectFunctionNArguments* args) {
+/// no disc data and never reports a hit, so traversal goes on. `Arguments` is Embree's
+/// occluded (queries use rtcOccluded1) or intersect callback argument type.
+template <typename Arguments>
+void recordDiscCandidate(const Arguments* args) {
   Query& query = *queryContext(args->context).query;
-  // rtcIntersect1 only: one ray, and the query's double-precision segment describes it.
+  // rtcOccluded1 only: one ray, and the query's double-precision segment describes it.
   assert(args->N == 1);
   if (args->valid[0] == 0) return;
   // Start loading the disc's record now (no wait): it arrives while traversal goes on.
-  prefetchTest((*query.tests)[args->primID]);
+  __builtin_prefetch(&(*query.tests)[args->primID]);
   query.found->push_back({0.0, static_cast<std::int64_t>(args->primID)});
 }
-
-/// Exact form: occlusion queries are not used; report nothing.
-void occludedDisc(const RTCOccludedFunctionNArguments*) {}
 
 /// Triangulated form: records the index of the disc whose quad was hit (in `disc_id`) and
 /// Embree's float distance, both fixed up by finishTriangulated, and rejects the hit, so
@@ -146,18 +145,23 @@ void filterTriangleHit(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-/// Where the fast test's x^2 + y^2 may fall on the other side of 1 than Disc::intersectLine's:
-/// the two differ by a few rounding errors (relative 1e-15), far inside this band.
-constexpr double kRimBand = 1e-12;
+/// The band of x^2 + y^2 around 1 in which the float axes of DiscTest could decide otherwise
+/// than Disc::intersectLine, for a disc of aspect max(a/b, b/a) = 1: x and y are computed in
+/// double from the double-precision point, and only the axis vectors carry float rounding
+/// (relative 6e-8 per component, about 2e-7 for the minor axis, a cross product of rounded
+/// vectors, and the rounded aspect); near the rim that changes x^2 + y^2 by at most
+/// 4 * 2e-7 * aspect. The scene's band is this times its largest aspect: 10x margin.
+constexpr double kRimBandPerAspect = 1e-5;
 
 /// Exact form, after traversal: `found` holds a disc index per crossed box (each once, their
 /// records prefetched by the callback); keeps, in place, the candidates the segment crosses
-/// inside [0, L] with their t, exactly as Disc::intersectLine followed by the [0, L] check
-/// decides. t is computed by intersectLine's own expression (same bits); the ellipse test
-/// multiplies by the precomputed inverse semi-axes instead of dividing, and intersectLine
-/// itself decides polygon discs and any x^2 + y^2 within kRimBand of 1. The common path
-/// has no data-dependent branch (whether a box candidate is a hit is a coin flip, and
-/// mispredicted branches behind the division's latency cost more than the arithmetic).
+/// inside [0, L] with their t and Disc::id, exactly as Disc::intersectLine followed by the
+/// [0, L] check decides. t is computed by intersectLine's own expression on the same doubles
+/// (same bits), and so is the crossing point; the ellipse test uses the record's float axes,
+/// and intersectLine itself decides polygon discs and any x^2 + y^2 within the scene's rim
+/// band of 1 (where float axes could tip the verdict). The common path has no
+/// data-dependent branch (whether a box candidate is a hit is a coin flip, and mispredicted
+/// branches behind the division's latency cost more than the arithmetic).
 void finishExact(const Query& query, std::vector<ScanlineHit>& found) {
   const std::vector<DiscTest>& tests = *query.tests;
   const double length = query.length;
@@ -169,22 +173,27 @@ void finishExact(const Query& query, std::vector<ScanlineHit>& found) {
     const double denominator = test.normal.dot(query.dir);
     const double t = test.normal.dot(test.center - query.start) / denominator;
     const Vec3 local = query.start + t * query.dir - test.center;
-    const double x = local.dot(test.major) * test.inv_a;
-    const double y = local.dot(test.minor) * test.inv_b;
+    const Vec3 major(test.major_over_a[0], test.major_over_a[1], test.major_over_a[2]);
+    const double x = local.dot(major);
+    const double y = local.dot(test.normal.cross(major)) * static_cast<double>(test.aspect);
     const double r2 = x * x + y * y;
-    if (test.inv_a == 0.0 || std::abs(r2 - 1.0) <= kRimBand) [[unlikely]] {
+    if (test.aspect == 0.0F || std::abs(r2 - 1.0) <= query.rim_band) [[unlikely]] {
       const std::optional<double> exact =
           (*query.discs)[index].intersectLine(query.start, query.dir);
-      if (exact && *exact >= 0.0 && *exact <= length) found[kept++] = {*exact, test.id};
+      if (exact && *exact >= 0.0 && *exact <= length) {
+        found[kept++] = {*exact, static_cast<std::int64_t>(index)};
+      }
       continue;
     }
     // intersectLine's verdict (its parallel-line guard, then x^2 + y^2 <= 1) and [0, L];
     // a NaN or infinite t fails the comparisons. Written as a select, not a branch.
     const bool hit = (std::abs(denominator) > 1e-300) & (t >= 0.0) & (t <= length) & (r2 < 1.0);
-    found[kept] = {t, test.id};
+    found[kept] = {t, static_cast<std::int64_t>(index)};
     kept += static_cast<std::size_t>(hit);
   }
   found.resize(kept);
+  // Disc indices to Disc::id (a small array, read for the hits only).
+  for (ScanlineHit& hit : found) hit.disc_id = (*query.ids)[static_cast<std::size_t>(hit.disc_id)];
 }
 
 /// Sorts `hits` by (t, disc id), or by disc id alone when `by_id`: insertion sort for the
@@ -215,25 +224,34 @@ void dropRepeatedDiscs(std::vector<ScanlineHit>& hits) {
              hits.end());
 }
 
-/// Triangulated form, after traversal: `found` holds a disc index per quad hit. One disc is
-/// one crossing (two triangles sharing the edge the segment passes through, or a spatial
-/// split's two references to one quad, give the same crossing): each disc once, its t evaluated in
-/// double, kept in [0, L].
+/// Triangulated form, after traversal: `found` holds a disc index per quad hit. Evaluates the
+/// t of each in double and keeps those in [0, L], with their Disc::id. Repeats of one disc
+/// (two triangles sharing the edge the segment passes through, or a spatial split's two
+/// references to one quad) get the same t, to the bit, so the caller's one sort by (t, id)
+/// makes them adjacent and drops them: no sort by disc first. Only a segment lying in a disc's
+/// plane (in double) keeps Embree's float t, which may differ between repeats: then the
+/// repeats are dropped here first, by disc.
 void finishTriangulated(const Query& query, std::vector<ScanlineHit>& found) {
-  sortHits(found, /*by_id=*/true);
-  dropRepeatedDiscs(found);
   std::size_t kept = 0;
-  for (const ScanlineHit& raw : found) {
-    const DiscTest& test = (*query.tests)[static_cast<std::size_t>(raw.disc_id)];
+  bool in_plane = false;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const ScanlineHit raw = found[i];
+    const auto index = static_cast<std::size_t>(raw.disc_id);
+    const DiscTest& test = (*query.tests)[index];
     // Disc::intersectLine's plane distance (same expression, same bits); Embree has decided
     // the hit, so where double precision would put the point just outside the rim, Embree's
-    // verdict stands. A segment in the disc's plane (in double) keeps Embree's float t.
+    // verdict stands.
     const double denominator = test.normal.dot(query.dir);
+    in_plane |= denominator == 0.0;
     const double t =
         denominator != 0.0 ? test.normal.dot(test.center - query.start) / denominator : raw.t;
-    if (t >= 0.0 && t <= query.length) found[kept++] = {t, test.id};
+    if (t >= 0.0 && t <= query.length) found[kept++] = {t, (*query.ids)[index]};
   }
   found.resize(kept);
+  if (in_plane) [[unlikely]] {
+    sortHits(found, /*by_id=*/true);
+    dropRepeatedDiscs(found);
+  }
 }
 
 bool hasArea(const Disc& disc) {
@@ -245,8 +263,10 @@ bool hasArea(const Disc& disc) {
 
 struct ScanlineScene::Impl {
   DiscForm form = DiscForm::ExactEllipse;
-  std::vector<Disc> discs;                       ///< the discs in the scene (primitive order)
-  std::vector<DiscTest> tests;                   ///< the discs' packed tests (disc order)
+  std::vector<Disc> discs;        ///< the discs in the scene (primitive order)
+  std::vector<DiscTest> tests;    ///< the discs' packed tests (disc order)
+  std::vector<std::int64_t> ids;  ///< the discs' Disc::id (disc order)
+  double rim_band = 0.0;          ///< exact form: kRimBandPerAspect x the largest aspect of a disc
   std::uint32_t ellipse_quads = 0;               ///< triangulated form: quads of the ellipse discs
   std::uint32_t quads_per_ellipse = 1;           ///< triangulated form: quads per ellipse disc
   std::vector<std::uint32_t> polygon_quad_disc;  ///< triangulated form: polygon quad -> disc
@@ -288,18 +308,31 @@ struct ScanlineScene::Impl {
 
   void addDiscTests() {
     tests.reserve(discs.size());
+    ids.reserve(discs.size());
+    double largest_aspect = 1.0;
     for (const Disc& disc : discs) {
       DiscTest& test = tests.emplace_back();
       test.center = disc.center;
       test.normal = disc.normal;
-      test.major = disc.major;
-      test.minor = disc.minor();
       if (disc.polygon.empty()) {
-        test.inv_a = 1.0 / disc.a;
-        test.inv_b = 1.0 / disc.b;
+        for (int k = 0; k < 3; ++k) {
+          test.major_over_a[k] = static_cast<float>(disc.major[k] / disc.a);
+        }
+        test.aspect = static_cast<float>(disc.a / disc.b);
+        // Semi-axes beyond float's range (a below 1e-38 m, or a/b above 3e38): aspect 0,
+        // so that Disc::intersectLine decides this disc every time.
+        const bool in_float_range = std::isfinite(test.aspect) && test.aspect > 0.0F &&
+                                    std::all_of(test.major_over_a.begin(), test.major_over_a.end(),
+                                                [](float v) { return std::isfinite(v); });
+        if (in_float_range) {
+          largest_aspect = std::max({largest_aspect, disc.a / disc.b, disc.b / disc.a});
+        } else {
+          test.aspect = 0.0F;
+        }
       }
-      test.id = disc.id;
+      ids.push_back(disc.id);
     }
+    rim_band = kRimBandPerAspect * largest_aspect;
   }
 
   void addUserGeometry() {
@@ -307,8 +340,8 @@ struct ScanlineScene::Impl {
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned int>(discs.size()));
     rtcSetGeometryUserData(geometry, this);
     rtcSetGeometryBoundsFunction(geometry, &Impl::bounds, this);
-    rtcSetGeometryIntersectFunction(geometry, &intersectDisc);
-    rtcSetGeometryOccludedFunction(geometry, &occludedDisc);
+    rtcSetGeometryIntersectFunction(geometry, &recordDiscCandidate<RTCIntersectFunctionNArguments>);
+    rtcSetGeometryOccludedFunction(geometry, &recordDiscCandidate<RTCOccludedFunctionNArguments>);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene, geometry);
     rtcReleaseGeometry(geometry);
@@ -377,6 +410,7 @@ struct ScanlineScene::Impl {
     }
     std::copy(quads.begin(), quads.end(), index_buffer);
     rtcSetGeometryIntersectFilterFunction(geometry, &filterTriangleHit);
+    rtcSetGeometryOccludedFilterFunction(geometry, &filterTriangleHit);
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene, geometry);
@@ -460,6 +494,8 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
   query.quads_per_ellipse = impl.quads_per_ellipse;
   query.polygon_quad_disc = &impl.polygon_quad_disc;
   query.tests = &impl.tests;
+  query.ids = &impl.ids;
+  query.rim_band = impl.rim_band;
   query.start = start;
   query.dir = (end - start) / length;
   query.length = length;
@@ -472,20 +508,21 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
   // The float ray starts `bounds_pad` before the segment and ends `bounds_pad` after it, so
   // that rounding cannot lose a hit at t = 0 or t = L; [0, L] is then enforced in double.
   const Vec3 origin = start - impl.offset - impl.bounds_pad * query.dir;
-  RTCRayHit ray_hit{};
-  ray_hit.ray.org_x = static_cast<float>(origin.x());
-  ray_hit.ray.org_y = static_cast<float>(origin.y());
-  ray_hit.ray.org_z = static_cast<float>(origin.z());
-  ray_hit.ray.dir_x = static_cast<float>(query.dir.x());
-  ray_hit.ray.dir_y = static_cast<float>(query.dir.y());
-  ray_hit.ray.dir_z = static_cast<float>(query.dir.z());
-  ray_hit.ray.tnear = 0.0f;
-  ray_hit.ray.tfar = static_cast<float>(length + 2.0 * impl.bounds_pad);
-  ray_hit.ray.mask = std::numeric_limits<unsigned int>::max();
-  ray_hit.ray.flags = 0;
-  ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl.scene, &context.embree, &ray_hit);
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x());
+  ray.org_y = static_cast<float>(origin.y());
+  ray.org_z = static_cast<float>(origin.z());
+  ray.dir_x = static_cast<float>(query.dir.x());
+  ray.dir_y = static_cast<float>(query.dir.y());
+  ray.dir_z = static_cast<float>(query.dir.z());
+  ray.tnear = 0.0f;
+  ray.tfar = static_cast<float>(length + 2.0 * impl.bounds_pad);
+  ray.mask = std::numeric_limits<unsigned int>::max();
+  ray.flags = 0;
+  // An occlusion query: no hit is ever reported, so it visits the same primitives as
+  // rtcIntersect1 would, but Embree's any-hit traversal skips ordering the children of each
+  // node by distance (8-10 % faster, both forms; bench/rqd_bench.cpp).
+  rtcOccluded1(impl.scene, &context.embree, &ray);
 
   if (impl.form == DiscForm::Triangulated) {
     finishTriangulated(query, found);
@@ -493,8 +530,9 @@ void ScanlineScene::hits(const Vec3& start, const Vec3& end,
     finishExact(query, found);
   }
   sortHits(found, /*by_id=*/false);
-  // Exact form: one primitive per disc, so repeats are not expected; equal t and id sort
-  // together, and dropping them keeps "each disc at most once" unconditional.
+  // Triangulated form: repeats of a disc have equal t and id, so they are adjacent now.
+  // Exact form: one primitive per disc, so repeats are not expected; dropping them keeps
+  // "each disc at most once" unconditional.
   dropRepeatedDiscs(found);
 }
 

@@ -399,8 +399,12 @@ TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
     const double phi = 0.07 * k;
     const Vec3 rim =
         ellipse.a * std::cos(phi) * ellipse.major + ellipse.b * std::sin(phi) * ellipse.minor();
+    // Scales within about 1e-15 of 1 are decided by intersectLine itself; 1 +- 3e-5 .. 1e-3
+    // lie just outside the rim band of the float axes (1e-5 x aspect 4.1 in x^2 + y^2), where
+    // the record's float test decides: both must agree with intersectLine, t to the bit.
     for (double scale :
-         {1.0 - 4e-15, 1.0 - 2e-16, 1.0 - 1e-16, 1.0, 1.0 + 1e-16, 1.0 + 2e-16, 1.0 + 4e-15}) {
+         {1.0 - 1e-3, 1.0 - 1e-4, 1.0 - 3e-5, 1.0 - 4e-15, 1.0 - 2e-16, 1.0 - 1e-16, 1.0,
+          1.0 + 1e-16, 1.0 + 2e-16, 1.0 + 4e-15, 1.0 + 3e-5, 1.0 + 1e-4, 1.0 + 1e-3}) {
       const Vec3 target = ellipse.center + scale * rim;
       const Vec3 start = target - 1.5 * dir;
       const Vec3 end = start + 3.0 * dir;
@@ -432,6 +436,35 @@ TEST(EmbreeScene, ExactFormDecidesRimHitsLikeIntersectLine) {
       EXPECT_EQ(got[0].t, 1.0);
     }
   }
+}
+
+// Semi-axes outside float's range: the exact form keeps its per-disc axes in float (1 / a
+// and a / b), which would overflow here; such discs must go to Disc::intersectLine, which
+// finds a segment through the centre (x = y = 0) and misses one 1 m to the side.
+TEST(EmbreeScene, ExactFormHandlesSemiAxesBeyondFloatRange) {
+  Disc tiny;  // 1 / a overflows float
+  tiny.id = 21;
+  tiny.center = Vec3(0, 0, 1);
+  tiny.normal = Vec3::UnitZ();
+  tiny.major = Vec3::UnitX();
+  tiny.a = 1e-39;
+  tiny.b = 1e-39;
+  Disc sliver;  // a / b overflows float
+  sliver.id = 22;
+  sliver.center = Vec3(0, 0, 2);
+  sliver.normal = Vec3::UnitZ();
+  sliver.major = Vec3::UnitX();
+  sliver.a = 1.0;
+  sliver.b = 1e-39;
+  const FractureNetwork network = networkOf({tiny, sliver});
+  const ScanlineScene scene(network, DiscForm::ExactEllipse);
+  const std::vector<ScanlineHit> through = scene.hits({0, 0, 0}, {0, 0, 3});
+  ASSERT_EQ(through.size(), 2u);
+  EXPECT_EQ(through[0].disc_id, 21);
+  EXPECT_EQ(through[0].t, 1.0);
+  EXPECT_EQ(through[1].disc_id, 22);
+  EXPECT_EQ(through[1].t, 2.0);
+  EXPECT_TRUE(scene.hits({0, 1, 0}, {0, 1, 3}).empty());
 }
 
 // Polygon and ellipse discs in one scene, listed polygon first: the triangulated form
