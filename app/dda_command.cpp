@@ -182,10 +182,10 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
       last_report = now;
       std::fprintf(stderr,
                    "dda: %3d%%  step %d  t = %.4g s  dt = %.3g s  contacts %d (%d open)  "
-                   "iterations %d\n",
+                   "iterations %d  redone: %d open-close, %d displacement, %d penetration\n",
                    static_cast<int>(100.0 * sim.time() / duration + 0.5), step, sim.time(),
-                   report.time_step, report.contacts.total, report.contacts.open,
-                   report.iterations);
+                   report.time_step, report.contacts.total, report.contacts.open, report.iterations,
+                   report.redo_iterations, report.redo_displacement, report.redo_penetration);
       while (sim.time() >= next_report * 0.1 * duration) ++next_report;
     }
   }

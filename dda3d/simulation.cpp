@@ -531,7 +531,7 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& s
          displacementMatrix(c.foot, bj.centroid) * dj;
 }
 
-bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
+Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& solution) {
   const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
   const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
   const double ks = penalty_ / settings_.shear_penalty_ratio;
@@ -540,7 +540,7 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
   // sign locked and released thousands of contacts of the Xiangjiaba model in turn, so that
   // the iteration never settled at any time step.
   const double reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
-  bool changed = false;
+  StateChanges changes;
   for (Contact& c : contacts_) {
     const Vec3 relative = relativeDisplacement(c, solution);
     const double d = c.gap0 + c.normal.dot(relative);
@@ -593,9 +593,12 @@ bool Simulation::updateContactStates(const Eigen::VectorXd& solution) {
         }
       }
     }
-    changed |= c.state != before;
+    if (c.state != before) {
+      ++changes.changed;
+      if (before == ContactState::Open) ++changes.closed;
+    }
   }
-  return changed;
+  return changes;
 }
 
 int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled) {
@@ -668,10 +671,15 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     timings_.solve += secondsSince(start);
     start = Clock::now();
     const bool finite = solution.allFinite();
-    const bool changed = finite && updateContactStates(solution);
+    const StateChanges changes = finite ? updateContactStates(solution) : StateChanges{};
     timings_.update_states += secondsSince(start);
     if (!finite) return iteration;
-    if (!changed) {
+    // The allowance covers contacts that opened or changed between locked and sliding (they
+    // carried a spring or a friction force one iteration too long), never one that closed:
+    // it was solved open and may sit deep in the other block.
+    const auto allowed =
+        static_cast<int>(settings_.open_close_tolerance * static_cast<double>(contacts_.size()));
+    if (changes.closed == 0 && changes.changed <= allowed) {
       settled = true;
       return iteration;
     }

@@ -809,8 +809,9 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c) {
-  const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
-                          "penalty", "time_integration", "min_block_volume"});
+  const Cursor m =
+      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
+             "time_integration", "min_block_volume", "open_close_tolerance"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -828,6 +829,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
     dda.penalty = penalty->number(kPositive);
   }
   dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
+  dda.open_close_tolerance = m.numberOr("open_close_tolerance", dda.open_close_tolerance,
+                                        {.low = 0, .high = 1, .high_open = true});
   if (const auto integration = m.get("time_integration")) {
     const Cursor t = integration->map({"scheme", "spectral_radius"});
     dda.bossak = t.valueOr("scheme", dda.bossak, [](const Cursor& v) {

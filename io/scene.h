@@ -139,6 +139,9 @@ struct DdaAnalysis {
   /// m3: blocks smaller than this are glued to the same-material neighbour they share the
   /// most face area with before the DDA (blocks::mergeSmallBlocks); 0 glues none.
   double min_block_volume = 0.0;
+  /// Share of the contacts that may still change state in the last open-close iteration of
+  /// a settled step (dda3d::DdaSettings::open_close_tolerance); 0 is the classic rule.
+  double open_close_tolerance = 1e-4;
 };
 
 /// analysis.overload

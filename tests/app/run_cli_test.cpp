@@ -269,6 +269,13 @@ TEST(RunCli, XiangjiabaQuick) {
   EXPECT_TRUE(s["overload"]["runs"][0]["at_rest"].get<bool>());
   // The sides are on rollers (supports.rollers), the base fixed.
   EXPECT_NE(std::find(s["effects"].begin(), s["effects"].end(), "rollers"), s["effects"].end());
+  // The DDA runs on coarsened pieces (blocks::coarsenPieces): the glued blocks' 30 068 cut
+  // pieces become 5 444 convex ones; at least halving them is what keeps this run short.
+  EXPECT_LT(2 * s["dda"]["pieces"].get<int>(), s["pieces"].get<int>());
+  // No DDA step is redone: the open-close iteration settles within its allowance of state
+  // changes (DdaSettings::open_close_tolerance); without it, step 4 failed its 20 iterations
+  // and dt fell to 0.3 of the step.
+  for (const auto& retries : s["steps"]["retries"]) EXPECT_EQ(retries.get<int>(), 0);
 }
 
 }  // namespace
