@@ -223,13 +223,34 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   // Sound rock pieces (piece_soundness.h), after the gluing, as the exact cutter does: slivers
   // are folded away, near vertices merged; a block of slivers only disappears.
   const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
+  // Most pieces have no vertices to merge: soundPiece would give them unchanged (or fold them
+  // when below the volume tolerance), so they are neither copied nor repaired. Each piece's
+  // mass properties (of the piece as kept, or as folded) are computed once, here.
   std::vector<std::optional<SoundPiece>> sound(rock_count);
   std::vector<SoundPieceReport> sound_reports(rock_count);
+  std::vector<char> repaired(rock_count, 0);
+  std::vector<geometry::MassProperties> mass(all.size());
   tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
-    sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+    if (hasCloseVertices(all[i], soundness)) {
+      repaired[i] = 1;
+      sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+    }
+    mass[i] = geometry::massProperties(sound[i] ? sound[i]->piece.shape : all[i].shape);
   });
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    mass[i] = geometry::massProperties(all[i].shape);
+  }
   std::vector<bool> folded(all.size(), false);
   for (std::size_t i = 0; i < rock_count; ++i) {
+    if (!repaired[i]) {
+      // As soundPiece and addToReport count an unchanged piece.
+      if (!(mass[i].volume >= soundness.volume)) {
+        folded[i] = true;
+        ++local_report.soundness.folded_pieces;
+        local_report.soundness.folded_volume += mass[i].volume;
+      }
+      continue;
+    }
     addToReport(all[i], sound[i], sound_reports[i], local_report.soundness);
     if (sound[i]) {
       all[i] = std::move(sound[i]->piece);
@@ -270,7 +291,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     // volume for the material at its centroid), from the mass properties computed here.
     std::map<int, double> material_volume;
     for (int i : list) {
-      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      const geometry::MassProperties& m = mass[i];
       b.mass += m;
       material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
       const geometry::Box box = geometry::bounds(all[i].shape);
@@ -278,7 +299,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
       b.bounds.max = b.bounds.max.cwiseMax(box.max);
     }
     for (int i : folded_pieces[k]) {  // folded slivers keep their mass
-      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      const geometry::MassProperties& m = mass[i];
       b.mass += m;
       b.folded_volume += m.volume;
     }

@@ -783,20 +783,25 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   if (track) initialTouching(store, tol.distance);
   std::vector<int> live(store.size()), next;
   std::iota(live.begin(), live.end(), 0);
+  // The cells' boxes side by side: every polygon tests every live cell's box.
+  std::vector<Box> boxes;
+  boxes.reserve(store.size());
+  for (const Cell& cell : store) boxes.push_back(cell.box);
   std::vector<Vec3> covered, scratch;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
     const Box reach = polygon.box.enlarged(tol.distance);
     next.clear();
     for (const int id : live) {
-      const Cell& cell = store[id];
-      const bool near = (cell.box.min.array() <= reach.max.array()).all() &&
-                        (reach.min.array() <= cell.box.max.array()).all() &&
-                        !boxMissesPlane(cell.box, polygon.plane, tol.distance);
+      const Box& box = boxes[id];
+      const bool near = (box.min.array() <= reach.max.array()).all() &&
+                        (reach.min.array() <= box.max.array()).all() &&
+                        !boxMissesPlane(box, polygon.plane, tol.distance);
       if (!near) {
         next.push_back(id);
         continue;
       }
+      const Cell& cell = store[id];
       ++out.piece_tests;
       const Section section = planeSection(cell.work.piece, polygon.plane, tol.distance);
       if (section.kind == SectionKind::OnFace) {
@@ -861,6 +866,8 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       store[id] = Cell{};
       store.push_back(std::move(below));
       store.push_back(std::move(above));
+      boxes.push_back(below_box);
+      boxes.push_back(above_box);
       next.push_back(below_id);
       next.push_back(above_id);
     }
@@ -969,19 +976,17 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
 
   // Coverage of every face in a disc plane (a plane whose root is a group's).
   const auto assemble_start = std::chrono::steady_clock::now();
-  std::unordered_map<int, int> group_of_root;
+  std::vector<int> group_of_root(plane_ids.size(), -1);  // by plane root id
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    group_of_root.emplace(plane_ids.find(groups[g].plane_id), static_cast<int>(g));
+    int& slot = group_of_root[plane_ids.find(groups[g].plane_id)];
+    if (slot < 0) slot = static_cast<int>(g);  // the first group of a root, as emplace kept
   }
-  const auto groupOf = [&](int root) {
-    const auto it = group_of_root.find(root);
-    return it == group_of_root.end() ? -1 : it->second;
-  };
+  const auto groupOf = [&](int root) { return group_of_root[root]; };
   std::vector<std::vector<Cover>> cover(pieces.size());
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
     cover[i].assign(piece.shape.faces.size(), Cover::None);
-    std::vector<Vec3> loop;
+    thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
       const int g = groupOf(planes[i][f]);

@@ -663,10 +663,17 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
   table.faces.resize(refs.size());
   table.points.resize(first_point.back());
   table.inward.resize(first_point.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 1024),
+  // Read the pieces in order (sequential in memory: a piece's faces were allocated together),
+  // write each named face to its slot; in first-use order every face was a cache miss.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        table.fill(pieces, refs[k].piece, refs[k].face, k, first_point[k]);
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+                          const std::uint32_t k = slot[first_face[i] + f];
+                          if (k == kNone) continue;
+                          table.fill(pieces, static_cast<int>(i), static_cast<int>(f), k,
+                                     first_point[k]);
+                        }
                       }
                     });
   const PairTests tests(table, tolerance, min_area);
