@@ -716,17 +716,132 @@ void initialTouching(std::vector<Cell>& cells, double tolerance) {
   }
 }
 
-/// Hands the links of `store[c]` to its two halves `below` (to be stored at index
-/// `below_id`) and `above` (`above_id`), and updates the linked cells' own links. A face
-/// that goes to one half keeps its links; for a face split between the halves, a linked
-/// face stays with a half unless it lies wholly beyond twice the tolerance on the other
-/// side of the splitting plane, so a face that touches a half with area stays linked
-/// (conservative: the contact test decides). The two new faces are linked.
-void relink(std::vector<Cell>& store, int c, Cell& below, Cell& above, int below_id, int above_id,
-            const WorkSplit& split, const Plane& plane, double tolerance) {
-  Cell& old = store[c];
+/// The cells of one region in flat arrays, so that a split allocates nothing once the arrays
+/// have grown: cell c's vertices are vertices[v_begin[c] ..], its faces are the global faces
+/// f_begin[c] .. f_begin[c] + f_count[c] - 1, face g's loop is loops[face_begin[g] ..
+/// + face_size[g]) (indices into the cell's vertices). A split appends its two halves; the
+/// entries of a dead cell stay unused until the region is done.
+class CellStore {
+ public:
+  /// Appends a cell; returns its index.
+  int add(const WorkPiece& work, const Box& box, std::vector<Link> links) {
+    const int id = beginCell(box, std::move(links));
+    const geometry::Polyhedron& shape = work.piece.shape;
+    vertices_.insert(vertices_.end(), shape.vertices.begin(), shape.vertices.end());
+    v_count_.back() = static_cast<int>(shape.vertices.size());
+    for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+      face_begin_.push_back(static_cast<int>(loops_.size()));
+      face_size_.push_back(static_cast<int>(shape.faces[f].size()));
+      loops_.insert(loops_.end(), shape.faces[f].begin(), shape.faces[f].end());
+      source_.push_back(work.piece.face_sources[f]);
+      plane_.push_back(work.planes[f]);
+    }
+    f_count_.back() = static_cast<int>(shape.faces.size());
+    return id;
+  }
+  /// Appends one half of a split of cell `from` (FlatSplit below or above): new faces (origin
+  /// -1) get `plane_id` and a Fictitious source, the others those of their origin face.
+  int addHalf(int from, const std::vector<Vec3>& vertices, const std::vector<int>& loops,
+              const std::vector<int>& sizes, const std::vector<int>& origin, int plane_id) {
+    Box box;
+    box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    box.max = -box.min;
+    for (const Vec3& v : vertices) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    const int id = beginCell(box, {});
+    vertices_.insert(vertices_.end(), vertices.begin(), vertices.end());
+    v_count_.back() = static_cast<int>(vertices.size());
+    int at = static_cast<int>(loops_.size());
+    loops_.insert(loops_.end(), loops.begin(), loops.end());
+    const int first = f_begin_[from];
+    for (std::size_t f = 0; f < sizes.size(); ++f) {
+      face_begin_.push_back(at);
+      face_size_.push_back(sizes[f]);
+      at += sizes[f];
+      const FaceSource source =
+          origin[f] < 0 ? FaceSource{FaceKind::Fictitious, -1} : source_[first + origin[f]];
+      const int plane = origin[f] < 0 ? plane_id : plane_[first + origin[f]];
+      source_.push_back(source);
+      plane_.push_back(plane);
+    }
+    f_count_.back() = static_cast<int>(sizes.size());
+    return id;
+  }
+  /// Cell c as a flat piece (valid until the next add).
+  FlatPieceView view(int c) const {
+    return {std::span<const Vec3>(vertices_).subspan(v_begin_[c], v_count_[c]), loops_,
+            std::span<const int>(face_begin_).subspan(f_begin_[c], f_count_[c]),
+            std::span<const int>(face_size_).subspan(f_begin_[c], f_count_[c])};
+  }
+  int faceCount(int c) const { return f_count_[c]; }
+  int planeOf(int c, int f) const { return plane_[f_begin_[c] + f]; }
+  const Box& box(int c) const { return boxes_[c]; }
+  std::size_t size() const { return v_begin_.size(); }
+  std::vector<Link>& links(int c) { return links_[c]; }
+  /// Drops a dead cell's links.
+  void kill(int c) { std::vector<Link>().swap(links_[c]); }
+  /// The lowest and highest signed distance (m) of the points of face f of cell c from
+  /// `plane`.
+  std::pair<double, double> faceReach(int c, int f, const Plane& plane) const {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    const int g = f_begin_[c] + f;
+    for (int k = face_begin_[g]; k < face_begin_[g] + face_size_[g]; ++k) {
+      const double d = plane.distance(vertices_[v_begin_[c] + loops_[k]]);
+      low = std::min(low, d);
+      high = std::max(high, d);
+    }
+    return {low, high};
+  }
+  /// Cell c as a work piece.
+  WorkPiece piece(int c) const {
+    WorkPiece work;
+    const auto first = vertices_.begin() + v_begin_[c];
+    work.piece.shape.vertices.assign(first, first + v_count_[c]);
+    work.piece.shape.faces.resize(static_cast<std::size_t>(f_count_[c]));
+    work.piece.face_sources.resize(static_cast<std::size_t>(f_count_[c]));
+    work.planes.resize(static_cast<std::size_t>(f_count_[c]));
+    for (int f = 0; f < f_count_[c]; ++f) {
+      const int g = f_begin_[c] + f;
+      const auto loop = loops_.begin() + face_begin_[g];
+      work.piece.shape.faces[f].assign(loop, loop + face_size_[g]);
+      work.piece.face_sources[f] = source_[g];
+      work.planes[f] = plane_[g];
+    }
+    return work;
+  }
+
+ private:
+  int beginCell(const Box& box, std::vector<Link> links) {
+    const int id = static_cast<int>(v_begin_.size());
+    v_begin_.push_back(static_cast<int>(vertices_.size()));
+    v_count_.push_back(0);
+    f_begin_.push_back(static_cast<int>(face_begin_.size()));
+    f_count_.push_back(0);
+    boxes_.push_back(box);
+    links_.push_back(std::move(links));
+    return id;
+  }
+  std::vector<Vec3> vertices_;
+  std::vector<int> loops_;
+  std::vector<int> face_begin_, face_size_, plane_;
+  std::vector<FaceSource> source_;
+  std::vector<int> v_begin_, v_count_, f_begin_, f_count_;
+  std::vector<Box> boxes_;
+  std::vector<std::vector<Link>> links_;
+};
+
+/// Hands the links of cell c to its two halves `below` and `above` (the split `split`), and
+/// updates the linked cells' own links. A face that goes to one half keeps its links; for a
+/// face split between the halves, a linked face stays with a half unless it lies wholly
+/// beyond twice the tolerance on the other side of the splitting plane, so a face that
+/// touches a half with area stays linked (conservative: the contact test decides). The two
+/// new faces are linked.
+void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit& split,
+            const Plane& plane, double tolerance) {
   thread_local std::vector<int> to_below, to_above;
-  const std::size_t faces = old.work.piece.shape.faces.size();
+  const std::size_t faces = static_cast<std::size_t>(store.faceCount(c));
   to_below.assign(faces, -1);
   to_above.assign(faces, -1);
   int new_below = -1, new_above = -1;
@@ -736,31 +851,33 @@ void relink(std::vector<Cell>& store, int c, Cell& below, Cell& above, int below
   for (std::size_t f = 0; f < split.above_origin.size(); ++f) {
     (split.above_origin[f] < 0 ? new_above : to_above[split.above_origin[f]]) = static_cast<int>(f);
   }
-  below.links.clear();
-  above.links.clear();
-  below.links.push_back({new_below, above_id, new_above});
-  above.links.push_back({new_above, below_id, new_below});
+  std::vector<Link>& below = store.links(below_id);
+  std::vector<Link>& above = store.links(above_id);
+  below.clear();
+  above.clear();
+  below.push_back({new_below, above_id, new_above});
+  above.push_back({new_above, below_id, new_below});
   const double margin = 2.0 * tolerance;
-  for (const Link& link : old.links) {
+  for (const Link& link : store.links(c)) {
     const int fb = to_below[link.face], fa = to_above[link.face];
     bool keep_below = fb >= 0, keep_above = fa >= 0;
-    Cell& other = store[link.other];
     if (keep_below && keep_above) {
-      const auto [low, high] = faceReach(other.work.piece, link.other_face, plane);
+      const auto [low, high] = store.faceReach(link.other, link.other_face, plane);
       keep_below = low <= margin;
       keep_above = high >= -margin;
     }
-    if (keep_below) below.links.push_back({fb, link.other, link.other_face});
-    if (keep_above) above.links.push_back({fa, link.other, link.other_face});
+    if (keep_below) below.push_back({fb, link.other, link.other_face});
+    if (keep_above) above.push_back({fa, link.other, link.other_face});
     // The linked cell's link back to (c, face): to the half kept, or one per half.
-    for (Link& back : other.links) {
+    std::vector<Link>& other = store.links(link.other);
+    for (Link& back : other) {
       if (back.other != c || back.face != link.other_face || back.other_face != link.face) {
         continue;
       }
       if (keep_below) {
         back.other = below_id;
         back.other_face = fb;
-        if (keep_above) other.links.push_back({link.other_face, above_id, fa});
+        if (keep_above) other.push_back({link.other_face, above_id, fa});
       } else {
         back.other = above_id;
         back.other_face = fa;
@@ -777,23 +894,24 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
                     const std::vector<std::vector<int>>& domain_planes, bool box_domain,
                     const CutTolerances& tol, bool track) {
   RegionCut out;
-  // Cells stay at their index in `store` (dead ones are emptied); `live` lists the live
-  // ones in order, a split cell's halves taking its place.
-  std::vector<Cell> store = regionCells(region, domain, domain_planes, box_domain, tol);
-  if (track) initialTouching(store, tol.distance);
+  // Cells stay at their index in `store` (dead ones are dropped from `live`); `live` lists
+  // the live ones in order, a split cell's halves taking its place.
+  CellStore store;
+  {
+    std::vector<Cell> start = regionCells(region, domain, domain_planes, box_domain, tol);
+    if (track) initialTouching(start, tol.distance);
+    for (Cell& cell : start) store.add(cell.work, cell.box, std::move(cell.links));
+  }
   std::vector<int> live(store.size()), next;
   std::iota(live.begin(), live.end(), 0);
-  // The cells' boxes side by side: every polygon tests every live cell's box.
-  std::vector<Box> boxes;
-  boxes.reserve(store.size());
-  for (const Cell& cell : store) boxes.push_back(cell.box);
-  std::vector<Vec3> covered, scratch;
+  std::vector<Vec3> section, covered, scratch;
+  FlatSplit split;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
     const Box reach = polygon.box.enlarged(tol.distance);
     next.clear();
     for (const int id : live) {
-      const Box& box = boxes[id];
+      const Box& box = store.box(id);
       const bool near = (box.min.array() <= reach.max.array()).all() &&
                         (reach.min.array() <= box.max.array()).all() &&
                         !boxMissesPlane(box, polygon.plane, tol.distance);
@@ -801,13 +919,14 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         next.push_back(id);
         continue;
       }
-      const Cell& cell = store[id];
       ++out.piece_tests;
-      const Section section = planeSection(cell.work.piece, polygon.plane, tol.distance);
-      if (section.kind == SectionKind::OnFace) {
-        out.coincident.emplace_back(cell.work.planes[section.face], polygon.plane_id);
+      int on_face = -1;
+      const SectionKind kind =
+          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face);
+      if (kind == SectionKind::OnFace) {
+        out.coincident.emplace_back(store.planeOf(id, on_face), polygon.plane_id);
       }
-      if (section.kind != SectionKind::Crossing) {
+      if (kind != SectionKind::Crossing) {
         next.push_back(id);
         continue;
       }
@@ -817,7 +936,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       bool apart = false, inside = true;
       for (const Plane& edge : polygon.edges) {
         double low = std::numeric_limits<double>::infinity(), high = -low;
-        for (const Vec3& x : section.polygon) {
+        for (const Vec3& x : section) {
           const double d = edge.distance(x);
           low = std::min(low, d);
           high = std::max(high, d);
@@ -833,9 +952,9 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       // cuts it (blocks-exact2's rule for EdgePlanes, thinnerThan).
       bool cut = false;
       if (!apart && inside) {
-        cut = !thinnerThan(section.polygon, tol.distance);
+        cut = !thinnerThan(section, tol.distance);
       } else if (!apart) {
-        covered = section.polygon;
+        covered = section;
         for (const Plane& edge : polygon.edges) {
           clipPolygon(covered, edge, scratch);
           std::swap(covered, scratch);
@@ -843,31 +962,17 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
         cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
-      if (!cut) {
-        next.push_back(id);
-        continue;
-      }
-      auto split = splitWork(cell.work, polygon.plane, polygon.plane_id, tol.distance,
-                             {FaceKind::Fictitious, -1});
-      if (!split) {
+      if (!cut || !splitFlat(store.view(id), polygon.plane, tol.distance, split)) {
         next.push_back(id);
         continue;
       }
       ++out.splits;
-      const int below_id = static_cast<int>(store.size());
-      const int above_id = below_id + 1;
-      const Box below_box = geometry::bounds(split->below.piece.shape);
-      const Box above_box = geometry::bounds(split->above.piece.shape);
-      Cell below{std::move(split->below), below_box, {}};
-      Cell above{std::move(split->above), above_box, {}};
-      if (track) {
-        relink(store, id, below, above, below_id, above_id, *split, polygon.plane, tol.distance);
-      }
-      store[id] = Cell{};
-      store.push_back(std::move(below));
-      store.push_back(std::move(above));
-      boxes.push_back(below_box);
-      boxes.push_back(above_box);
+      const int below_id = store.addHalf(id, split.below_vertices, split.below_loops,
+                                         split.below_size, split.below_origin, polygon.plane_id);
+      const int above_id = store.addHalf(id, split.above_vertices, split.above_loops,
+                                         split.above_size, split.above_origin, polygon.plane_id);
+      if (track) relink(store, id, below_id, above_id, split, polygon.plane, tol.distance);
+      store.kill(id);
       next.push_back(below_id);
       next.push_back(above_id);
     }
@@ -877,11 +982,11 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   out.pieces.reserve(live.size());
   for (std::size_t k = 0; k < live.size(); ++k) {
     local[live[k]] = static_cast<int>(k);
-    out.pieces.push_back(std::move(store[live[k]].work));
+    out.pieces.push_back(store.piece(live[k]));
   }
   if (track) {
     for (std::size_t k = 0; k < live.size(); ++k) {
-      for (const Link& link : store[live[k]].links) {
+      for (const Link& link : store.links(live[k])) {
         if (local[link.other] > static_cast<int>(k)) {
           out.touching.push_back(
               {{static_cast<int>(k), link.face}, {local[link.other], link.other_face}});
