@@ -459,6 +459,16 @@ bool insidePolygon(const std::vector<Vec3>& points, const CutPolygon& polygon, d
 
 /// Area (m2) of the part of `face` inside the convex polygon.
 double coveredArea(const std::vector<Vec3>& face, const CutPolygon& polygon) {
+  // A face wholly outside one edge line (every point strictly outside) has nothing covered:
+  // the clipping below would end empty, or, through round-off in its constructed points, in
+  // a sliver of no area. Decided by signs before any clipping (most faces in a disc plane
+  // lie outside the disc).
+  for (const Plane& edge : polygon.edges) {
+    if (std::all_of(face.begin(), face.end(),
+                    [&](const Vec3& p) { return edge.distance(p) < 0.0; })) {
+      return 0.0;
+    }
+  }
   thread_local std::vector<Vec3> a, b;
   a.assign(face.begin(), face.end());
   for (const Plane& edge : polygon.edges) {
@@ -539,6 +549,8 @@ struct Link {
   int face = 0;
   int other = 0;  ///< index in the region's cell store
   int other_face = 0;
+  int back = 0;  ///< position of the reverse link in the other cell's list (lists of live
+                 ///< cells only change in place or grow at the end, so positions hold)
 };
 
 /// A cell of a region: a work piece, its bounding box and, when contacts are tracked, the
@@ -615,7 +627,10 @@ void splitRegions(const std::vector<CutPolygon>& polygons,
 /// What one region gives.
 struct RegionCut {
   std::vector<WorkPiece> pieces;
-  std::vector<FacePair> touching;  ///< tracked: face pairs that may touch (indices in `pieces`)
+  /// Tracked: the faces that may touch another (piece indices into `pieces`), for the
+  /// contact tests, and the pairs of them (indices into faces.faces).
+  ContactFaces faces;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
   long long piece_tests = 0;
   long long splits = 0;
@@ -708,8 +723,10 @@ void initialTouching(std::vector<Cell>& cells, double tolerance) {
           const bool b_on_a = low_b >= -margin && high_b <= margin;
           const bool a_on_b = low_a >= -margin && high_a <= margin;
           if (!b_on_a && !a_on_b) continue;
-          cells[i].links.push_back({fa, static_cast<int>(j), fb});
-          cells[j].links.push_back({fb, static_cast<int>(i), fa});
+          const int at_i = static_cast<int>(cells[i].links.size());
+          const int at_j = static_cast<int>(cells[j].links.size());
+          cells[i].links.push_back({fa, static_cast<int>(j), fb, at_j});
+          cells[j].links.push_back({fb, static_cast<int>(i), fa, at_i});
         }
       }
     }
@@ -776,6 +793,9 @@ class CellStore {
             std::span<const int>(face_size_).subspan(f_begin_[c], f_count_[c])};
   }
   int faceCount(int c) const { return f_count_[c]; }
+  /// Index of face f of cell c among all faces of the store (0 .. faceTotal() - 1).
+  std::size_t faceIndex(int c, int f) const { return static_cast<std::size_t>(f_begin_[c] + f); }
+  std::size_t faceTotal() const { return face_begin_.size(); }
   int planeOf(int c, int f) const { return plane_[f_begin_[c] + f]; }
   const Box& box(int c) const { return boxes_[c]; }
   std::size_t size() const { return v_begin_.size(); }
@@ -855,10 +875,11 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
   std::vector<Link>& above = store.links(above_id);
   below.clear();
   above.clear();
-  below.push_back({new_below, above_id, new_above});
-  above.push_back({new_above, below_id, new_below});
+  below.push_back({new_below, above_id, new_above, 0});
+  above.push_back({new_above, below_id, new_below, 0});
   const double margin = 2.0 * tolerance;
   for (const Link& link : store.links(c)) {
+    if (link.other_face < 0) continue;  // a link whose face vanished in an earlier split
     const int fb = to_below[link.face], fa = to_above[link.face];
     bool keep_below = fb >= 0, keep_above = fa >= 0;
     if (keep_below && keep_above) {
@@ -866,23 +887,27 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
       keep_below = low <= margin;
       keep_above = high >= -margin;
     }
-    if (keep_below) below.push_back({fb, link.other, link.other_face});
-    if (keep_above) above.push_back({fa, link.other, link.other_face});
-    // The linked cell's link back to (c, face): to the half kept, or one per half.
+    // The linked cell's link back to (c, face) goes to the half kept, or one per half.
     std::vector<Link>& other = store.links(link.other);
-    for (Link& back : other) {
-      if (back.other != c || back.face != link.other_face || back.other_face != link.face) {
-        continue;
+    Link& back = other[static_cast<std::size_t>(link.back)];
+    if (keep_below) {
+      below.push_back({fb, link.other, link.other_face, link.back});
+      back.other = below_id;
+      back.other_face = fb;
+      back.back = static_cast<int>(below.size()) - 1;
+      if (keep_above) {
+        above.push_back({fa, link.other, link.other_face, static_cast<int>(other.size())});
+        other.push_back({link.other_face, above_id, fa, static_cast<int>(above.size()) - 1});
       }
-      if (keep_below) {
-        back.other = below_id;
-        back.other_face = fb;
-        if (keep_above) other.push_back({link.other_face, above_id, fa});
-      } else {
-        back.other = above_id;
-        back.other_face = fa;
-      }
-      break;
+    } else if (keep_above) {
+      above.push_back({fa, link.other, link.other_face, link.back});
+      back.other = above_id;
+      back.other_face = fa;
+      back.back = static_cast<int>(above.size()) - 1;
+    } else {
+      // The face lies in the splitting plane within the tolerance on both halves (a face
+      // too small to keep): nothing of it is left to touch.
+      back.other_face = -1;
     }
   }
 }
@@ -985,11 +1010,28 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
     out.pieces.push_back(store.piece(live[k]));
   }
   if (track) {
+    // The contact table straight from the flat store (sequential, still in cache), faces in
+    // first-use order of the pairs.
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
+    const auto slotOf = [&](int cell, int k, int face) {
+      std::uint32_t& at = slot[store.faceIndex(cell, face)];
+      if (at == kNone) {
+        const FlatPieceView view = store.view(cell);
+        at = out.faces.add(k, face, view.vertices,
+                           view.loops.subspan(static_cast<std::size_t>(view.face_begin[face]),
+                                              static_cast<std::size_t>(view.face_size[face])));
+      }
+      return at;
+    };
     for (std::size_t k = 0; k < live.size(); ++k) {
       for (const Link& link : store.links(live[k])) {
-        if (local[link.other] > static_cast<int>(k)) {
-          out.touching.push_back(
-              {{static_cast<int>(k), link.face}, {local[link.other], link.other_face}});
+        if (link.other_face < 0) continue;
+        const int other = local[link.other];
+        if (other > static_cast<int>(k)) {
+          const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
+          const std::uint32_t b = slotOf(link.other, other, link.other_face);
+          out.pairs.emplace_back(a, b);
         }
       }
     }
@@ -1058,15 +1100,16 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   });
   std::vector<Piece> pieces;
   std::vector<std::vector<int>> planes;
-  std::vector<FacePair> touching;  // tracked, in the pieces' global indices
+  ContactFaces tracked;  // tracked: the faces that may touch, the pairs of them
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tracked_pairs;
   for (RegionCut& cut : cuts) {
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
     const int offset = static_cast<int>(pieces.size());
-    for (const auto& [a, b] : cut.touching) {
-      touching.push_back({{a.piece + offset, a.face}, {b.piece + offset, b.face}});
-    }
+    const auto shift = static_cast<std::uint32_t>(tracked.faces.size());
+    for (const auto& [a, b] : cut.pairs) tracked_pairs.emplace_back(a + shift, b + shift);
+    tracked.append(cut.faces, offset);
     for (WorkPiece& w : cut.pieces) {
       pieces.push_back(std::move(w.piece));
       planes.push_back(std::move(w.planes));
@@ -1086,11 +1129,19 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     int& slot = group_of_root[plane_ids.find(groups[g].plane_id)];
     if (slot < 0) slot = static_cast<int>(g);  // the first group of a root, as emplace kept
   }
-  const auto groupOf = [&](int root) { return group_of_root[root]; };
-  std::vector<std::vector<Cover>> cover(pieces.size());
+  const auto groupOf = [&](int root) { return root < 0 ? -1 : group_of_root[root]; };
+  // cover[first_face[i] + f]: the coverage of face f of piece i.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  }
+  std::vector<Cover> cover_table(first_face.back(), Cover::None);
+  const auto coverOf = [&](int piece, int face) -> Cover& {
+    return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
+  };
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
-    cover[i].assign(piece.shape.faces.size(), Cover::None);
+    Cover* cover = &cover_table[first_face[i]];
     thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
@@ -1098,8 +1149,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
       int disc = -1;
-      cover[i][f] = coverage(loop, groups[g], polygons, tol, &disc);
-      if (cover[i][f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
+      cover[f] = coverage(loop, groups[g], polygons, tol, &disc);
+      if (cover[f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
     }
   });
 
@@ -1110,8 +1161,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
     const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
     const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
-    const Cover ca = cover[c.piece_a][c.face_a];
-    const Cover cb = cover[c.piece_b][c.face_b];
+    const Cover ca = coverOf(c.piece_a, c.face_a);
+    const Cover cb = coverOf(c.piece_b, c.face_b);
     const int g = groupOf(planes[c.piece_a][c.face_a]);
     if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
         b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
@@ -1142,20 +1193,21 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // Inside a region: the tracked pairs. Across regions: faces in the kd planes only (two
     // pieces of different regions can share area only in the plane between them).
     std::vector<FaceSource> inside_sources, across_sources;
-    const std::vector<PieceContact> inside =
-        decideCandidateContacts(pieces, touching, tol.distance, tol.area, decide, &inside_sources);
+    const std::vector<PieceContact> inside = decideTableContacts(
+        tracked, pieces.size(), tracked_pairs, tol.distance, tol.area, decide, &inside_sources);
     std::vector<char> kd_plane(plane_ids.size(), 0);
     for (const Region& region : regions) {
       for (int id : region.face_plane) {
         if (id >= 0) kd_plane[plane_ids.find(id)] = 1;
       }
     }
-    std::vector<std::vector<int>> across_planes = planes;
-    for (std::vector<int>& list : across_planes) {
+    // In place (no copy): the contacts inside regions are decided already, and the faces
+    // searched now keep their (kd plane) ids, which is all `decide` reads of them.
+    for (std::vector<int>& list : planes) {
       for (int& id : list) id = kd_plane[id] ? id : -1;
     }
     const std::vector<PieceContact> across =
-        findContactsByPlane(pieces, across_planes, tol.distance, tol.area, decide, &across_sources);
+        findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &across_sources);
     // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
     std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
     for (std::size_t k = 0; k < inside.size(); ++k)
