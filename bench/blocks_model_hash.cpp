@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
     FastCutReport report;
     BlockModel model = cutFast(input, &report);
     for (int k = 1; k < repeat; ++k) model = cutFast(input, &report);
+    std::fprintf(stderr, "size %d: regions %d polygons %d piece tests %lld splits %lld\n", n,
+                 report.regions, report.cutting_polygons, report.piece_tests, report.splits);
     std::printf("size %d: blocks %zu pieces %d adjacency %zu hash %016llx\n", n,
                 model.blocks.size(), report.pieces, model.adjacency.size(),
                 static_cast<unsigned long long>(hashModel(model)));

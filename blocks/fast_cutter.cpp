@@ -626,7 +626,8 @@ void splitRegions(const std::vector<CutPolygon>& polygons,
 
 /// What one region gives.
 struct RegionCut {
-  std::vector<WorkPiece> pieces;
+  std::vector<Piece> pieces;
+  std::vector<int> planes;  ///< plane id of every face of `pieces`, in piece and face order
   /// Tracked: the faces that may touch another (piece indices into `pieces`), for the
   /// contact tests, and the pairs of them (indices into faces.faces).
   ContactFaces faces;
@@ -801,7 +802,30 @@ class CellStore {
   std::size_t size() const { return v_begin_.size(); }
   std::vector<Link>& links(int c) { return links_[c]; }
   /// Drops a dead cell's links.
-  void kill(int c) { std::vector<Link>().swap(links_[c]); }
+  void kill(int c) {
+    links_[c].clear();
+    spare_links_.push_back(std::move(links_[c]));
+  }
+  /// Empties the store, keeping its storage (the store of a thread is reused by its
+  /// regions: no allocation, no page faults once grown).
+  void clear() {
+    vertices_.clear();
+    loops_.clear();
+    face_begin_.clear();
+    face_size_.clear();
+    plane_.clear();
+    source_.clear();
+    v_begin_.clear();
+    v_count_.clear();
+    f_begin_.clear();
+    f_count_.clear();
+    boxes_.clear();
+    for (std::vector<Link>& list : links_) {
+      list.clear();
+      spare_links_.push_back(std::move(list));
+    }
+    links_.clear();
+  }
   /// The lowest and highest signed distance (m) of the points of face f of cell c from
   /// `plane`.
   std::pair<double, double> faceReach(int c, int f, const Plane& plane) const {
@@ -814,22 +838,21 @@ class CellStore {
     }
     return {low, high};
   }
-  /// Cell c as a work piece.
-  WorkPiece piece(int c) const {
-    WorkPiece work;
+  /// Cell c as a piece; the plane ids of its faces are appended to `planes`.
+  Piece piece(int c, std::vector<int>& planes) const {
+    Piece piece;
     const auto first = vertices_.begin() + v_begin_[c];
-    work.piece.shape.vertices.assign(first, first + v_count_[c]);
-    work.piece.shape.faces.resize(static_cast<std::size_t>(f_count_[c]));
-    work.piece.face_sources.resize(static_cast<std::size_t>(f_count_[c]));
-    work.planes.resize(static_cast<std::size_t>(f_count_[c]));
+    piece.shape.vertices.assign(first, first + v_count_[c]);
+    piece.shape.faces.resize(static_cast<std::size_t>(f_count_[c]));
+    piece.face_sources.resize(static_cast<std::size_t>(f_count_[c]));
     for (int f = 0; f < f_count_[c]; ++f) {
       const int g = f_begin_[c] + f;
       const auto loop = loops_.begin() + face_begin_[g];
-      work.piece.shape.faces[f].assign(loop, loop + face_size_[g]);
-      work.piece.face_sources[f] = source_[g];
-      work.planes[f] = plane_[g];
+      piece.shape.faces[f].assign(loop, loop + face_size_[g]);
+      piece.face_sources[f] = source_[g];
+      planes.push_back(plane_[g]);
     }
-    return work;
+    return piece;
   }
 
  private:
@@ -840,6 +863,10 @@ class CellStore {
     f_begin_.push_back(static_cast<int>(face_begin_.size()));
     f_count_.push_back(0);
     boxes_.push_back(box);
+    if (links.empty() && !spare_links_.empty()) {
+      links = std::move(spare_links_.back());  // cleared, with its capacity
+      spare_links_.pop_back();
+    }
     links_.push_back(std::move(links));
     return id;
   }
@@ -850,6 +877,7 @@ class CellStore {
   std::vector<int> v_begin_, v_count_, f_begin_, f_count_;
   std::vector<Box> boxes_;
   std::vector<std::vector<Link>> links_;
+  std::vector<std::vector<Link>> spare_links_;  ///< emptied lists of dead cells, for reuse
 };
 
 /// Hands the links of cell c to its two halves `below` and `above` (the split `split`), and
@@ -921,7 +949,8 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   RegionCut out;
   // Cells stay at their index in `store` (dead ones are dropped from `live`); `live` lists
   // the live ones in order, a split cell's halves taking its place.
-  CellStore store;
+  thread_local CellStore store;
+  store.clear();
   {
     std::vector<Cell> start = regionCells(region, domain, domain_planes, box_domain, tol);
     if (track) initialTouching(start, tol.distance);
@@ -1007,7 +1036,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   out.pieces.reserve(live.size());
   for (std::size_t k = 0; k < live.size(); ++k) {
     local[live[k]] = static_cast<int>(k);
-    out.pieces.push_back(store.piece(live[k]));
+    out.pieces.push_back(store.piece(live[k], out.planes));
   }
   if (track) {
     // The contact table straight from the flat store (sequential, still in cache), faces in
@@ -1099,9 +1128,23 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
                         options.track_contacts);
   });
   std::vector<Piece> pieces;
-  std::vector<std::vector<int>> planes;
-  ContactFaces tracked;  // tracked: the faces that may touch, the pairs of them
+  std::vector<int> planes;  // plane id of every face, in piece and face order (first_face)
+  ContactFaces tracked;     // tracked: the faces that may touch, the pairs of them
   std::vector<std::pair<std::uint32_t, std::uint32_t>> tracked_pairs;
+  {
+    std::size_t piece_total = 0, face_total = 0, point_total = 0, pair_total = 0;
+    for (const RegionCut& cut : cuts) {
+      piece_total += cut.pieces.size();
+      face_total += cut.faces.faces.size();
+      point_total += cut.faces.points.size();
+      pair_total += cut.pairs.size();
+    }
+    pieces.reserve(piece_total);
+    tracked.faces.reserve(face_total);
+    tracked.points.reserve(point_total);
+    tracked.inward.reserve(point_total);
+    tracked_pairs.reserve(pair_total);
+  }
   for (RegionCut& cut : cuts) {
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
@@ -1110,16 +1153,20 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     const auto shift = static_cast<std::uint32_t>(tracked.faces.size());
     for (const auto& [a, b] : cut.pairs) tracked_pairs.emplace_back(a + shift, b + shift);
     tracked.append(cut.faces, offset);
-    for (WorkPiece& w : cut.pieces) {
-      pieces.push_back(std::move(w.piece));
-      planes.push_back(std::move(w.planes));
-    }
+    for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
+    planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
   }
   cuts.clear();
   counters.pieces = static_cast<int>(pieces.size());
-  for (std::vector<int>& list : planes) {
-    for (int& id : list) id = plane_ids.find(id);
+  for (int& id : planes) id = plane_ids.find(id);
+  // Face f of piece i is face first_face[i] + f of the flat per-face tables.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
   }
+  const auto planeOf = [&](int piece, int face) {
+    return planes[first_face[piece] + static_cast<std::size_t>(face)];
+  };
   counters.cut_seconds = secondsSince(start);
 
   // Coverage of every face in a disc plane (a plane whose root is a group's).
@@ -1130,12 +1177,10 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     if (slot < 0) slot = static_cast<int>(g);  // the first group of a root, as emplace kept
   }
   const auto groupOf = [&](int root) { return root < 0 ? -1 : group_of_root[root]; };
-  // cover[first_face[i] + f]: the coverage of face f of piece i.
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
-  }
+  // cover_table / face_source [first_face[i] + f]: the coverage and source of face f of
+  // piece i (flat copies for the contact decisions: no cache miss per piece there).
   std::vector<Cover> cover_table(first_face.back(), Cover::None);
+  std::vector<FaceSource> face_source(first_face.back());
   const auto coverOf = [&](int piece, int face) -> Cover& {
     return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
   };
@@ -1145,13 +1190,15 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
-      const int g = groupOf(planes[i][f]);
+      const int g = groupOf(planeOf(static_cast<int>(i), static_cast<int>(f)));
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
       int disc = -1;
       cover[f] = coverage(loop, groups[g], polygons, tol, &disc);
       if (cover[f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
     }
+    std::copy(piece.face_sources.begin(), piece.face_sources.end(),
+              face_source.begin() + static_cast<std::ptrdiff_t>(first_face[i]));
   });
 
   counters.coverage_seconds = secondsSince(assemble_start);
@@ -1159,11 +1206,11 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
   // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
   const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
-    const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
-    const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
+    const FaceSource& a = face_source[first_face[c.piece_a] + c.face_a];
+    const FaceSource& b = face_source[first_face[c.piece_b] + c.face_b];
     const Cover ca = coverOf(c.piece_a, c.face_a);
     const Cover cb = coverOf(c.piece_b, c.face_b);
-    const int g = groupOf(planes[c.piece_a][c.face_a]);
+    const int g = groupOf(planeOf(c.piece_a, c.face_a));
     if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
         b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
       // Not a disc plane: the face labels decide.
@@ -1203,9 +1250,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
     // In place (no copy): the contacts inside regions are decided already, and the faces
     // searched now keep their (kd plane) ids, which is all `decide` reads of them.
-    for (std::vector<int>& list : planes) {
-      for (int& id : list) id = kd_plane[id] ? id : -1;
-    }
+    for (int& id : planes) id = kd_plane[id] ? id : -1;
     const std::vector<PieceContact> across =
         findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &across_sources);
     // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.

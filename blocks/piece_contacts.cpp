@@ -271,7 +271,9 @@ using PlaneFaces = ContactFaces;
 
 /// The faces of all pieces with a plane id >= 0, in plane order (faces with a negative id are
 /// left out), for findContactsByPlane.
-PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vector<int>>& planes) {
+/// `plane_of(i, f)`: the plane id of face f of piece i.
+template <class PlaneOf>
+PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   // Faces in piece order: their plane ids and sizes.
   std::vector<std::size_t> first_face(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -283,7 +285,7 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vect
   int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
-      const int id = planes[i][f];
+      const int id = plane_of(i, f);
       plane[first_face[i] + f] = id;
       if (id < 0) continue;
       ++count;
@@ -585,12 +587,14 @@ std::vector<PieceContact> sortedContacts(const std::vector<std::vector<PieceCont
 
 }  // namespace
 
-std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
-                                              const std::vector<std::vector<int>>& planes,
-                                              double tolerance, double min_area,
-                                              const ContactDecision& decide,
-                                              std::vector<FaceSource>* sources) {
-  const PlaneFaces table = planeFaces(pieces, planes);
+namespace {
+
+template <class PlaneOf>
+std::vector<PieceContact> contactsByPlane(std::span<const Piece> pieces, const PlaneOf& plane_of,
+                                          double tolerance, double min_area,
+                                          const ContactDecision& decide,
+                                          std::vector<FaceSource>* sources) {
+  const PlaneFaces table = planeFaces(pieces, plane_of);
   const PairTests tests(table, tolerance, min_area);
   const std::size_t group_count = table.groups.size();
   std::vector<std::vector<PieceContact>> found(group_count);
@@ -625,6 +629,31 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
         decide, found, decided);
   }
   return sortedContacts(found, decided, static_cast<bool>(decide), sources);
+}
+
+}  // namespace
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  return contactsByPlane(
+      pieces, [&](std::size_t i, std::size_t f) { return planes[i][f]; }, tolerance, min_area,
+      decide, sources);
+}
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              std::span<const int> face_planes, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  }
+  return contactsByPlane(
+      pieces, [&](std::size_t i, std::size_t f) { return face_planes[first_face[i] + f]; },
+      tolerance, min_area, decide, sources);
 }
 
 std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,

@@ -59,6 +59,13 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const ContactDecision& decide = {},
                                               std::vector<FaceSource>* sources = nullptr);
 
+/// The same with the plane ids flat: face_planes[k] for the k-th face counting the faces of
+/// all pieces in piece and face order.
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              std::span<const int> face_planes, double tolerance,
+                                              double min_area, const ContactDecision& decide = {},
+                                              std::vector<FaceSource>* sources = nullptr);
+
 /// One face of one piece.
 struct FaceRef {
   int piece = 0;  ///< index of the piece
