@@ -217,9 +217,9 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
   }
 
-  // The face labels the contacts refer to, before soundPiece renumbers faces.
-  std::vector<std::vector<FaceSource>> face_sources(all.size());
-  for (std::size_t i = 0; i < all.size(); ++i) face_sources[i] = all[i].face_sources;
+  // The face labels the contacts refer to, before soundPiece renumbers faces: copied only
+  // for the pieces it repairs (the others keep their faces; see sourcesOf below).
+  std::vector<std::vector<FaceSource>> repaired_sources(all.size());
   // Sound rock pieces (piece_soundness.h), after the gluing, as the exact cutter does: slivers
   // are folded away, near vertices merged; a block of slivers only disappears.
   const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
@@ -253,6 +253,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
     addToReport(all[i], sound[i], sound_reports[i], local_report.soundness);
     if (sound[i]) {
+      repaired_sources[i] = std::move(all[i].face_sources);
       all[i] = std::move(sound[i]->piece);
     } else {
       folded[i] = true;
@@ -328,15 +329,25 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     model.domain_volume += geometry::massProperties(p).volume;
   }
   std::vector<int> block_of(all.size(), 0);  // 0: folded, in no block
+  std::vector<int> slot_of(all.size(), -1);  // index in its block's pieces
+  model.blocks.reserve(pending.size());
   for (std::size_t k = 0; k < pending.size(); ++k) {
     Block& b = pending[k].block;
     b.id = static_cast<int>(k) + 1;
+    b.pieces.reserve(pending[k].pieces.size());
     for (int i : pending[k].pieces) {
       block_of[i] = b.id;
+      slot_of[i] = static_cast<int>(b.pieces.size());
       b.pieces.push_back(std::move(all[i]));
     }
     model.blocks.push_back(std::move(b));
   }
+  // The face labels of piece i as the contacts refer to them (before any repair).
+  const auto sourcesOf = [&](int i) -> const std::vector<FaceSource>& {
+    if (!repaired_sources[i].empty()) return repaired_sources[i];
+    if (slot_of[i] >= 0) return model.blocks[block_of[i] - 1].pieces[slot_of[i]].face_sources;
+    return all[i].face_sources;  // folded: still in `all`
+  };
   // A folded piece's contacts count for the block of its cluster, when that block exists.
   for (std::size_t k = 0; k < pending.size(); ++k) {
     for (int i : folded_pieces[static_cast<std::size_t>(order[k])]) {
@@ -351,14 +362,14 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     const PieceContact& c = contacts[k];
     int a = block_of[c.piece_a], b = block_of[c.piece_b];
     if (a == b || a == 0 || b == 0) continue;
-    const FaceSource source_a = face_sources[c.piece_a][c.face_a];
-    const FaceSource source_b = face_sources[c.piece_b][c.face_b];
     if (const FaceSource* source = decided(k)) {
       if (source->kind == FaceKind::Fictitious) continue;
       if (a > b) std::swap(a, b);
       areas[{a, b, static_cast<int>(source->kind), source->id}] += c.area;
       continue;
     }
+    const FaceSource source_a = sourcesOf(c.piece_a)[c.face_a];
+    const FaceSource source_b = sourcesOf(c.piece_b)[c.face_b];
     if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
     FaceSource source = a < b ? source_a : source_b;
     if (source_b.kind == FaceKind::Structure) source = source_b;
