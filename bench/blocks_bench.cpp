@@ -336,6 +336,9 @@ int main(int argc, char** argv) {
       log_t.push_back(std::log(r->real_time));
       log_c.push_back(std::log(r->counters.at("cpu_s")));
       log_p.push_back(std::log(r->counters.at("pieces")));
+      std::printf("  %-16s pieces %9.0f  CPU per piece %6.2f us\n", name.c_str(),
+                  r->counters.at("pieces"),
+                  1e6 * r->counters.at("cpu_s") / r->counters.at("pieces"));
       if (base && n > 100) {
         const double wall = r->real_time / base->real_time;
         const double cpu = r->counters.at("cpu_s") / base->counters.at("cpu_s");

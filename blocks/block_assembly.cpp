@@ -217,21 +217,43 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
   }
 
-  // The face labels the contacts refer to, before soundPiece renumbers faces.
-  std::vector<std::vector<FaceSource>> face_sources(all.size());
-  for (std::size_t i = 0; i < all.size(); ++i) face_sources[i] = all[i].face_sources;
+  // The face labels the contacts refer to, before soundPiece renumbers faces: copied only
+  // for the pieces it repairs (the others keep their faces; see sourcesOf below).
+  std::vector<std::vector<FaceSource>> repaired_sources(all.size());
   // Sound rock pieces (piece_soundness.h), after the gluing, as the exact cutter does: slivers
   // are folded away, near vertices merged; a block of slivers only disappears.
   const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
+  // Most pieces have no vertices to merge: soundPiece would give them unchanged (or fold them
+  // when below the volume tolerance), so they are neither copied nor repaired. Each piece's
+  // mass properties (of the piece as kept, or as folded) are computed once, here.
   std::vector<std::optional<SoundPiece>> sound(rock_count);
   std::vector<SoundPieceReport> sound_reports(rock_count);
+  std::vector<char> repaired(rock_count, 0);
+  std::vector<geometry::MassProperties> mass(all.size());
   tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
-    sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+    if (hasCloseVertices(all[i], soundness)) {
+      repaired[i] = 1;
+      sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+    }
+    mass[i] = geometry::massProperties(sound[i] ? sound[i]->piece.shape : all[i].shape);
   });
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    mass[i] = geometry::massProperties(all[i].shape);
+  }
   std::vector<bool> folded(all.size(), false);
   for (std::size_t i = 0; i < rock_count; ++i) {
+    if (!repaired[i]) {
+      // As soundPiece and addToReport count an unchanged piece.
+      if (!(mass[i].volume >= soundness.volume)) {
+        folded[i] = true;
+        ++local_report.soundness.folded_pieces;
+        local_report.soundness.folded_volume += mass[i].volume;
+      }
+      continue;
+    }
     addToReport(all[i], sound[i], sound_reports[i], local_report.soundness);
     if (sound[i]) {
+      repaired_sources[i] = std::move(all[i].face_sources);
       all[i] = std::move(sound[i]->piece);
     } else {
       folded[i] = true;
@@ -270,7 +292,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     // volume for the material at its centroid), from the mass properties computed here.
     std::map<int, double> material_volume;
     for (int i : list) {
-      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      const geometry::MassProperties& m = mass[i];
       b.mass += m;
       material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
       const geometry::Box box = geometry::bounds(all[i].shape);
@@ -278,7 +300,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
       b.bounds.max = b.bounds.max.cwiseMax(box.max);
     }
     for (int i : folded_pieces[k]) {  // folded slivers keep their mass
-      const geometry::MassProperties m = geometry::massProperties(all[i].shape);
+      const geometry::MassProperties& m = mass[i];
       b.mass += m;
       b.folded_volume += m.volume;
     }
@@ -307,15 +329,25 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     model.domain_volume += geometry::massProperties(p).volume;
   }
   std::vector<int> block_of(all.size(), 0);  // 0: folded, in no block
+  std::vector<int> slot_of(all.size(), -1);  // index in its block's pieces
+  model.blocks.reserve(pending.size());
   for (std::size_t k = 0; k < pending.size(); ++k) {
     Block& b = pending[k].block;
     b.id = static_cast<int>(k) + 1;
+    b.pieces.reserve(pending[k].pieces.size());
     for (int i : pending[k].pieces) {
       block_of[i] = b.id;
+      slot_of[i] = static_cast<int>(b.pieces.size());
       b.pieces.push_back(std::move(all[i]));
     }
     model.blocks.push_back(std::move(b));
   }
+  // The face labels of piece i as the contacts refer to them (before any repair).
+  const auto sourcesOf = [&](int i) -> const std::vector<FaceSource>& {
+    if (!repaired_sources[i].empty()) return repaired_sources[i];
+    if (slot_of[i] >= 0) return model.blocks[block_of[i] - 1].pieces[slot_of[i]].face_sources;
+    return all[i].face_sources;  // folded: still in `all`
+  };
   // A folded piece's contacts count for the block of its cluster, when that block exists.
   for (std::size_t k = 0; k < pending.size(); ++k) {
     for (int i : folded_pieces[static_cast<std::size_t>(order[k])]) {
@@ -330,14 +362,14 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     const PieceContact& c = contacts[k];
     int a = block_of[c.piece_a], b = block_of[c.piece_b];
     if (a == b || a == 0 || b == 0) continue;
-    const FaceSource source_a = face_sources[c.piece_a][c.face_a];
-    const FaceSource source_b = face_sources[c.piece_b][c.face_b];
     if (const FaceSource* source = decided(k)) {
       if (source->kind == FaceKind::Fictitious) continue;
       if (a > b) std::swap(a, b);
       areas[{a, b, static_cast<int>(source->kind), source->id}] += c.area;
       continue;
     }
+    const FaceSource source_a = sourcesOf(c.piece_a)[c.face_a];
+    const FaceSource source_b = sourcesOf(c.piece_b)[c.face_b];
     if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
     FaceSource source = a < b ? source_a : source_b;
     if (source_b.kind == FaceKind::Structure) source = source_b;

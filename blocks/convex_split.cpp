@@ -4,13 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <span>
 
 namespace rockmass::blocks {
 namespace {
 
 /// -1, 0 or +1: the side of the plane a vertex is on, ON within the tolerance (into
 /// `sides`), and the signed distances.
-void classify(const std::vector<Vec3>& points, const Plane& plane, double tolerance,
+void classify(std::span<const Vec3> points, const Plane& plane, double tolerance,
               std::vector<std::int8_t>& sides, std::vector<double>& distances) {
   sides.resize(points.size());
   distances.resize(points.size());
@@ -55,26 +56,46 @@ Vec3 crossingPoint(const Vec3& a, const Vec3& b, double sa, double sb) {
   return p + (sp / (sp - sq)) * (q - p);
 }
 
-}  // namespace
+/// Face access of a Polyhedron, for the shared cores below.
+struct PolyhedronFaces {
+  const geometry::Polyhedron& shape;
+  std::size_t count() const { return shape.faces.size(); }
+  std::span<const int> face(std::size_t f) const { return shape.faces[f]; }
+};
 
-std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, double tolerance,
-                                      FaceSource cap) {
-  const std::vector<Vec3>& vertices = piece.shape.vertices;
+/// Face access of a flat piece.
+struct FlatFaces {
+  const FlatPieceView& piece;
+  std::size_t count() const { return piece.face_begin.size(); }
+  std::span<const int> face(std::size_t f) const {
+    return piece.loops.subspan(static_cast<std::size_t>(piece.face_begin[f]),
+                               static_cast<std::size_t>(piece.face_size[f]));
+  }
+};
+
+/// The split shared by splitPiece and splitFlat: both halves into `out` (vertices, loops in
+/// face order with the new face last, origins). False when the plane does not cross.
+template <class Faces>
+bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& plane,
+               double tolerance, FlatSplit& out) {
   // Scratch buffers reused by this thread's splits (no allocation once grown).
   thread_local std::vector<double> s;
   thread_local std::vector<std::int8_t> side;
   classify(vertices, plane, tolerance, side, s);
   const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
   const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
-  if (!has_below || !has_above) return std::nullopt;
+  if (!has_below || !has_above) return false;
 
-  SplitPieces out;
-  geometry::Polyhedron& below = out.below.shape;
-  geometry::Polyhedron& above = out.above.shape;
-  below.vertices.reserve(vertices.size() + 4);
-  above.vertices.reserve(vertices.size() + 4);
-  below.faces.reserve(piece.shape.faces.size() + 1);
-  above.faces.reserve(piece.shape.faces.size() + 1);
+  std::vector<Vec3>& below = out.below_vertices;
+  std::vector<Vec3>& above = out.above_vertices;
+  below.clear();
+  above.clear();
+  out.below_loops.clear();
+  out.above_loops.clear();
+  out.below_size.clear();
+  out.above_size.clear();
+  out.below_origin.clear();
+  out.above_origin.clear();
   thread_local std::vector<int> below_index, above_index, order;
   below_index.assign(vertices.size(), -1);
   above_index.assign(vertices.size(), -1);
@@ -84,12 +105,12 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   cap_index.clear();
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (side[i] <= 0) {
-      below_index[i] = static_cast<int>(below.vertices.size());
-      below.vertices.push_back(vertices[i]);
+      below_index[i] = static_cast<int>(below.size());
+      below.push_back(vertices[i]);
     }
     if (side[i] >= 0) {
-      above_index[i] = static_cast<int>(above.vertices.size());
-      above.vertices.push_back(vertices[i]);
+      above_index[i] = static_cast<int>(above.size());
+      above.push_back(vertices[i]);
     }
     if (side[i] == 0) {
       cap_points.push_back(vertices[i]);
@@ -102,114 +123,170 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
   };
   thread_local std::vector<Cut> cuts;
   cuts.clear();
-  const auto crossing = [&](int a, int b) -> const Cut& {
+  const auto crossing = [&](int a, int b) -> Cut {
     const int lo = std::min(a, b), hi = std::max(a, b);
     for (const Cut& c : cuts) {
       if (c.a == lo && c.b == hi) return c;
     }
     const Vec3 p = crossingPoint(vertices[lo], vertices[hi], s[lo], s[hi]);
-    Cut c{lo, hi, static_cast<int>(below.vertices.size()), static_cast<int>(above.vertices.size())};
-    below.vertices.push_back(p);
-    above.vertices.push_back(p);
+    Cut c{lo, hi, static_cast<int>(below.size()), static_cast<int>(above.size())};
+    below.push_back(p);
+    above.push_back(p);
     cap_points.push_back(p);
     cap_index.emplace_back(c.below, c.above);
     cuts.push_back(c);
-    return cuts.back();
+    return c;
   };
 
-  for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-    const std::vector<int>& face = piece.shape.faces[f];
-    std::vector<int> below_loop, above_loop;
+  for (std::size_t f = 0; f < faces.count(); ++f) {
+    const std::span<const int> face = faces.face(f);
+    const std::size_t below_start = out.below_loops.size();
+    const std::size_t above_start = out.above_loops.size();
     bool below_off_plane = false, above_off_plane = false;
     for (std::size_t k = 0; k < face.size(); ++k) {
       const int a = face[k];
       const int b = face[(k + 1) % face.size()];
-      if (side[a] <= 0) below_loop.push_back(below_index[a]);
-      if (side[a] >= 0) above_loop.push_back(above_index[a]);
+      if (side[a] <= 0) out.below_loops.push_back(below_index[a]);
+      if (side[a] >= 0) out.above_loops.push_back(above_index[a]);
       below_off_plane |= side[a] < 0;
       above_off_plane |= side[a] > 0;
       if (side[a] * side[b] < 0) {
-        const Cut& c = crossing(a, b);
-        below_loop.push_back(c.below);
-        above_loop.push_back(c.above);
+        const Cut c = crossing(a, b);
+        out.below_loops.push_back(c.below);
+        out.above_loops.push_back(c.above);
       }
     }
     // A loop with no vertex off the plane lies in the new face: the cap replaces it.
-    if (below_loop.size() >= 3 && below_off_plane) {
-      below.faces.push_back(std::move(below_loop));
-      out.below.face_sources.push_back(piece.face_sources[f]);
+    const std::size_t below_count = out.below_loops.size() - below_start;
+    const std::size_t above_count = out.above_loops.size() - above_start;
+    if (below_count >= 3 && below_off_plane) {
+      out.below_size.push_back(static_cast<int>(below_count));
       out.below_origin.push_back(static_cast<int>(f));
+    } else {
+      out.below_loops.resize(below_start);
     }
-    if (above_loop.size() >= 3 && above_off_plane) {
-      above.faces.push_back(std::move(above_loop));
-      out.above.face_sources.push_back(piece.face_sources[f]);
+    if (above_count >= 3 && above_off_plane) {
+      out.above_size.push_back(static_cast<int>(above_count));
       out.above_origin.push_back(static_cast<int>(f));
+    } else {
+      out.above_loops.resize(above_start);
     }
   }
-  if (cap_points.size() < 3) return std::nullopt;
+  if (cap_points.size() < 3) return false;
   // The cap: counter-clockwise about +n seen from outside `below`; `above` gets the reverse
   // loop starting at the same vertex, so both fan it into the same triangles.
   counterClockwise(cap_points, plane.normal, order);
-  std::vector<int> below_cap, above_cap;
-  below_cap.reserve(order.size());
-  above_cap.reserve(order.size());
-  for (int k : order) below_cap.push_back(cap_index[k].first);
-  above_cap.push_back(cap_index[order[0]].second);
-  for (std::size_t k = order.size() - 1; k >= 1; --k)
-    above_cap.push_back(cap_index[order[k]].second);
-  below.faces.push_back(std::move(below_cap));
-  above.faces.push_back(std::move(above_cap));
-  out.below.face_sources.push_back(cap);
-  out.above.face_sources.push_back(cap);
+  for (int k : order) out.below_loops.push_back(cap_index[k].first);
+  out.above_loops.push_back(cap_index[order[0]].second);
+  for (std::size_t k = order.size() - 1; k >= 1; --k) {
+    out.above_loops.push_back(cap_index[order[k]].second);
+  }
+  out.below_size.push_back(static_cast<int>(order.size()));
+  out.above_size.push_back(static_cast<int>(order.size()));
   out.below_origin.push_back(-1);
   out.above_origin.push_back(-1);
-  return out;
+  return true;
 }
 
-Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
-  const std::vector<Vec3>& vertices = piece.shape.vertices;
+/// One half of a flat split as a Piece.
+void halfPiece(const std::vector<Vec3>& vertices, const std::vector<int>& loops,
+               const std::vector<int>& sizes, const std::vector<int>& origin, const Piece& input,
+               FaceSource cap, Piece& out) {
+  out.shape.vertices.assign(vertices.begin(), vertices.end());
+  out.shape.faces.resize(sizes.size());
+  out.face_sources.resize(sizes.size());
+  std::size_t at = 0;
+  for (std::size_t f = 0; f < sizes.size(); ++f) {
+    const auto first = loops.begin() + static_cast<std::ptrdiff_t>(at);
+    out.shape.faces[f].assign(first, first + sizes[f]);
+    at += static_cast<std::size_t>(sizes[f]);
+    out.face_sources[f] = origin[f] < 0 ? cap : input.face_sources[origin[f]];
+  }
+}
+
+/// The section shared by planeSection and planeSectionFlat.
+template <class Faces>
+SectionKind sectionCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& plane,
+                        double tolerance, std::vector<Vec3>& polygon, int* face_out) {
+  polygon.clear();
   thread_local std::vector<double> s;
   thread_local std::vector<std::int8_t> side;
   classify(vertices, plane, tolerance, side, s);
   const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
   const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
-  Section section;
   if (has_below && has_above) {
-    section.kind = SectionKind::Crossing;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
-      if (side[i] == 0) section.polygon.push_back(vertices[i]);
+      if (side[i] == 0) polygon.push_back(vertices[i]);
     }
-    for (const std::vector<int>& face : piece.shape.faces) {
+    for (std::size_t f = 0; f < faces.count(); ++f) {
+      const std::span<const int> face = faces.face(f);
       for (std::size_t k = 0; k < face.size(); ++k) {
         const int a = face[k];
         const int b = face[(k + 1) % face.size()];
         // Each cut edge is met twice (once per face); keep it from the face where a < b.
         if (side[a] * side[b] < 0 && a < b) {
-          section.polygon.push_back(crossingPoint(vertices[a], vertices[b], s[a], s[b]));
+          polygon.push_back(crossingPoint(vertices[a], vertices[b], s[a], s[b]));
         }
       }
     }
     thread_local std::vector<int> order;
     thread_local std::vector<Vec3> unsorted;
-    counterClockwise(section.polygon, plane.normal, order);
-    unsorted.assign(section.polygon.begin(), section.polygon.end());
-    for (std::size_t k = 0; k < order.size(); ++k) section.polygon[k] = unsorted[order[k]];
-    return section;
+    counterClockwise(polygon, plane.normal, order);
+    unsorted.assign(polygon.begin(), polygon.end());
+    for (std::size_t k = 0; k < order.size(); ++k) polygon[k] = unsorted[order[k]];
+    return SectionKind::Crossing;
   }
-  for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-    const std::vector<int>& face = piece.shape.faces[f];
+  for (std::size_t f = 0; f < faces.count(); ++f) {
+    const std::span<const int> face = faces.face(f);
     const bool on = std::all_of(face.begin(), face.end(), [&](int v) { return side[v] == 0; });
     if (!on) continue;
-    section.kind = SectionKind::OnFace;
-    section.face = static_cast<int>(f);
-    for (int v : face) section.polygon.push_back(vertices[v]);
-    // The face is counter-clockwise about its outward normal, which may be -n.
-    if (geometry::faceNormal(piece.shape, section.face).dot(plane.normal) < 0.0) {
-      std::reverse(section.polygon.begin(), section.polygon.end());
+    *face_out = static_cast<int>(f);
+    for (int v : face) polygon.push_back(vertices[v]);
+    // The face is counter-clockwise about its outward normal, which may be -n (Newell).
+    Vec3 n = Vec3::Zero();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      n += vertices[face[k]].cross(vertices[face[(k + 1) % face.size()]]);
     }
-    return section;
+    const double length = n.norm();
+    const Vec3 normal = length > 0.0 ? Vec3(n / length) : Vec3(Vec3::Zero());
+    if (normal.dot(plane.normal) < 0.0) std::reverse(polygon.begin(), polygon.end());
+    return SectionKind::OnFace;
   }
+  return SectionKind::None;
+}
+
+}  // namespace
+
+std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, double tolerance,
+                                      FaceSource cap) {
+  thread_local FlatSplit flat;
+  if (!splitCore(piece.shape.vertices, PolyhedronFaces{piece.shape}, plane, tolerance, flat)) {
+    return std::nullopt;
+  }
+  SplitPieces out;
+  halfPiece(flat.below_vertices, flat.below_loops, flat.below_size, flat.below_origin, piece, cap,
+            out.below);
+  halfPiece(flat.above_vertices, flat.above_loops, flat.above_size, flat.above_origin, piece, cap,
+            out.above);
+  out.below_origin = flat.below_origin;
+  out.above_origin = flat.above_origin;
+  return out;
+}
+
+bool splitFlat(const FlatPieceView& piece, const Plane& plane, double tolerance, FlatSplit& out) {
+  return splitCore(piece.vertices, FlatFaces{piece}, plane, tolerance, out);
+}
+
+Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
+  Section section;
+  section.kind = sectionCore(piece.shape.vertices, PolyhedronFaces{piece.shape}, plane, tolerance,
+                             section.polygon, &section.face);
   return section;
+}
+
+SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
+                             std::vector<Vec3>& polygon, int* face) {
+  return sectionCore(piece.vertices, FlatFaces{piece}, plane, tolerance, polygon, face);
 }
 
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "blocks/block_model.h"
@@ -62,6 +63,32 @@ struct Section {
 
 /// The section of a convex piece by `plane` (same classification as splitPiece).
 Section planeSection(const Piece& piece, const Plane& plane, double tolerance);
+
+/// A convex piece in flat form (blocks/fast_cutter's cell store): its vertices, and face f's
+/// loop as loops[face_begin[f] .. face_begin[f] + face_size[f]) (vertex indices into
+/// `vertices`, counter-clockwise seen from outside).
+struct FlatPieceView {
+  std::span<const Vec3> vertices;
+  std::span<const int> loops;
+  std::span<const int> face_begin;  ///< per face: first entry of its loop in `loops`
+  std::span<const int> face_size;   ///< per face: number of corners
+};
+
+/// The two halves of a flat split, in scratch storage reused by the caller.
+struct FlatSplit {
+  std::vector<Vec3> below_vertices, above_vertices;
+  std::vector<int> below_loops, above_loops;    ///< face loops, concatenated
+  std::vector<int> below_size, above_size;      ///< per face: corners
+  std::vector<int> below_origin, above_origin;  ///< per face: input face, -1 for the new one
+};
+
+/// splitPiece on a flat piece: the very same halves (vertices, faces, loops and origins in
+/// the same order, bitwise the same points), into `out`. False when the plane does not cross.
+bool splitFlat(const FlatPieceView& piece, const Plane& plane, double tolerance, FlatSplit& out);
+
+/// planeSection on a flat piece: the same kind, face and polygon (into `polygon`, cleared).
+SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
+                             std::vector<Vec3>& polygon, int* face);
 
 /// The part of a convex polygon where plane.distance >= 0 (Sutherland-Hodgman, one plane).
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane);

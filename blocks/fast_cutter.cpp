@@ -459,6 +459,16 @@ bool insidePolygon(const std::vector<Vec3>& points, const CutPolygon& polygon, d
 
 /// Area (m2) of the part of `face` inside the convex polygon.
 double coveredArea(const std::vector<Vec3>& face, const CutPolygon& polygon) {
+  // A face wholly outside one edge line (every point strictly outside) has nothing covered:
+  // the clipping below would end empty, or, through round-off in its constructed points, in
+  // a sliver of no area. Decided by signs before any clipping (most faces in a disc plane
+  // lie outside the disc).
+  for (const Plane& edge : polygon.edges) {
+    if (std::all_of(face.begin(), face.end(),
+                    [&](const Vec3& p) { return edge.distance(p) < 0.0; })) {
+      return 0.0;
+    }
+  }
   thread_local std::vector<Vec3> a, b;
   a.assign(face.begin(), face.end());
   for (const Plane& edge : polygon.edges) {
@@ -539,6 +549,8 @@ struct Link {
   int face = 0;
   int other = 0;  ///< index in the region's cell store
   int other_face = 0;
+  int back = 0;  ///< position of the reverse link in the other cell's list (lists of live
+                 ///< cells only change in place or grow at the end, so positions hold)
 };
 
 /// A cell of a region: a work piece, its bounding box and, when contacts are tracked, the
@@ -614,8 +626,12 @@ void splitRegions(const std::vector<CutPolygon>& polygons,
 
 /// What one region gives.
 struct RegionCut {
-  std::vector<WorkPiece> pieces;
-  std::vector<FacePair> touching;  ///< tracked: face pairs that may touch (indices in `pieces`)
+  std::vector<Piece> pieces;
+  std::vector<int> planes;  ///< plane id of every face of `pieces`, in piece and face order
+  /// Tracked: the faces that may touch another (piece indices into `pieces`), for the
+  /// contact tests, and the pairs of them (indices into faces.faces).
+  ContactFaces faces;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
   long long piece_tests = 0;
   long long splits = 0;
@@ -708,25 +724,172 @@ void initialTouching(std::vector<Cell>& cells, double tolerance) {
           const bool b_on_a = low_b >= -margin && high_b <= margin;
           const bool a_on_b = low_a >= -margin && high_a <= margin;
           if (!b_on_a && !a_on_b) continue;
-          cells[i].links.push_back({fa, static_cast<int>(j), fb});
-          cells[j].links.push_back({fb, static_cast<int>(i), fa});
+          const int at_i = static_cast<int>(cells[i].links.size());
+          const int at_j = static_cast<int>(cells[j].links.size());
+          cells[i].links.push_back({fa, static_cast<int>(j), fb, at_j});
+          cells[j].links.push_back({fb, static_cast<int>(i), fa, at_i});
         }
       }
     }
   }
 }
 
-/// Hands the links of `store[c]` to its two halves `below` (to be stored at index
-/// `below_id`) and `above` (`above_id`), and updates the linked cells' own links. A face
-/// that goes to one half keeps its links; for a face split between the halves, a linked
-/// face stays with a half unless it lies wholly beyond twice the tolerance on the other
-/// side of the splitting plane, so a face that touches a half with area stays linked
-/// (conservative: the contact test decides). The two new faces are linked.
-void relink(std::vector<Cell>& store, int c, Cell& below, Cell& above, int below_id, int above_id,
-            const WorkSplit& split, const Plane& plane, double tolerance) {
-  Cell& old = store[c];
+/// The cells of one region in flat arrays, so that a split allocates nothing once the arrays
+/// have grown: cell c's vertices are vertices[v_begin[c] ..], its faces are the global faces
+/// f_begin[c] .. f_begin[c] + f_count[c] - 1, face g's loop is loops[face_begin[g] ..
+/// + face_size[g]) (indices into the cell's vertices). A split appends its two halves; the
+/// entries of a dead cell stay unused until the region is done.
+class CellStore {
+ public:
+  /// Appends a cell; returns its index.
+  int add(const WorkPiece& work, const Box& box, std::vector<Link> links) {
+    const int id = beginCell(box, std::move(links));
+    const geometry::Polyhedron& shape = work.piece.shape;
+    vertices_.insert(vertices_.end(), shape.vertices.begin(), shape.vertices.end());
+    v_count_.back() = static_cast<int>(shape.vertices.size());
+    for (std::size_t f = 0; f < shape.faces.size(); ++f) {
+      face_begin_.push_back(static_cast<int>(loops_.size()));
+      face_size_.push_back(static_cast<int>(shape.faces[f].size()));
+      loops_.insert(loops_.end(), shape.faces[f].begin(), shape.faces[f].end());
+      source_.push_back(work.piece.face_sources[f]);
+      plane_.push_back(work.planes[f]);
+    }
+    f_count_.back() = static_cast<int>(shape.faces.size());
+    return id;
+  }
+  /// Appends one half of a split of cell `from` (FlatSplit below or above): new faces (origin
+  /// -1) get `plane_id` and a Fictitious source, the others those of their origin face.
+  int addHalf(int from, const std::vector<Vec3>& vertices, const std::vector<int>& loops,
+              const std::vector<int>& sizes, const std::vector<int>& origin, int plane_id) {
+    Box box;
+    box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    box.max = -box.min;
+    for (const Vec3& v : vertices) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    const int id = beginCell(box, {});
+    vertices_.insert(vertices_.end(), vertices.begin(), vertices.end());
+    v_count_.back() = static_cast<int>(vertices.size());
+    int at = static_cast<int>(loops_.size());
+    loops_.insert(loops_.end(), loops.begin(), loops.end());
+    const int first = f_begin_[from];
+    for (std::size_t f = 0; f < sizes.size(); ++f) {
+      face_begin_.push_back(at);
+      face_size_.push_back(sizes[f]);
+      at += sizes[f];
+      const FaceSource source =
+          origin[f] < 0 ? FaceSource{FaceKind::Fictitious, -1} : source_[first + origin[f]];
+      const int plane = origin[f] < 0 ? plane_id : plane_[first + origin[f]];
+      source_.push_back(source);
+      plane_.push_back(plane);
+    }
+    f_count_.back() = static_cast<int>(sizes.size());
+    return id;
+  }
+  /// Cell c as a flat piece (valid until the next add).
+  FlatPieceView view(int c) const {
+    return {std::span<const Vec3>(vertices_).subspan(v_begin_[c], v_count_[c]), loops_,
+            std::span<const int>(face_begin_).subspan(f_begin_[c], f_count_[c]),
+            std::span<const int>(face_size_).subspan(f_begin_[c], f_count_[c])};
+  }
+  int faceCount(int c) const { return f_count_[c]; }
+  /// Index of face f of cell c among all faces of the store (0 .. faceTotal() - 1).
+  std::size_t faceIndex(int c, int f) const { return static_cast<std::size_t>(f_begin_[c] + f); }
+  std::size_t faceTotal() const { return face_begin_.size(); }
+  int planeOf(int c, int f) const { return plane_[f_begin_[c] + f]; }
+  const Box& box(int c) const { return boxes_[c]; }
+  std::size_t size() const { return v_begin_.size(); }
+  std::vector<Link>& links(int c) { return links_[c]; }
+  /// Drops a dead cell's links.
+  void kill(int c) {
+    links_[c].clear();
+    spare_links_.push_back(std::move(links_[c]));
+  }
+  /// Empties the store, keeping its storage (the store of a thread is reused by its
+  /// regions: no allocation, no page faults once grown).
+  void clear() {
+    vertices_.clear();
+    loops_.clear();
+    face_begin_.clear();
+    face_size_.clear();
+    plane_.clear();
+    source_.clear();
+    v_begin_.clear();
+    v_count_.clear();
+    f_begin_.clear();
+    f_count_.clear();
+    boxes_.clear();
+    for (std::vector<Link>& list : links_) {
+      list.clear();
+      spare_links_.push_back(std::move(list));
+    }
+    links_.clear();
+  }
+  /// The lowest and highest signed distance (m) of the points of face f of cell c from
+  /// `plane`.
+  std::pair<double, double> faceReach(int c, int f, const Plane& plane) const {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    const int g = f_begin_[c] + f;
+    for (int k = face_begin_[g]; k < face_begin_[g] + face_size_[g]; ++k) {
+      const double d = plane.distance(vertices_[v_begin_[c] + loops_[k]]);
+      low = std::min(low, d);
+      high = std::max(high, d);
+    }
+    return {low, high};
+  }
+  /// Cell c as a piece; the plane ids of its faces are appended to `planes`.
+  Piece piece(int c, std::vector<int>& planes) const {
+    Piece piece;
+    const auto first = vertices_.begin() + v_begin_[c];
+    piece.shape.vertices.assign(first, first + v_count_[c]);
+    piece.shape.faces.resize(static_cast<std::size_t>(f_count_[c]));
+    piece.face_sources.resize(static_cast<std::size_t>(f_count_[c]));
+    for (int f = 0; f < f_count_[c]; ++f) {
+      const int g = f_begin_[c] + f;
+      const auto loop = loops_.begin() + face_begin_[g];
+      piece.shape.faces[f].assign(loop, loop + face_size_[g]);
+      piece.face_sources[f] = source_[g];
+      planes.push_back(plane_[g]);
+    }
+    return piece;
+  }
+
+ private:
+  int beginCell(const Box& box, std::vector<Link> links) {
+    const int id = static_cast<int>(v_begin_.size());
+    v_begin_.push_back(static_cast<int>(vertices_.size()));
+    v_count_.push_back(0);
+    f_begin_.push_back(static_cast<int>(face_begin_.size()));
+    f_count_.push_back(0);
+    boxes_.push_back(box);
+    if (links.empty() && !spare_links_.empty()) {
+      links = std::move(spare_links_.back());  // cleared, with its capacity
+      spare_links_.pop_back();
+    }
+    links_.push_back(std::move(links));
+    return id;
+  }
+  std::vector<Vec3> vertices_;
+  std::vector<int> loops_;
+  std::vector<int> face_begin_, face_size_, plane_;
+  std::vector<FaceSource> source_;
+  std::vector<int> v_begin_, v_count_, f_begin_, f_count_;
+  std::vector<Box> boxes_;
+  std::vector<std::vector<Link>> links_;
+  std::vector<std::vector<Link>> spare_links_;  ///< emptied lists of dead cells, for reuse
+};
+
+/// Hands the links of cell c to its two halves `below` and `above` (the split `split`), and
+/// updates the linked cells' own links. A face that goes to one half keeps its links; for a
+/// face split between the halves, a linked face stays with a half unless it lies wholly
+/// beyond twice the tolerance on the other side of the splitting plane, so a face that
+/// touches a half with area stays linked (conservative: the contact test decides). The two
+/// new faces are linked.
+void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit& split,
+            const Plane& plane, double tolerance) {
   thread_local std::vector<int> to_below, to_above;
-  const std::size_t faces = old.work.piece.shape.faces.size();
+  const std::size_t faces = static_cast<std::size_t>(store.faceCount(c));
   to_below.assign(faces, -1);
   to_above.assign(faces, -1);
   int new_below = -1, new_above = -1;
@@ -736,36 +899,43 @@ void relink(std::vector<Cell>& store, int c, Cell& below, Cell& above, int below
   for (std::size_t f = 0; f < split.above_origin.size(); ++f) {
     (split.above_origin[f] < 0 ? new_above : to_above[split.above_origin[f]]) = static_cast<int>(f);
   }
-  below.links.clear();
-  above.links.clear();
-  below.links.push_back({new_below, above_id, new_above});
-  above.links.push_back({new_above, below_id, new_below});
+  std::vector<Link>& below = store.links(below_id);
+  std::vector<Link>& above = store.links(above_id);
+  below.clear();
+  above.clear();
+  below.push_back({new_below, above_id, new_above, 0});
+  above.push_back({new_above, below_id, new_below, 0});
   const double margin = 2.0 * tolerance;
-  for (const Link& link : old.links) {
+  for (const Link& link : store.links(c)) {
+    if (link.other_face < 0) continue;  // a link whose face vanished in an earlier split
     const int fb = to_below[link.face], fa = to_above[link.face];
     bool keep_below = fb >= 0, keep_above = fa >= 0;
-    Cell& other = store[link.other];
     if (keep_below && keep_above) {
-      const auto [low, high] = faceReach(other.work.piece, link.other_face, plane);
+      const auto [low, high] = store.faceReach(link.other, link.other_face, plane);
       keep_below = low <= margin;
       keep_above = high >= -margin;
     }
-    if (keep_below) below.links.push_back({fb, link.other, link.other_face});
-    if (keep_above) above.links.push_back({fa, link.other, link.other_face});
-    // The linked cell's link back to (c, face): to the half kept, or one per half.
-    for (Link& back : other.links) {
-      if (back.other != c || back.face != link.other_face || back.other_face != link.face) {
-        continue;
+    // The linked cell's link back to (c, face) goes to the half kept, or one per half.
+    std::vector<Link>& other = store.links(link.other);
+    Link& back = other[static_cast<std::size_t>(link.back)];
+    if (keep_below) {
+      below.push_back({fb, link.other, link.other_face, link.back});
+      back.other = below_id;
+      back.other_face = fb;
+      back.back = static_cast<int>(below.size()) - 1;
+      if (keep_above) {
+        above.push_back({fa, link.other, link.other_face, static_cast<int>(other.size())});
+        other.push_back({link.other_face, above_id, fa, static_cast<int>(above.size()) - 1});
       }
-      if (keep_below) {
-        back.other = below_id;
-        back.other_face = fb;
-        if (keep_above) other.links.push_back({link.other_face, above_id, fa});
-      } else {
-        back.other = above_id;
-        back.other_face = fa;
-      }
-      break;
+    } else if (keep_above) {
+      above.push_back({fa, link.other, link.other_face, link.back});
+      back.other = above_id;
+      back.other_face = fa;
+      back.back = static_cast<int>(above.size()) - 1;
+    } else {
+      // The face lies in the splitting plane within the tolerance on both halves (a face
+      // too small to keep): nothing of it is left to touch.
+      back.other_face = -1;
     }
   }
 }
@@ -777,32 +947,40 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
                     const std::vector<std::vector<int>>& domain_planes, bool box_domain,
                     const CutTolerances& tol, bool track) {
   RegionCut out;
-  // Cells stay at their index in `store` (dead ones are emptied); `live` lists the live
-  // ones in order, a split cell's halves taking its place.
-  std::vector<Cell> store = regionCells(region, domain, domain_planes, box_domain, tol);
-  if (track) initialTouching(store, tol.distance);
+  // Cells stay at their index in `store` (dead ones are dropped from `live`); `live` lists
+  // the live ones in order, a split cell's halves taking its place.
+  thread_local CellStore store;
+  store.clear();
+  {
+    std::vector<Cell> start = regionCells(region, domain, domain_planes, box_domain, tol);
+    if (track) initialTouching(start, tol.distance);
+    for (Cell& cell : start) store.add(cell.work, cell.box, std::move(cell.links));
+  }
   std::vector<int> live(store.size()), next;
   std::iota(live.begin(), live.end(), 0);
-  std::vector<Vec3> covered, scratch;
+  std::vector<Vec3> section, covered, scratch;
+  FlatSplit split;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
     const Box reach = polygon.box.enlarged(tol.distance);
     next.clear();
     for (const int id : live) {
-      const Cell& cell = store[id];
-      const bool near = (cell.box.min.array() <= reach.max.array()).all() &&
-                        (reach.min.array() <= cell.box.max.array()).all() &&
-                        !boxMissesPlane(cell.box, polygon.plane, tol.distance);
+      const Box& box = store.box(id);
+      const bool near = (box.min.array() <= reach.max.array()).all() &&
+                        (reach.min.array() <= box.max.array()).all() &&
+                        !boxMissesPlane(box, polygon.plane, tol.distance);
       if (!near) {
         next.push_back(id);
         continue;
       }
       ++out.piece_tests;
-      const Section section = planeSection(cell.work.piece, polygon.plane, tol.distance);
-      if (section.kind == SectionKind::OnFace) {
-        out.coincident.emplace_back(cell.work.planes[section.face], polygon.plane_id);
+      int on_face = -1;
+      const SectionKind kind =
+          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face);
+      if (kind == SectionKind::OnFace) {
+        out.coincident.emplace_back(store.planeOf(id, on_face), polygon.plane_id);
       }
-      if (section.kind != SectionKind::Crossing) {
+      if (kind != SectionKind::Crossing) {
         next.push_back(id);
         continue;
       }
@@ -812,7 +990,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       bool apart = false, inside = true;
       for (const Plane& edge : polygon.edges) {
         double low = std::numeric_limits<double>::infinity(), high = -low;
-        for (const Vec3& x : section.polygon) {
+        for (const Vec3& x : section) {
           const double d = edge.distance(x);
           low = std::min(low, d);
           high = std::max(high, d);
@@ -828,9 +1006,9 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       // cuts it (blocks-exact2's rule for EdgePlanes, thinnerThan).
       bool cut = false;
       if (!apart && inside) {
-        cut = !thinnerThan(section.polygon, tol.distance);
+        cut = !thinnerThan(section, tol.distance);
       } else if (!apart) {
-        covered = section.polygon;
+        covered = section;
         for (const Plane& edge : polygon.edges) {
           clipPolygon(covered, edge, scratch);
           std::swap(covered, scratch);
@@ -838,29 +1016,17 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
         cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
-      if (!cut) {
-        next.push_back(id);
-        continue;
-      }
-      auto split = splitWork(cell.work, polygon.plane, polygon.plane_id, tol.distance,
-                             {FaceKind::Fictitious, -1});
-      if (!split) {
+      if (!cut || !splitFlat(store.view(id), polygon.plane, tol.distance, split)) {
         next.push_back(id);
         continue;
       }
       ++out.splits;
-      const int below_id = static_cast<int>(store.size());
-      const int above_id = below_id + 1;
-      const Box below_box = geometry::bounds(split->below.piece.shape);
-      const Box above_box = geometry::bounds(split->above.piece.shape);
-      Cell below{std::move(split->below), below_box, {}};
-      Cell above{std::move(split->above), above_box, {}};
-      if (track) {
-        relink(store, id, below, above, below_id, above_id, *split, polygon.plane, tol.distance);
-      }
-      store[id] = Cell{};
-      store.push_back(std::move(below));
-      store.push_back(std::move(above));
+      const int below_id = store.addHalf(id, split.below_vertices, split.below_loops,
+                                         split.below_size, split.below_origin, polygon.plane_id);
+      const int above_id = store.addHalf(id, split.above_vertices, split.above_loops,
+                                         split.above_size, split.above_origin, polygon.plane_id);
+      if (track) relink(store, id, below_id, above_id, split, polygon.plane, tol.distance);
+      store.kill(id);
       next.push_back(below_id);
       next.push_back(above_id);
     }
@@ -870,14 +1036,31 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   out.pieces.reserve(live.size());
   for (std::size_t k = 0; k < live.size(); ++k) {
     local[live[k]] = static_cast<int>(k);
-    out.pieces.push_back(std::move(store[live[k]].work));
+    out.pieces.push_back(store.piece(live[k], out.planes));
   }
   if (track) {
+    // The contact table straight from the flat store (sequential, still in cache), faces in
+    // first-use order of the pairs.
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
+    const auto slotOf = [&](int cell, int k, int face) {
+      std::uint32_t& at = slot[store.faceIndex(cell, face)];
+      if (at == kNone) {
+        const FlatPieceView view = store.view(cell);
+        at = out.faces.add(k, face, view.vertices,
+                           view.loops.subspan(static_cast<std::size_t>(view.face_begin[face]),
+                                              static_cast<std::size_t>(view.face_size[face])));
+      }
+      return at;
+    };
     for (std::size_t k = 0; k < live.size(); ++k) {
-      for (const Link& link : store[live[k]].links) {
-        if (local[link.other] > static_cast<int>(k)) {
-          out.touching.push_back(
-              {{static_cast<int>(k), link.face}, {local[link.other], link.other_face}});
+      for (const Link& link : store.links(live[k])) {
+        if (link.other_face < 0) continue;
+        const int other = local[link.other];
+        if (other > static_cast<int>(k)) {
+          const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
+          const std::uint32_t b = slotOf(link.other, other, link.other_face);
+          out.pairs.emplace_back(a, b);
         }
       }
     }
@@ -945,52 +1128,77 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
                         options.track_contacts);
   });
   std::vector<Piece> pieces;
-  std::vector<std::vector<int>> planes;
-  std::vector<FacePair> touching;  // tracked, in the pieces' global indices
+  std::vector<int> planes;  // plane id of every face, in piece and face order (first_face)
+  ContactFaces tracked;     // tracked: the faces that may touch, the pairs of them
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tracked_pairs;
+  {
+    std::size_t piece_total = 0, face_total = 0, point_total = 0, pair_total = 0;
+    for (const RegionCut& cut : cuts) {
+      piece_total += cut.pieces.size();
+      face_total += cut.faces.faces.size();
+      point_total += cut.faces.points.size();
+      pair_total += cut.pairs.size();
+    }
+    pieces.reserve(piece_total);
+    tracked.faces.reserve(face_total);
+    tracked.points.reserve(point_total);
+    tracked.inward.reserve(point_total);
+    tracked_pairs.reserve(pair_total);
+  }
   for (RegionCut& cut : cuts) {
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
     const int offset = static_cast<int>(pieces.size());
-    for (const auto& [a, b] : cut.touching) {
-      touching.push_back({{a.piece + offset, a.face}, {b.piece + offset, b.face}});
-    }
-    for (WorkPiece& w : cut.pieces) {
-      pieces.push_back(std::move(w.piece));
-      planes.push_back(std::move(w.planes));
-    }
+    const auto shift = static_cast<std::uint32_t>(tracked.faces.size());
+    for (const auto& [a, b] : cut.pairs) tracked_pairs.emplace_back(a + shift, b + shift);
+    tracked.append(cut.faces, offset);
+    for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
+    planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
   }
   cuts.clear();
   counters.pieces = static_cast<int>(pieces.size());
-  for (std::vector<int>& list : planes) {
-    for (int& id : list) id = plane_ids.find(id);
+  for (int& id : planes) id = plane_ids.find(id);
+  // Face f of piece i is face first_face[i] + f of the flat per-face tables.
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
   }
+  const auto planeOf = [&](int piece, int face) {
+    return planes[first_face[piece] + static_cast<std::size_t>(face)];
+  };
   counters.cut_seconds = secondsSince(start);
 
   // Coverage of every face in a disc plane (a plane whose root is a group's).
   const auto assemble_start = std::chrono::steady_clock::now();
-  std::unordered_map<int, int> group_of_root;
+  std::vector<int> group_of_root(plane_ids.size(), -1);  // by plane root id
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    group_of_root.emplace(plane_ids.find(groups[g].plane_id), static_cast<int>(g));
+    int& slot = group_of_root[plane_ids.find(groups[g].plane_id)];
+    if (slot < 0) slot = static_cast<int>(g);  // the first group of a root, as emplace kept
   }
-  const auto groupOf = [&](int root) {
-    const auto it = group_of_root.find(root);
-    return it == group_of_root.end() ? -1 : it->second;
+  const auto groupOf = [&](int root) { return root < 0 ? -1 : group_of_root[root]; };
+  // cover_table / face_source [first_face[i] + f]: the coverage and source of face f of
+  // piece i (flat copies for the contact decisions: no cache miss per piece there).
+  std::vector<Cover> cover_table(first_face.back(), Cover::None);
+  std::vector<FaceSource> face_source(first_face.back());
+  const auto coverOf = [&](int piece, int face) -> Cover& {
+    return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
   };
-  std::vector<std::vector<Cover>> cover(pieces.size());
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
-    cover[i].assign(piece.shape.faces.size(), Cover::None);
-    std::vector<Vec3> loop;
+    Cover* cover = &cover_table[first_face[i]];
+    thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
-      const int g = groupOf(planes[i][f]);
+      const int g = groupOf(planeOf(static_cast<int>(i), static_cast<int>(f)));
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
       int disc = -1;
-      cover[i][f] = coverage(loop, groups[g], polygons, tol, &disc);
-      if (cover[i][f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
+      cover[f] = coverage(loop, groups[g], polygons, tol, &disc);
+      if (cover[f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
     }
+    std::copy(piece.face_sources.begin(), piece.face_sources.end(),
+              face_source.begin() + static_cast<std::ptrdiff_t>(first_face[i]));
   });
 
   counters.coverage_seconds = secondsSince(assemble_start);
@@ -998,11 +1206,11 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
   // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
   const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
-    const FaceSource& a = pieces[c.piece_a].face_sources[c.face_a];
-    const FaceSource& b = pieces[c.piece_b].face_sources[c.face_b];
-    const Cover ca = cover[c.piece_a][c.face_a];
-    const Cover cb = cover[c.piece_b][c.face_b];
-    const int g = groupOf(planes[c.piece_a][c.face_a]);
+    const FaceSource& a = face_source[first_face[c.piece_a] + c.face_a];
+    const FaceSource& b = face_source[first_face[c.piece_b] + c.face_b];
+    const Cover ca = coverOf(c.piece_a, c.face_a);
+    const Cover cb = coverOf(c.piece_b, c.face_b);
+    const int g = groupOf(planeOf(c.piece_a, c.face_a));
     if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
         b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
       // Not a disc plane: the face labels decide.
@@ -1032,20 +1240,19 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // Inside a region: the tracked pairs. Across regions: faces in the kd planes only (two
     // pieces of different regions can share area only in the plane between them).
     std::vector<FaceSource> inside_sources, across_sources;
-    const std::vector<PieceContact> inside =
-        decideCandidateContacts(pieces, touching, tol.distance, tol.area, decide, &inside_sources);
+    const std::vector<PieceContact> inside = decideTableContacts(
+        tracked, pieces.size(), tracked_pairs, tol.distance, tol.area, decide, &inside_sources);
     std::vector<char> kd_plane(plane_ids.size(), 0);
     for (const Region& region : regions) {
       for (int id : region.face_plane) {
         if (id >= 0) kd_plane[plane_ids.find(id)] = 1;
       }
     }
-    std::vector<std::vector<int>> across_planes = planes;
-    for (std::vector<int>& list : across_planes) {
-      for (int& id : list) id = kd_plane[id] ? id : -1;
-    }
+    // In place (no copy): the contacts inside regions are decided already, and the faces
+    // searched now keep their (kd plane) ids, which is all `decide` reads of them.
+    for (int& id : planes) id = kd_plane[id] ? id : -1;
     const std::vector<PieceContact> across =
-        findContactsByPlane(pieces, across_planes, tol.distance, tol.area, decide, &across_sources);
+        findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &across_sources);
     // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
     std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
     for (std::size_t k = 0; k < inside.size(); ++k)

@@ -221,62 +221,59 @@ std::vector<PieceContact> findPieceContacts(std::span<const Piece> pieces, doubl
 
 namespace {
 
-/// Faces of pieces in one flat table: per face its plane, box and the range of its points
-/// and of the inward unit normals of its edges in two flat arrays.
-struct PlaneFaces {
-  struct Face {
-    int piece, face;
-    std::uint32_t begin, end;  ///< range in `points` and `inward`
-    Vec3 normal;
-    double offset;
-    geometry::Box box;
-  };
-  std::vector<Face> faces;  ///< findContactsByPlane: grouped by plane, in a plane in piece and
-                            ///< face order; decideCandidateContacts: in first-use order
-  std::vector<Vec3> points;
-  std::vector<Vec3> inward;  ///< per point k: unit normal of edge k -> k+1 towards the
-                             ///< face's inside (zero for an edge of zero length)
-  std::vector<std::pair<std::size_t, std::size_t>> groups;  ///< [begin, end) of each plane
-                                                            ///< with two faces or more
-
-  /// Fills faces[k] from face f of piece i (its points go to points[begin..]).
-  void fill(std::span<const Piece> pieces, int i, int f, std::size_t k, std::uint32_t begin) {
-    const geometry::Polyhedron& shape = pieces[i].shape;
-    Face& d = faces[k];
-    d.piece = i;
-    d.face = f;
-    d.begin = begin;
-    const std::vector<int>& loop = shape.faces[f];
-    d.end = begin + static_cast<std::uint32_t>(loop.size());
-    Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
-    d.box = {shape.vertices[loop[0]], shape.vertices[loop[0]]};
-    std::uint32_t at = d.begin;
-    for (std::size_t v = 0; v < loop.size(); ++v) {
-      const Vec3& p = shape.vertices[loop[v]];
-      const Vec3& q = shape.vertices[loop[v + 1 == loop.size() ? 0 : v + 1]];
-      newell += p.cross(q);
-      mean += p;
-      d.box.min = d.box.min.cwiseMin(p);
-      d.box.max = d.box.max.cwiseMax(p);
-      points[at++] = p;
-    }
-    const double length = newell.norm();
-    d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
-    d.offset = d.normal.dot(mean / static_cast<double>(loop.size()));
-    const std::uint32_t n = d.end - d.begin;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      const Vec3& p = points[d.begin + v];
-      const Vec3& q = points[d.begin + (v + 1 == n ? 0 : v + 1)];
-      const Vec3 in = d.normal.cross(q - p);
-      const double edge = in.norm();
-      inward[d.begin + v] = edge == 0.0 ? Vec3(Vec3::Zero()) : Vec3(in / edge);
-    }
+/// Fills face entry d (piece, face) from its `n` corners point(0) .. point(n - 1), writing
+/// its points and edge normals from `begin` on: the Newell unit normal, the plane offset
+/// through the corners' mean, the bounding box and every edge's inward unit normal.
+template <class Point>
+void fillFace(ContactFaces::Face& d, int piece, int face, std::uint32_t begin, std::size_t n,
+              const Point& point, Vec3* points, Vec3* inward) {
+  d.piece = piece;
+  d.face = face;
+  d.begin = begin;
+  d.end = begin + static_cast<std::uint32_t>(n);
+  Vec3 newell = Vec3::Zero(), mean = Vec3::Zero();
+  d.box = {point(0), point(0)};
+  std::uint32_t at = d.begin;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3& p = point(v);
+    const Vec3& q = point(v + 1 == n ? 0 : v + 1);
+    newell += p.cross(q);
+    mean += p;
+    d.box.min = d.box.min.cwiseMin(p);
+    d.box.max = d.box.max.cwiseMax(p);
+    points[at++] = p;
   }
-};
+  const double length = newell.norm();
+  d.normal = length > 0.0 ? Vec3(newell / length) : Vec3(Vec3::Zero());
+  d.offset = d.normal.dot(mean / static_cast<double>(n));
+  const std::uint32_t count = d.end - d.begin;
+  for (std::uint32_t v = 0; v < count; ++v) {
+    const Vec3& p = points[d.begin + v];
+    const Vec3& q = points[d.begin + (v + 1 == count ? 0 : v + 1)];
+    const Vec3 in = d.normal.cross(q - p);
+    const double edge = in.norm();
+    inward[d.begin + v] = edge == 0.0 ? Vec3(Vec3::Zero()) : Vec3(in / edge);
+  }
+}
+
+/// Fills table.faces[k] from face f of piece i (its points go to points[begin..]).
+void fillFromPiece(ContactFaces& table, std::span<const Piece> pieces, int i, int f, std::size_t k,
+                   std::uint32_t begin) {
+  const geometry::Polyhedron& shape = pieces[i].shape;
+  const std::vector<int>& loop = shape.faces[f];
+  fillFace(
+      table.faces[k], i, f, begin, loop.size(),
+      [&](std::size_t v) -> const Vec3& { return shape.vertices[loop[v]]; }, table.points.data(),
+      table.inward.data());
+}
+
+using PlaneFaces = ContactFaces;
 
 /// The faces of all pieces with a plane id >= 0, in plane order (faces with a negative id are
 /// left out), for findContactsByPlane.
-PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vector<int>>& planes) {
+/// `plane_of(i, f)`: the plane id of face f of piece i.
+template <class PlaneOf>
+PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   // Faces in piece order: their plane ids and sizes.
   std::vector<std::size_t> first_face(pieces.size() + 1, 0);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -288,7 +285,7 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vect
   int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
-      const int id = planes[i][f];
+      const int id = plane_of(i, f);
       plane[first_face[i] + f] = id;
       if (id < 0) continue;
       ++count;
@@ -343,8 +340,8 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const std::vector<std::vect
                         for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
                           const std::uint32_t k = slot[first_face[i] + f];
                           if (k == kLeftOut) continue;
-                          out.fill(pieces, static_cast<int>(i), static_cast<int>(f), k,
-                                   first_point[k]);
+                          fillFromPiece(out, pieces, static_cast<int>(i), static_cast<int>(f), k,
+                                        first_point[k]);
                         }
                       }
                     });
@@ -590,12 +587,14 @@ std::vector<PieceContact> sortedContacts(const std::vector<std::vector<PieceCont
 
 }  // namespace
 
-std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
-                                              const std::vector<std::vector<int>>& planes,
-                                              double tolerance, double min_area,
-                                              const ContactDecision& decide,
-                                              std::vector<FaceSource>* sources) {
-  const PlaneFaces table = planeFaces(pieces, planes);
+namespace {
+
+template <class PlaneOf>
+std::vector<PieceContact> contactsByPlane(std::span<const Piece> pieces, const PlaneOf& plane_of,
+                                          double tolerance, double min_area,
+                                          const ContactDecision& decide,
+                                          std::vector<FaceSource>* sources) {
+  const PlaneFaces table = planeFaces(pieces, plane_of);
   const PairTests tests(table, tolerance, min_area);
   const std::size_t group_count = table.groups.size();
   std::vector<std::vector<PieceContact>> found(group_count);
@@ -632,6 +631,31 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
   return sortedContacts(found, decided, static_cast<bool>(decide), sources);
 }
 
+}  // namespace
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              const std::vector<std::vector<int>>& planes,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  return contactsByPlane(
+      pieces, [&](std::size_t i, std::size_t f) { return planes[i][f]; }, tolerance, min_area,
+      decide, sources);
+}
+
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              std::span<const int> face_planes, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  }
+  return contactsByPlane(
+      pieces, [&](std::size_t i, std::size_t f) { return face_planes[first_face[i] + f]; },
+      tolerance, min_area, decide, sources);
+}
+
 std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
                                                   std::span<const FacePair> candidates,
                                                   double tolerance, double min_area,
@@ -663,12 +687,52 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
   table.faces.resize(refs.size());
   table.points.resize(first_point.back());
   table.inward.resize(first_point.back());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, refs.size(), 1024),
+  // Read the pieces in order (sequential in memory: a piece's faces were allocated together),
+  // write each named face to its slot; in first-use order every face was a cache miss.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        table.fill(pieces, refs[k].piece, refs[k].face, k, first_point[k]);
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+                          const std::uint32_t k = slot[first_face[i] + f];
+                          if (k == kNone) continue;
+                          fillFromPiece(table, pieces, static_cast<int>(i), static_cast<int>(f), k,
+                                        first_point[k]);
+                        }
                       }
                     });
+  return decideTableContacts(table, pieces.size(), pairs, tolerance, min_area, decide, sources);
+}
+
+std::uint32_t ContactFaces::add(int piece, int face, std::span<const Vec3> vertices,
+                                std::span<const int> loop) {
+  const auto k = static_cast<std::uint32_t>(faces.size());
+  const auto begin = static_cast<std::uint32_t>(points.size());
+  faces.emplace_back();
+  points.resize(points.size() + loop.size());
+  inward.resize(inward.size() + loop.size());
+  fillFace(
+      faces.back(), piece, face, begin, loop.size(),
+      [&](std::size_t v) -> const Vec3& { return vertices[loop[v]]; }, points.data(),
+      inward.data());
+  return k;
+}
+
+void ContactFaces::append(const ContactFaces& other, int piece_offset) {
+  const auto shift = static_cast<std::uint32_t>(points.size());
+  for (Face d : other.faces) {
+    d.piece += piece_offset;
+    d.begin += shift;
+    d.end += shift;
+    faces.push_back(d);
+  }
+  points.insert(points.end(), other.points.begin(), other.points.end());
+  inward.insert(inward.end(), other.inward.begin(), other.inward.end());
+}
+
+std::vector<PieceContact> decideTableContacts(
+    const ContactFaces& table, std::size_t piece_count,
+    std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs, double tolerance,
+    double min_area, const ContactDecision& decide, std::vector<FaceSource>* sources) {
   const PairTests tests(table, tolerance, min_area);
   // Fixed batches of candidates (not one per thread), so the result does not depend on the
   // thread count.
@@ -677,10 +741,9 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
   std::vector<std::vector<PieceContact>> found(batches);
   std::vector<std::vector<FaceSource>> decided(batches);
   decideBatches(
-      tests, pieces.size(), batches,
+      tests, piece_count, batches,
       [&](std::size_t g) {
-        return std::span<const std::pair<std::uint32_t, std::uint32_t>>(
-            pairs.data() + g * kBatch, std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+        return pairs.subspan(g * kBatch, std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
       },
       decide, found, decided);
   return sortedContacts(found, decided, true, sources);

@@ -3,12 +3,15 @@
 // block adjacency from the real ones.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <span>
 #include <utility>
 #include <vector>
 
 #include "blocks/block_model.h"
+#include "geometry/box.h"
+#include "geometry/vec.h"
 
 namespace rockmass::blocks {
 
@@ -56,6 +59,13 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const ContactDecision& decide = {},
                                               std::vector<FaceSource>* sources = nullptr);
 
+/// The same with the plane ids flat: face_planes[k] for the k-th face counting the faces of
+/// all pieces in piece and face order.
+std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
+                                              std::span<const int> face_planes, double tolerance,
+                                              double min_area, const ContactDecision& decide = {},
+                                              std::vector<FaceSource>* sources = nullptr);
+
 /// One face of one piece.
 struct FaceRef {
   int piece = 0;  ///< index of the piece
@@ -77,6 +87,43 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
                                                   double tolerance, double min_area,
                                                   const ContactDecision& decide,
                                                   std::vector<FaceSource>* sources);
+
+/// Faces prepared for the contact tests of decideCandidateContacts: per face its piece, its
+/// corners, Newell unit normal, plane offset (through the corners' mean), bounding box and
+/// every edge's inward unit normal. decideCandidateContacts builds it from the pieces; a
+/// cutter that holds its pieces in flat arrays builds it with `add` (the same numbers) and
+/// calls decideTableContacts.
+struct ContactFaces {
+  /// One face.
+  struct Face {
+    int piece = 0, face = 0;
+    std::uint32_t begin = 0, end = 0;  ///< range in `points` and `inward`
+    geometry::Vec3 normal;             ///< Newell unit normal (outward)
+    double offset = 0.0;               ///< normal . x on the face's plane (m)
+    geometry::Box box;                 ///< bounding box of the corners
+  };
+  std::vector<Face> faces;
+  std::vector<geometry::Vec3> points;  ///< corners of all faces
+  std::vector<geometry::Vec3> inward;  ///< per corner k: unit normal of edge k -> k+1 towards
+                                       ///< the face's inside (zero for an edge of zero length)
+  /// findContactsByPlane: [begin, end) of each plane with two faces or more.
+  std::vector<std::pair<std::size_t, std::size_t>> groups;
+
+  /// Appends face `face` of piece `piece`, whose corners are vertices[loop[k]]; returns its
+  /// index in `faces`.
+  std::uint32_t add(int piece, int face, std::span<const geometry::Vec3> vertices,
+                    std::span<const int> loop);
+  /// Appends the faces of `other`, their piece indices shifted by `piece_offset`.
+  void append(const ContactFaces& other, int piece_offset);
+};
+
+/// decideCandidateContacts on a prepared table: `pairs` index table.faces, pieces are
+/// 0 .. piece_count - 1. The same contacts, decisions and order as decideCandidateContacts
+/// with the same candidates.
+std::vector<PieceContact> decideTableContacts(
+    const ContactFaces& table, std::size_t piece_count,
+    std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs, double tolerance,
+    double min_area, const ContactDecision& decide, std::vector<FaceSource>* sources);
 
 /// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
 /// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into

@@ -104,6 +104,17 @@ SoundnessReport& SoundnessReport::operator+=(const SoundnessReport& other) {
   return *this;
 }
 
+bool hasCloseVertices(const Piece& piece, const SoundnessTolerances& tolerances) {
+  const std::vector<Vec3>& vertices = piece.shape.vertices;
+  const double limit = tolerances.distance * tolerances.distance;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if ((vertices[i] - vertices[j]).squaredNorm() < limit) return true;
+    }
+  }
+  return false;
+}
+
 std::optional<SoundPiece> soundPiece(const Piece& piece, const SoundnessTolerances& tolerances,
                                      SoundPieceReport* report) {
   SoundPieceReport local;

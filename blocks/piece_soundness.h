@@ -68,6 +68,11 @@ struct SoundPieceReport {
 std::optional<SoundPiece> soundPiece(const Piece& piece, const SoundnessTolerances& tolerances,
                                      SoundPieceReport* report = nullptr);
 
+/// True when two vertices of the piece lie closer than tolerances.distance: only then may
+/// soundPiece change its shape. Otherwise soundPiece gives the piece unchanged, or nothing
+/// when its volume is below tolerances.volume (callers use this to skip the copy).
+bool hasCloseVertices(const Piece& piece, const SoundnessTolerances& tolerances);
+
 /// What soundPiece did to the pieces of a cut (summed by addToReport).
 struct SoundnessReport {
   int folded_pieces = 0;       ///< pieces folded away (volume below the tolerance)
