@@ -307,6 +307,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     const int structure = structure_of[list.front()];
     if (structure >= 0) {
       b.material = input.structures[structure].material;
+      b.structure = structure;
     } else {
       // The largest volume wins; ties go to the smaller material index.
       b.material =

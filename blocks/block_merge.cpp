@@ -100,6 +100,7 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume) {
     Block block;
     block.id = static_cast<int>(merged.size()) + 1;
     block.material = material(g);
+    block.structure = model.blocks[static_cast<std::size_t>(in_group.front())].structure;
     block.bounds = model.blocks[static_cast<std::size_t>(in_group.front())].bounds;
     for (int m : in_group) {
       Block& source = model.blocks[static_cast<std::size_t>(m)];

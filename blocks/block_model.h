@@ -35,8 +35,10 @@ struct Piece {
 /// A block: one or more convex pieces glued across fictitious faces; one rigid or
 /// deformable body for the DDA.
 struct Block {
-  int id = 0;                 ///< 1..N in a deterministic order
-  int material = -1;          ///< index into the scene's materials
+  int id = 0;         ///< 1..N in a deterministic order
+  int material = -1;  ///< index into the scene's materials
+  /// Index of the structure this block is (CutInput::structures), -1 for a rock block.
+  int structure = -1;
   std::vector<Piece> pieces;  ///< convex decomposition
   /// Sum over pieces and folded slivers (volume m3, moments about the origin).
   geometry::MassProperties mass;

@@ -1478,6 +1478,7 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
       block_of_near.push_back(static_cast<int>(blocks.size()));
     }
     blocks.push_back(makeBlock(std::move(structure_pieces), input.structures[s].material));
+    blocks.back().structure = static_cast<int>(s);
   }
   std::vector<PieceContact> structure_contacts;
   appendStructureContacts(near, near_rock, tolerances, structure_contacts);

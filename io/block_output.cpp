@@ -68,26 +68,11 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
   return formatVtu(vtu);
 }
 
-std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetwork& network,
-                                const blocks::BlockModel& model, const CutInfo& cut,
-                                const std::vector<Material>& materials) {
-  Json j = summaryHeader(run);
-  std::int64_t cutting = 0;
-  for (const geometry::Disc& d : network.discs) cutting += d.cuts;
-  j["discs"] = network.discs.size();
-  j["cutting_discs"] = cutting;
-  j["cutter"] = cut.cutter;
-  j["disc_segments"] = cut.disc_segments;
-  j["blocks"] = model.blocks.size();
-  j["pieces"] = cut.pieces;
-  std::vector<double> volumes;
-  for (const blocks::Block& b : model.blocks) volumes.push_back(b.mass.volume);
-  double total = 0.0;
-  for (double v : volumes) total += v;
-  j["total_volume"] = total;
-  j["domain_volume"] = model.domain_volume;
-  j["volume_error"] =
-      model.domain_volume > 0 ? (total - model.domain_volume) / model.domain_volume : 0.0;
+namespace {
+
+/// Sets j["volume_stats"] {min, max, mean} and j["weibull"] {shape, scale} (maximum
+/// likelihood) of `volumes`; null when there is no volume, or too few to fit.
+void putVolumeStatistics(Json& j, const std::vector<double>& volumes) {
   if (!volumes.empty()) {
     const blocks::VolumeStatistics s = blocks::volumeStatistics(volumes);
     j["volume_stats"] = {{"min", s.min}, {"max", s.max}, {"mean", s.mean}};
@@ -100,6 +85,53 @@ std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetw
   } catch (const std::invalid_argument&) {
     j["weibull"] = nullptr;  // fewer than 2 blocks, or all of one size
   }
+}
+
+}  // namespace
+
+std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetwork& network,
+                                const blocks::BlockModel& model, const CutInfo& cut,
+                                const std::vector<Material>& materials) {
+  Json j = summaryHeader(run);
+  std::int64_t cutting = 0;
+  for (const geometry::Disc& d : network.discs) cutting += d.cuts;
+  j["discs"] = network.discs.size();
+  j["cutting_discs"] = cutting;
+  j["cutter"] = cut.cutter;
+  j["disc_segments"] = cut.disc_segments;
+  j["blocks"] = model.blocks.size();
+  j["pieces"] = cut.pieces;
+  // The rock alone: structures (the dam) lie outside the domain box, so only the rock
+  // blocks add up to the domain volume, and only they make the rock mass's block-size
+  // distribution (Figure 7 of the paper).
+  std::vector<double> rock;
+  double structure_volume = 0.0;
+  for (const blocks::Block& b : model.blocks) {
+    if (b.structure < 0) {
+      rock.push_back(b.mass.volume);
+    } else {
+      structure_volume += b.mass.volume;
+    }
+  }
+  double rock_total = 0.0;
+  for (double v : rock) rock_total += v;
+  Json r;
+  r["blocks"] = rock.size();
+  r["total_volume"] = rock_total;
+  r["volume_error"] =
+      model.domain_volume > 0 ? (rock_total - model.domain_volume) / model.domain_volume : 0.0;
+  putVolumeStatistics(r, rock);
+  std::vector<double> volumes;
+  for (const blocks::Block& b : model.blocks) volumes.push_back(b.mass.volume);
+  double total = 0.0;
+  for (double v : volumes) total += v;
+  j["total_volume"] = total;
+  j["domain_volume"] = model.domain_volume;
+  // Of the rock blocks: the cut's error (structures lie outside the domain).
+  j["volume_error"] = r["volume_error"];
+  putVolumeStatistics(j, volumes);
+  j["rock"] = r;
+  j["structure_volume"] = structure_volume;
   j["adjacencies"] = model.adjacency.size();
   j["inconsistent_contacts"] = cut.inconsistent_contacts;
   std::map<int, std::pair<std::int64_t, double>> per_material;

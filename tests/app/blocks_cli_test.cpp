@@ -125,6 +125,19 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   EXPECT_NEAR(exact_summary["total_volume"].get<double>(), 4000.0 + 768.0, 1e-9);  // round-off
   // The dam stands on the rock top: the same contacts (block pairs and areas) both ways.
   EXPECT_EQ(exact_summary["adjacencies"], summary["adjacencies"]);
+  // The rock alone ("rock"): the four blocks fill the 4000 m3 domain, so the cut's volume
+  // error is round-off (it read (4768 - 4000) / 4000 with the dam counted); the dam's
+  // 768 m3 is reported apart.
+  for (const auto* s : {&summary, &exact_summary}) {
+    EXPECT_EQ((*s)["rock"]["blocks"], 4);
+    EXPECT_NEAR((*s)["rock"]["total_volume"].get<double>(), 4000.0, 1e-9);
+    EXPECT_NEAR((*s)["volume_error"].get<double>(), 0.0, 1e-12);
+    EXPECT_EQ((*s)["rock"]["volume_error"], (*s)["volume_error"]);
+    EXPECT_NEAR((*s)["structure_volume"].get<double>(), 768.0, 1e-9);
+    EXPECT_NEAR((*s)["rock"]["volume_stats"]["min"].get<double>(), 640.0, 1e-9);
+    EXPECT_NEAR((*s)["rock"]["volume_stats"]["mean"].get<double>(), 1000.0, 1e-9);
+    EXPECT_FALSE((*s)["rock"]["weibull"].is_null());
+  }
 }
 
 TEST(BlocksCli, MeshStructureIsExitTwoNamingTheSceneKey) {
