@@ -48,9 +48,10 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
 
 /// The blocks a DDA of the scene runs on (`dda`, `overload`, `strength`, `run`): `model`
 /// with the blocks below analysis.dda.min_block_volume glued to a neighbour
-/// (blocks::mergeSmallBlocks); `model` itself when the key is absent or 0. When it glued
-/// any, prints one line on stderr and sets `glued` (the summaries' glued_blocks); else
-/// leaves `glued` empty.
+/// (blocks::mergeSmallBlocks; none when the key is absent or 0), then every block's pieces
+/// merged where their union is convex (blocks::coarsenPieces: the same solids, fewer
+/// pieces). When it glued any, prints one line on stderr and sets `glued` (the summaries'
+/// glued_blocks); else leaves `glued` empty. Prints the piece counts on stderr.
 blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
                              std::optional<blocks::MergeReport>& glued);
 

@@ -16,6 +16,7 @@
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
 #include "geometry/orientation.h"
+#include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -23,25 +24,10 @@ namespace {
 using geometry::Disc;
 using geometry::FractureNetwork;
 using geometry::Vec3;
-
-/// A 10 m cube network with the given discs (ids assigned 1..N here).
-FractureNetwork cubeNetwork(std::vector<Disc> discs, double side = 10.0) {
-  FractureNetwork network;
-  network.domain = {Vec3::Zero(), Vec3::Constant(side)};
-  for (std::size_t i = 0; i < discs.size(); ++i) discs[i].id = static_cast<std::int64_t>(i) + 1;
-  network.discs = std::move(discs);
-  return network;
-}
-
-/// A circular disc of radius r.
-Disc circle(const Vec3& center, const Vec3& normal, double r) {
-  Disc d;
-  d.center = center;
-  d.normal = normal.normalized();
-  d.major = d.normal.unitOrthogonal();
-  d.a = d.b = r;
-  return d;
-}
+using test::circle;
+using test::cubeNetwork;
+using test::expectValidPiece;
+using test::totalVolume;
 
 /// A rectangle in the plane z = z0 (a FAB-like polygon disc).
 Disc rectangleZ(double x0, double x1, double y0, double y1, double z0) {
@@ -51,48 +37,6 @@ Disc rectangleZ(double x0, double x1, double y0, double y1, double z0) {
 /// A rectangle in the plane x = x0.
 Disc rectangleX(double x0, double y0, double y1, double z0, double z1) {
   return geometry::discFromPolygon({{x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}});
-}
-
-/// Block volumes, sorted ascending.
-std::vector<double> volumes(const BlockModel& model) {
-  std::vector<double> v;
-  for (const Block& b : model.blocks) v.push_back(b.mass.volume);
-  std::sort(v.begin(), v.end());
-  return v;
-}
-
-double totalVolume(const BlockModel& model) {
-  double sum = 0.0;
-  for (const Block& b : model.blocks) sum += b.mass.volume;
-  return sum;
-}
-
-/// Checks one piece: every directed edge used once and its reverse once (closed, 2-manifold),
-/// Euler V - E + F = 2 (a sphere), planar faces, and every vertex on the inner side of every
-/// face plane (convex, outward), all within `tolerance` (m); positive volume.
-void expectValidPiece(const Piece& piece, double tolerance) {
-  const geometry::Polyhedron& p = piece.shape;
-  ASSERT_EQ(piece.face_sources.size(), p.faces.size());
-  std::map<std::pair<int, int>, int> edges;
-  for (const std::vector<int>& face : p.faces) {
-    ASSERT_GE(face.size(), 3u);
-    for (std::size_t k = 0; k < face.size(); ++k) ++edges[{face[k], face[(k + 1) % face.size()]}];
-  }
-  for (const auto& [edge, count] : edges) {
-    ASSERT_EQ(count, 1) << "edge used twice the same way";
-    ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << "open edge";
-  }
-  const long v = static_cast<long>(p.vertices.size());
-  const long e = static_cast<long>(edges.size()) / 2;
-  const long f = static_cast<long>(p.faces.size());
-  EXPECT_EQ(v - e + f, 2);
-  for (std::size_t k = 0; k < p.faces.size(); ++k) {
-    const Vec3 n = geometry::faceNormal(p, static_cast<int>(k));
-    const Plane plane = Plane::through(p.vertices[p.faces[k][0]], n);
-    for (int i : p.faces[k]) EXPECT_NEAR(plane.distance(p.vertices[i]), 0.0, tolerance);
-    for (const Vec3& x : p.vertices) EXPECT_LE(plane.distance(x), tolerance);
-  }
-  EXPECT_GT(geometry::massProperties(p).volume, 0.0);
 }
 
 /// Every piece valid, volumes sum to the domain, no inconsistent contact.
@@ -142,7 +86,7 @@ TEST(FastCutter, ThreePersistentOrthogonalPlanes) {
       for (double h : {6.0, 4.0}) expected.push_back(a * b * h);
   std::sort(expected.begin(), expected.end());
   ASSERT_EQ(c.model.blocks.size(), 8u);
-  const std::vector<double> got = volumes(c.model);
+  const std::vector<double> got = test::sortedVolumes(c.model);
   for (std::size_t i = 0; i < 8; ++i) EXPECT_NEAR(got[i], expected[i], 1e-10);  // round-off
   // Each box touches 3 others across a disc face: 12 adjacencies.
   EXPECT_EQ(c.model.adjacency.size(), 12u);
@@ -198,7 +142,7 @@ TEST(FastCutter, TwoDiscsTogetherSeparateTheBox) {
   const Cut c = cut(network);
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 2u);
-  const std::vector<double> v = volumes(c.model);
+  const std::vector<double> v = test::sortedVolumes(c.model);
   EXPECT_NEAR(v[0], 300.0, 1e-9);
   EXPECT_NEAR(v[1], 700.0, 1e-9);
   // They touch across 6 x 10 of the first disc and 5 x 10 of the second: one adjacency
@@ -221,7 +165,7 @@ TEST(FastCutter, WedgeFromACorner) {
   const Cut c = cut(network);
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 2u);
-  const std::vector<double> v = volumes(c.model);
+  const std::vector<double> v = test::sortedVolumes(c.model);
   EXPECT_NEAR(v[0], 4.5, 1e-10);
   EXPECT_NEAR(v[1], 995.5, 1e-9);
 }
@@ -249,7 +193,7 @@ TEST(FastCutter, DiscsThroughDomainVerticesAndEdges) {
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 4u);
   // The tetrahedron is halved by x = y; the rest of each prism is 500 - 1000 / 12.
-  const std::vector<double> v = volumes(c.model);
+  const std::vector<double> v = test::sortedVolumes(c.model);
   EXPECT_NEAR(v[0], 1000.0 / 12, 1e-10);
   EXPECT_NEAR(v[1], 1000.0 / 12, 1e-10);
   EXPECT_NEAR(v[2], 500.0 - 1000.0 / 12, 1e-9);
@@ -298,7 +242,7 @@ TEST(FastCutter, TwoDiscsOneNanometreApart) {
   const Cut c = cut(network);
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 3u);
-  const std::vector<double> v = volumes(c.model);
+  const std::vector<double> v = test::sortedVolumes(c.model);
   // Coordinates near 5 m carry ~1e-15 m of round-off: 1e-6 relative of the 1e-9 m gap.
   EXPECT_NEAR(v[0], 1e-7, 1e-12);
   EXPECT_NEAR(v[1], 500.0 - 1e-7, 1e-9);
@@ -316,7 +260,7 @@ TEST(FastCutter, DiscTangentToExistingEdges) {
   const Cut c = cut(network);
   expectSoundModel(c.model, c.report);
   ASSERT_EQ(c.model.blocks.size(), 4u);
-  const std::vector<double> v = volumes(c.model);
+  const std::vector<double> v = test::sortedVolumes(c.model);
   EXPECT_NEAR(v[0], 125.0, 1e-9);
   EXPECT_NEAR(v[1], 250.0, 1e-9);
   EXPECT_NEAR(v[2], 250.0, 1e-9);

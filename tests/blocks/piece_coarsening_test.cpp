@@ -13,6 +13,7 @@
 #include "blocks/disc_scenes.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/polyhedron.h"
+#include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -37,17 +38,7 @@ bool inPiece(const Piece& piece, const Vec3& p, double tolerance) {
   return true;
 }
 
-/// Every directed edge of every face appears once, and its reverse once: a closed surface.
-void expectClosed(const Piece& piece) {
-  std::map<std::pair<int, int>, int> edges;
-  for (const std::vector<int>& face : piece.shape.faces) {
-    for (std::size_t k = 0; k < face.size(); ++k) ++edges[{face[k], face[(k + 1) % face.size()]}];
-  }
-  for (const auto& [edge, count] : edges) {
-    EXPECT_EQ(count, 1);
-    EXPECT_EQ(edges.count({edge.second, edge.first}), 1u);
-  }
-}
+using test::expectValidPiece;
 
 TEST(ConvexUnion, TwoHalvesOfABoxAreTheBoxWithTheirOwnVertices) {
   const Piece lower = boxPiece(Vec3(0, 0, 0), Vec3(2, 1, 0.5), {FaceKind::Disc, 1});
@@ -58,7 +49,7 @@ TEST(ConvexUnion, TwoHalvesOfABoxAreTheBoxWithTheirOwnVertices) {
   EXPECT_EQ(u->shape.vertices.size(), 8u);
   EXPECT_EQ(u->shape.faces.size(), 6u);
   EXPECT_DOUBLE_EQ(geometry::massProperties(u->shape).volume, 2.0);
-  expectClosed(*u);
+  expectValidPiece(*u, 1e-12);
   // The vertices are copies of the inputs' (conforming with neighbours), never recomputed.
   for (const Vec3& v : u->shape.vertices) {
     const bool from_lower = std::find(lower.shape.vertices.begin(), lower.shape.vertices.end(),
@@ -113,7 +104,7 @@ TEST(ConvexUnion, AWedgeOnABoxIsAPrism) {
   const std::optional<Piece> u = convexUnion(box, wedge, 1e-12);
   ASSERT_TRUE(u.has_value());
   EXPECT_NEAR(geometry::massProperties(u->shape).volume, 1.75, 1e-14);
-  expectClosed(*u);
+  expectValidPiece(*u, 1e-12);
   // 4 bottom corners, the 2 corners of the crease at x = 1, z = 1, and the wedge's 4 top
   // corners; (0, y, 1) lie inside the side x = 0 and are gone.
   EXPECT_EQ(u->shape.vertices.size(), 10u);
@@ -170,13 +161,11 @@ TEST(CoarsenPieces, CutAndGluedBlocksKeepTheirSolidWithFewerPieces) {
     }
     for (const Piece& p : new_block.pieces) {
       volume += geometry::massProperties(p.shape).volume;
-      expectClosed(p);
-      ASSERT_EQ(p.face_sources.size(), p.shape.faces.size());
+      // Closed, planar faces, convex and outward within the tolerance.
+      expectValidPiece(p, tolerance);
+      // Every vertex is an old vertex, bit for bit.
       for (const Vec3& v : p.shape.vertices) {
-        // Every vertex is an old vertex, bit for bit, and lies in every face plane's inner
-        // side: the piece is convex.
         EXPECT_EQ(old_vertices.count({v.x(), v.y(), v.z()}), 1u);
-        EXPECT_TRUE(inPiece(p, v, tolerance));
       }
     }
     EXPECT_NEAR(volume, old_block.mass.volume, 1e-9 * old_block.mass.volume);

@@ -14,6 +14,7 @@
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/disc.h"
+#include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -23,37 +24,10 @@ using geometry::FractureNetwork;
 using geometry::Polyhedron;
 using geometry::Vec3;
 
-/// A 10 m cube network with the given discs (ids 1..N).
-FractureNetwork cubeNetwork(std::vector<Disc> discs) {
-  FractureNetwork network;
-  network.domain = {Vec3::Zero(), Vec3::Constant(10.0)};
-  for (std::size_t i = 0; i < discs.size(); ++i) discs[i].id = static_cast<std::int64_t>(i) + 1;
-  network.discs = std::move(discs);
-  return network;
-}
-
-/// A circular disc of radius r (large enough here to cross the whole cube).
-Disc circle(const Vec3& center, const Vec3& normal, double r = 100.0) {
-  Disc d;
-  d.center = center;
-  d.normal = normal.normalized();
-  d.major = d.normal.unitOrthogonal();
-  d.a = d.b = r;
-  return d;
-}
-
-std::vector<double> sortedVolumes(const BlockModel& model) {
-  std::vector<double> v;
-  for (const Block& b : model.blocks) v.push_back(b.mass.volume);
-  std::sort(v.begin(), v.end());
-  return v;
-}
-
-double totalVolume(const BlockModel& model) {
-  double sum = 0.0;
-  for (const Block& b : model.blocks) sum += b.mass.volume;
-  return sum;
-}
+using test::circle;
+using test::cubeNetwork;
+using test::sortedVolumes;
+using test::totalVolume;
 
 /// Both cuts of a network, with their soundness reports.
 struct BothCuts {
