@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "blocks/convex_split.h"
@@ -296,6 +297,136 @@ TEST(NarrowPhase, ASharedVertexOfAMultiPieceBlockIsOneEntry) {
     EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
   }
   EXPECT_EQ(vertex_entries, 6);  // 4 corners + the 2 ends of the split line
+}
+
+/// `pieces` moved by `shift`.
+std::vector<geometry::Polyhedron> moved(std::vector<geometry::Polyhedron> pieces,
+                                        const Vec3& shift) {
+  for (geometry::Polyhedron& p : pieces) {
+    for (Vec3& v : p.vertices) v += shift;
+  }
+  return pieces;
+}
+
+/// A 1 x 1 x 2 column cut by the planes of cutCube(seed, cuts) stretched to its height, then
+/// split at z = 1: the upper and lower pieces meet on lines the cuts continue across, as
+/// where joints cross an interlayer. Returns {upper, lower} pieces.
+std::pair<std::vector<geometry::Polyhedron>, std::vector<geometry::Polyhedron>> splitColumn(
+    std::uint64_t seed, int cuts) {
+  std::pair<std::vector<geometry::Polyhedron>, std::vector<geometry::Polyhedron>> out;
+  for (geometry::Polyhedron p : cutCube(seed, cuts)) {
+    for (Vec3& v : p.vertices) v.z() *= 2.0;
+    blocks::Piece piece;
+    piece.shape = p;
+    piece.face_sources.assign(p.faces.size(), {});
+    const auto split =
+        blocks::splitPiece(piece, blocks::Plane::through(Vec3(0, 0, 1), Vec3::UnitZ()), 1e-9, {});
+    if (!split) {
+      (p.vertices[0].z() > 1.0 ? out.first : out.second).push_back(p);
+      continue;
+    }
+    out.first.push_back(split->above.shape);
+    out.second.push_back(split->below.shape);
+  }
+  return out;
+}
+
+// Pieces pressed face to face read only the press. A column cut by random planes is split at
+// mid-height, and its upper pieces are pressed 1e-7 m into the lower ones: the spring
+// compression of a settled pile. One half is one block of many pieces, the other's pieces are
+// blocks of their own. Every point of the
+// upper pieces is then at most 1e-7 m inside the lower block, so no entry may read deeper. On
+// the Xiangjiaba model two readings were far deeper: the crossing of a lower edge ending on
+// the shared face with an upper edge lying in it (0.25 m sideways), and an upper vertex on the
+// line where two lower pieces meet, whose foot fell a round-off beyond the top face and which
+// was matched to a steep face (0.7 mm). Their penalty forces exceeded the model's weight.
+TEST(NarrowPhase, PiecesPressedFaceToFaceReadOnlyThePress) {
+  constexpr double kPress = 1e-7;
+  int entries = 0, pressed = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    for (int variant = 0; variant < 4; ++variant) {
+      // Bit 0: the cuts continue across the split (else the halves are cut independently).
+      // Bit 1: the upper half is the one block of many pieces (else the lower half).
+      auto [upper, lower] = splitColumn(seed, 6);
+      if ((variant & 1) == 0) {
+        upper = moved(cutCube(seed + 1000, 6), Vec3(0, 0, 1));
+        lower = cutCube(seed + 2000, 6);
+      }
+      upper = moved(upper, Vec3(0, 0, -kPress));
+      const bool upper_glued = (variant & 2) != 0;
+      std::vector<std::vector<geometry::Polyhedron>> groups;
+      for (const geometry::Polyhedron& p : upper_glued ? lower : upper) groups.push_back({p});
+      groups.push_back(upper_glued ? upper : lower);
+      const std::vector<BlockState> blocks = blocksOf(groups);
+      const std::vector<double> reach(blocks.size(), 0.15);
+      const std::vector<Contact> contacts = findContacts(blocks, reach, 0.3, kNoPrevious);
+      const int glued = static_cast<int>(blocks.size()) - 1;
+      for (const Contact& c : contacts) {
+        if (c.block_i != glued && c.block_j != glued) continue;
+        ++entries;
+        pressed += c.gap0 < -0.5 * kPress;
+        // The press, plus the round-off of the split vertices (1e-9 m on a 1 m cube).
+        EXPECT_GT(c.gap0, -kPress - 2e-9)
+            << "seed " << seed << " variant " << variant << " blocks " << c.block_i << "/"
+            << c.block_j << " kind " << static_cast<int>(c.kind) << " normal "
+            << c.normal.transpose();
+      }
+    }
+  }
+  EXPECT_GT(entries, 4000);  // many entries across the pressed face were examined
+  EXPECT_GT(pressed, 800);   // and the press itself is read
+}
+
+/// The prism over a convex polygon of the x-z plane (counter-clockwise with x right, z up)
+/// between y0 and y1.
+geometry::Polyhedron prismXZ(const std::vector<std::pair<double, double>>& polygon, double y0,
+                             double y1) {
+  geometry::Polyhedron prism;
+  const int n = static_cast<int>(polygon.size());
+  for (double y : {y0, y1}) {
+    for (const auto& [x, z] : polygon) prism.vertices.emplace_back(x, y, z);
+  }
+  std::vector<int> front, back;
+  for (int k = 0; k < n; ++k) {
+    front.push_back(k);             // y = y0, normal -y
+    back.push_back(2 * n - 1 - k);  // y = y1, normal +y
+    const int next = (k + 1) % n;
+    prism.faces.push_back({k, n + k, n + next, next});
+  }
+  prism.faces.push_back(front);
+  prism.faces.push_back(back);
+  return prism;
+}
+
+// A vertex barely inside a piece is matched to the face it is least deep behind, even where
+// its foot falls a round-off beyond that face's edge. Piece b is a 0.3 mm sliver whose bottom
+// face meets an overhanging side at x = 0; a vertex of a, pressed 1.5e-7 m up into b, lies
+// 1e-7 m beyond the bottom face's edge, where the overhang keeps it inside b. The overhang
+// itself is ruled out (a's edge along +x would dive through it), and the old rule, a foot
+// within 1e-9 of the pieces' size of its face, ruled out the bottom too and matched the vertex
+// to the sliver's top face, 0.3 mm away: a false penetration 2000 times the press (seen on
+// the Xiangjiaba model at 0.7 mm, where its spring force exceeded the model's weight).
+TEST(NarrowPhase, AVertexBeyondAFaceEdgeByRoundOffKeepsThatFace) {
+  constexpr double kSliver = 3e-4, kPress = 1.5e-7, kBeyond = 1e-7;
+  const geometry::Polyhedron b = prismXZ({{0, 0}, {1, 0}, {1, kSliver}, {-kSliver, kSliver}}, 0, 1);
+  // a: its top face pressed into b's bottom, its corner p = (-1e-7, y, 1.5e-7) beyond the
+  // bottom's edge; its edges at p run along +x, along y, and down at 16 degrees.
+  const geometry::Polyhedron a = prismXZ(
+      {{-kBeyond, kPress}, {1.92 - kBeyond, kPress - 0.56}, {2, kPress - 0.56}, {2, kPress}}, 0.25,
+      0.75);
+  ASSERT_GT(geometry::massProperties(a).volume, 0.0);  // both prisms are outward-oriented
+  ASSERT_GT(geometry::massProperties(b).volume, 0.0);
+  const std::vector<BlockState> blocks = blocksOf({{a}, {b}});
+  const std::vector<Contact> contacts = findContacts(blocks, {0.01, 0.01}, 0.02, kNoPrevious);
+  int at_corner = 0;
+  for (const Contact& c : contacts) {
+    if (c.kind != ContactKind::VertexFace || c.block_i != 0) continue;
+    if (std::abs(c.point.x() + kBeyond) > 1e-12 || c.point.z() < 0.0) continue;
+    ++at_corner;  // the two corners of a at x = -1e-7 (y = 0.25 and 0.75)
+    EXPECT_NEAR(c.normal.z(), -1.0, 1e-12);  // b's bottom face
+    EXPECT_NEAR(c.gap0, -kPress, 1e-12);     // the press, not the sliver's thickness
+  }
+  EXPECT_EQ(at_corner, 2);
 }
 
 }  // namespace
