@@ -243,16 +243,19 @@ int runDda(const DdaOptions& options) {
   const DfnStage dfn = runDfnStage(scene, options.common.scene);
   run.timings.emplace_back("dfn", dfn.seconds);
 
+  // The network covers the whole domain; the DDA cuts it in its region when it has one.
+  const io::Scene dda_scene = ddaScene(scene);
   auto start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(scene, dfn.network, cutter, options.common.scene);
+  const SceneBlocks cut = cutSceneBlocks(dda_scene, dfn.network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
-  std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)\n", cut.model.blocks.size(),
-               cutter.c_str(), run.timings.back().second);
+  std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)%s\n", cut.model.blocks.size(),
+               cutter.c_str(), run.timings.back().second,
+               scene.analysis.dda->region ? " in analysis.dda.region" : "");
 
   start = Clock::now();
   std::optional<blocks::MergeReport> glued;
-  const blocks::BlockModel dda_blocks = ddaBlocks(scene, cut.model, glued);
-  const DdaStage stage = runDdaStage(scene, dda_blocks, options.overrides, out, glued);
+  const blocks::BlockModel dda_blocks = ddaBlocks(dda_scene, cut.model, glued);
+  const DdaStage stage = runDdaStage(dda_scene, dda_blocks, options.overrides, out, glued);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();

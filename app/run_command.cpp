@@ -124,9 +124,9 @@ std::string pointText(const geometry::Vec3& p) {
          io::formatDouble(p.z()) + ")";
 }
 
-/// The quick variant of a scene: the quick box as domain; monitors, RQD ball centres and
-/// point loads outside it moved to the nearest point of the box shrunk by 5%; at most
-/// kQuickBallDirections ball directions and kQuickGridDirections grid axes; at most
+/// The quick variant of a scene: the quick box as domain (and as the DDA's region); monitors, RQD
+/// ball centres and point loads outside it moved to the nearest point of the box shrunk by 5%; at
+/// most kQuickBallDirections ball directions and kQuickGridDirections grid axes; at most
 /// kQuickDdaSteps DDA steps (see quickSteps). Returns what it moved, for the summary.
 std::vector<std::string> makeQuick(io::Scene& scene) {
   std::vector<std::string> notes;
@@ -161,6 +161,10 @@ std::vector<std::string> makeQuick(io::Scene& scene) {
     rqd.grid_region.reset();  // the grid covers the (quick) domain
   }
   io::Analysis& a = scene.analysis;
+  if (a.dda && a.dda->region) {
+    a.dda->region.reset();
+    notes.push_back("quick: analysis.dda.region not used: the DDA runs on the quick box");
+  }
   if ((a.overload || a.strength_reduction) && a.dda) {
     if (!a.equilibrium) a.equilibrium.emplace();
     a.equilibrium->max_steps =
@@ -437,14 +441,27 @@ int runAll(const RunOptions& options) {
   }
 
   // DDA (on the blocks with the small ones glued, analysis.dda.min_block_volume).
+  // With analysis.dda.region, the DDA's blocks are a second cut of the same network in the
+  // region (ddaScene): the blocks stage above keeps the whole domain.
   std::optional<blocks::BlockModel> dda_blocks;
   std::optional<blocks::MergeReport> glued;
+  const io::Scene dda_scene = ddaScene(scene);
   if (plan.dda || plan.overload || plan.strength_reduction) {
-    dda_blocks = ddaBlocks(scene, cut->model, glued);
+    if (scene.analysis.dda && scene.analysis.dda->region) {
+      const auto start = Clock::now();
+      const SceneBlocks region = cutSceneBlocks(dda_scene, dfn.network, plan.cutter, scene_path);
+      const double seconds = secondsSince(start);
+      run.timings.emplace_back("dda_region_cut", seconds);
+      std::fprintf(stderr, "run: DDA region: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
+                   region.model.blocks.size(), region.pieces, plan.cutter.c_str(), seconds);
+      dda_blocks = ddaBlocks(dda_scene, region.model, glued);
+    } else {
+      dda_blocks = ddaBlocks(scene, cut->model, glued);
+    }
   }
   if (plan.dda) {
     const auto start = Clock::now();
-    const DdaStage stage = runDdaStage(scene, *dda_blocks, dda_overrides, out, glued);
+    const DdaStage stage = runDdaStage(dda_scene, *dda_blocks, dda_overrides, out, glued);
     run.stages.push_back("dda");
     run.timings.emplace_back("dda", secondsSince(start));
     run.effects = stage.effects;
@@ -456,13 +473,13 @@ int runAll(const RunOptions& options) {
 
   // ===== Overload and strength reduction: the one place where they are wired. =====
   if (plan.overload || plan.strength_reduction) {
-    const dda3d::DdaModel model = io::buildDdaModel(scene, *dda_blocks);
+    const dda3d::DdaModel model = io::buildDdaModel(dda_scene, *dda_blocks);
     std::optional<dda3d::FactorSearchResult> overload;
     std::optional<dda3d::FactorSearchResult> strength;
     dda3d::ActiveTerms terms;
     if (plan.overload) {
       const auto start = Clock::now();
-      overload = runSceneOverload(scene, model);
+      overload = runSceneOverload(dda_scene, model);
       run.stages.push_back("overload");
       run.timings.emplace_back("overload", secondsSince(start));
       addRunTerms(*overload, terms);
@@ -474,7 +491,7 @@ int runAll(const RunOptions& options) {
     }
     if (plan.strength_reduction) {
       const auto start = Clock::now();
-      strength = runSceneStrengthReduction(scene, model);
+      strength = runSceneStrengthReduction(dda_scene, model);
       run.stages.push_back("strength_reduction");
       run.timings.emplace_back("strength_reduction", secondsSince(start));
       addRunTerms(*strength, terms);
@@ -485,7 +502,7 @@ int runAll(const RunOptions& options) {
       }
     }
     const io::StabilitySummary summary = stabilitySummary(
-        scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
+        dda_scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
     parts.push_back({"stability", io::formatStabilitySummary(stageRun(run, {}), summary)});
   }
   // ===== end of overload / strength reduction =====

@@ -93,6 +93,15 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
   return cut;
 }
 
+io::Scene ddaScene(const io::Scene& scene) {
+  io::Scene out = scene;
+  if (scene.analysis.dda && scene.analysis.dda->region) {
+    out.dfn.domain = *scene.analysis.dda->region;
+    out.analysis.dda->region.reset();
+  }
+  return out;
+}
+
 blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
                              std::optional<blocks::MergeReport>& glued) {
   const double min_volume = scene.analysis.dda ? scene.analysis.dda->min_block_volume : 0.0;

@@ -46,6 +46,11 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
 SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwork& network,
                            const std::string& cutter, const std::string& scene_path);
 
+/// The scene a DDA runs on (`dda`, `overload`, `strength`, `run`): `scene` itself, or, with
+/// analysis.dda.region, a copy whose domain box is the region: cut from the same network and
+/// structures, with supports and `domain_top` loads on the region's faces.
+io::Scene ddaScene(const io::Scene& scene);
+
 /// The blocks a DDA of the scene runs on (`dda`, `overload`, `strength`, `run`): `model`
 /// with the blocks below analysis.dda.min_block_volume glued to a neighbour
 /// (blocks::mergeSmallBlocks; none when the key is absent or 0), then every block's pieces

@@ -94,22 +94,25 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   auto start = Clock::now();
   const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
   run.timings.emplace_back("dfn", secondsSince(start));
+  // The network covers the whole domain; the DDA cuts it in its region when it has one.
+  const io::Scene dda_scene = ddaScene(scene);
   start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(scene, network, cutter, options.common.scene);
+  const SceneBlocks cut = cutSceneBlocks(dda_scene, network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
   std::optional<blocks::MergeReport> glued;
-  const dda3d::DdaModel model = io::buildDdaModel(scene, ddaBlocks(scene, cut.model, glued));
+  const dda3d::DdaModel model =
+      io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued));
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
                model.blocks.size(), model.pressures.size(), search.factors.size());
 
   start = Clock::now();
   const dda3d::FactorSearchResult result =
-      overload ? runSceneOverload(scene, model) : runSceneStrengthReduction(scene, model);
+      overload ? runSceneOverload(dda_scene, model) : runSceneStrengthReduction(dda_scene, model);
   run.timings.emplace_back(overload ? "overload" : "strength_reduction", secondsSince(start));
 
   start = Clock::now();
   const io::StabilitySummary summary = stabilitySummary(
-      scene, model, glued, overload ? &result : nullptr, overload ? nullptr : &result);
+      dda_scene, model, glued, overload ? &result : nullptr, overload ? nullptr : &result);
   if (overload) {
     io::writeFileAtomically(out / "overload.csv",
                             io::formatOverloadCsv(monitorNames(model), result));

@@ -808,10 +808,10 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 }
 
 /// analysis.dda
-DdaAnalysis readDdaAnalysis(const Cursor& c) {
+DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
   const Cursor m =
       c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
-             "time_integration", "min_block_volume", "open_close_tolerance"});
+             "time_integration", "min_block_volume", "open_close_tolerance", "region"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -831,6 +831,24 @@ DdaAnalysis readDdaAnalysis(const Cursor& c) {
   dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
   dda.open_close_tolerance = m.numberOr("open_close_tolerance", dda.open_close_tolerance,
                                         {.low = 0, .high = 1, .high_open = true});
+  if (const auto region = m.get("region")) {
+    if (mesh_domain) region->fail("a DDA region needs a box domain (domain.box)");
+    const Cursor box = region->map({"min", "max"});
+    const geometry::Box read{box.at("min").vec3(), box.at("max").vec3()};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(read.min[axis] < read.max[axis])) {
+        box.fail("expected min < max in every component, got " + formatDouble(read.min[axis]) +
+                 " >= " + formatDouble(read.max[axis]) + " in " + "xyz"[axis]);
+      }
+      if (read.min[axis] < domain.min[axis] || read.max[axis] > domain.max[axis]) {
+        box.fail(std::string("expected a box inside the domain box; in ") + "xyz"[axis] +
+                 " the region spans " + formatDouble(read.min[axis]) + " .. " +
+                 formatDouble(read.max[axis]) + ", the domain " + formatDouble(domain.min[axis]) +
+                 " .. " + formatDouble(domain.max[axis]));
+      }
+    }
+    dda.region = read;
+  }
   if (const auto integration = m.get("time_integration")) {
     const Cursor t = integration->map({"scheme", "spectral_radius"});
     dda.bossak = t.valueOr("scheme", dda.bossak, [](const Cursor& v) {
@@ -879,12 +897,13 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c) {
 }
 
 /// The `analysis` section: each stage present only when its key is.
-Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets) {
+Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets,
+                      const geometry::Box& domain, bool mesh_domain) {
   const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction", "equilibrium"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
   if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v, joint_sets);
-  if (const auto v = m.get("dda")) analysis.dda = readDdaAnalysis(*v);
+  if (const auto v = m.get("dda")) analysis.dda = readDdaAnalysis(*v, domain, mesh_domain);
   if (const auto v = m.get("overload")) analysis.overload = readOverloadAnalysis(*v);
   if (const auto v = m.get("strength_reduction")) {
     analysis.strength_reduction = readStrengthReductionAnalysis(*v);
@@ -962,7 +981,8 @@ class SceneReader {
           {monitor_names.claimName(monitor), monitor.at("point").vec3(), c.line()});
     });
     if (const auto analysis = m.get("analysis")) {
-      scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets));
+      scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
+                                     !scene_.domain_mesh.empty());
     }
     return std::move(scene_);
   }

@@ -142,6 +142,11 @@ struct DdaAnalysis {
   /// Share of the contacts that may still change state in the last open-close iteration of
   /// a settled step (dda3d::DdaSettings::open_close_tolerance); 0 is the classic rule.
   double open_close_tolerance = 1e-4;
+  /// region {min, max}: the box the DDA (and the overload and strength reduction) runs on,
+  /// inside the domain box. Its blocks are cut from the same network and structures with the
+  /// region as the domain, so supports and `domain_top` loads act on the region's faces.
+  /// None: the whole domain.
+  std::optional<geometry::Box> region;
 };
 
 /// analysis.overload
