@@ -473,13 +473,19 @@ int runAll(const RunOptions& options) {
 
   // ===== Overload and strength reduction: the one place where they are wired. =====
   if (plan.overload || plan.strength_reduction) {
-    const dda3d::DdaModel model = io::buildDdaModel(dda_scene, *dda_blocks);
+    const auto start_state = Clock::now();
+    const StabilityStart begin =
+        stabilityStart(dda_scene, io::buildDdaModel(dda_scene, *dda_blocks));
+    const dda3d::DdaModel& model = begin.model;
+    if (scene.analysis.equilibrium && scene.analysis.equilibrium->settled_start) {
+      run.timings.emplace_back("stability_start", secondsSince(start_state));
+    }
     std::optional<dda3d::FactorSearchResult> overload;
     std::optional<dda3d::FactorSearchResult> strength;
     dda3d::ActiveTerms terms;
     if (plan.overload) {
       const auto start = Clock::now();
-      overload = runSceneOverload(dda_scene, model);
+      overload = runSceneOverload(dda_scene, begin);
       run.stages.push_back("overload");
       run.timings.emplace_back("overload", secondsSince(start));
       addRunTerms(*overload, terms);
@@ -491,7 +497,7 @@ int runAll(const RunOptions& options) {
     }
     if (plan.strength_reduction) {
       const auto start = Clock::now();
-      strength = runSceneStrengthReduction(dda_scene, model);
+      strength = runSceneStrengthReduction(dda_scene, begin);
       run.stages.push_back("strength_reduction");
       run.timings.emplace_back("strength_reduction", secondsSince(start));
       addRunTerms(*strength, terms);

@@ -18,8 +18,10 @@ dda3d::FactorRunCallback progress(const char* label) {
   return [label](const dda3d::FactorRun& run) {
     std::fprintf(stderr, "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g)\n", label,
                  run.factor, run.bisection ? " (bisection)" : "",
-                 run.equilibrium.reached ? "at rest" : "NOT at rest", run.equilibrium.steps,
-                 run.equilibrium.unbalanced_ratio);
+                 run.equilibrium.reached   ? "at rest"
+                 : run.equilibrium.failing ? "NOT at rest (failing: stopped early)"
+                                           : "NOT at rest",
+                 run.equilibrium.steps, run.equilibrium.unbalanced_ratio);
   };
 }
 
@@ -32,18 +34,35 @@ std::string describe(const dda3d::FactorSearchResult& r) {
 
 }  // namespace
 
-dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const dda3d::DdaModel& model) {
-  const dda3d::FactorSearch search = io::overloadSearch(scene);
-  return dda3d::runOverload(model, io::equilibriumDdaSettings(scene),
+dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const StabilityStart& start) {
+  dda3d::FactorSearch search = io::overloadSearch(scene);
+  search.start_contacts = start.contacts;
+  return dda3d::runOverload(start.model, io::equilibriumDdaSettings(scene),
                             io::loadScaling(*scene.analysis.overload), search,
                             progress("overload"));
 }
 
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
-                                                    const dda3d::DdaModel& model) {
-  const dda3d::FactorSearch search = io::strengthReductionSearch(scene);
-  return dda3d::runStrengthReduction(model, io::equilibriumDdaSettings(scene), search,
+                                                    const StabilityStart& start) {
+  dda3d::FactorSearch search = io::strengthReductionSearch(scene);
+  search.start_contacts = start.contacts;
+  return dda3d::runStrengthReduction(start.model, io::equilibriumDdaSettings(scene), search,
                                      progress("strength"));
+}
+
+StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
+  if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
+    return {model, {}};
+  }
+  dda3d::Simulation sim(model, io::equilibriumDdaSettings(scene));
+  const dda3d::EquilibriumResult settled =
+      dda3d::runToEquilibrium(sim, io::equilibriumSettings(scene));
+  std::fprintf(stderr,
+               "stability: start state %s after %d steps (unbalanced ratio %.3g); every factor "
+               "runs from it\n",
+               settled.reached ? "at rest" : "NOT at rest", settled.steps,
+               settled.unbalanced_ratio);
+  return {dda3d::settledModel(sim), sim.contacts()};
 }
 
 std::vector<std::string> monitorNames(const dda3d::DdaModel& model) {
@@ -100,14 +119,19 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   const SceneBlocks cut = cutSceneBlocks(dda_scene, network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
   std::optional<blocks::MergeReport> glued;
-  const dda3d::DdaModel model =
-      io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued));
+  start = Clock::now();
+  const StabilityStart begin = stabilityStart(
+      dda_scene, io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued)));
+  const dda3d::DdaModel& model = begin.model;
+  if (scene.analysis.equilibrium && scene.analysis.equilibrium->settled_start) {
+    run.timings.emplace_back("stability_start", secondsSince(start));
+  }
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
                model.blocks.size(), model.pressures.size(), search.factors.size());
 
   start = Clock::now();
   const dda3d::FactorSearchResult result =
-      overload ? runSceneOverload(dda_scene, model) : runSceneStrengthReduction(dda_scene, model);
+      overload ? runSceneOverload(dda_scene, begin) : runSceneStrengthReduction(dda_scene, begin);
   run.timings.emplace_back(overload ? "overload" : "strength_reduction", secondsSince(start));
 
   start = Clock::now();

@@ -16,17 +16,28 @@
 
 namespace rockmass::app {
 
-/// The overload method of analysis.overload on `model` (io::buildDdaModel of the scene's
+/// What the overload and strength-reduction runs start from.
+struct StabilityStart {
+  dda3d::DdaModel model;                 ///< the model of factor 1
+  std::vector<dda3d::Contact> contacts;  ///< contacts to start from (empty: none)
+};
+
+/// `model` itself, or with analysis.equilibrium.start: settled, `model` run to rest as it is
+/// (up to max_steps, at rest or not) and taken from there with its contacts
+/// (dda3d::settledModel). Prints one line on stderr.
+StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model);
+
+/// The overload method of analysis.overload from `start` (io::buildDdaModel of the scene's
 /// blocks): K_s and the K-displacement runs. Settings from analysis.dda, .equilibrium and
 /// .overload (io/stability_settings.h). Throws io::InputError naming the missing key when
 /// the scene lacks analysis.dda or analysis.overload.
-dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const dda3d::DdaModel& model);
+dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const StabilityStart& start);
 
-/// Strength reduction of analysis.strength_reduction on `model`: the critical SRF. Throws
+/// Strength reduction of analysis.strength_reduction from `start`: the critical SRF. Throws
 /// io::InputError naming the missing key when the scene lacks analysis.dda or
 /// analysis.strength_reduction.
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
-                                                    const dda3d::DdaModel& model);
+                                                    const StabilityStart& start);
 
 /// Names of the model's monitors, in order (the columns of overload.csv).
 std::vector<std::string> monitorNames(const dda3d::DdaModel& model);

@@ -20,6 +20,9 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   EquilibriumResult result;
   const double g = referenceAcceleration(sim.model());
   int calm = 0;
+  int pushed = 0;
+  const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
+                        settings.failure_ratio > 0.0 && settings.failure_steps > 0;
   while (result.steps < settings.max_steps) {
     const StepReport report = sim.step();
     ++result.steps;
@@ -34,6 +37,11 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     calm = still ? calm + 1 : 0;
     if (calm >= settings.settle_steps) {
       result.reached = true;
+      break;
+    }
+    pushed = can_fail && result.unbalanced_ratio >= settings.failure_ratio ? pushed + 1 : 0;
+    if (pushed >= settings.failure_steps) {
+      result.failing = true;
       break;
     }
   }

@@ -19,6 +19,12 @@ struct EquilibriumSettings {
   /// Kinetic energy over the work done by the loads so far (both J). -.
   double kinetic_ratio = 1e-6;
   int settle_steps = 5;  ///< calm steps in a row that make equilibrium
+  /// Static runs only: a run whose unbalanced ratio is at least `failure_ratio` in
+  /// `failure_steps` steps in a row is not at rest, and stops there (some block is then
+  /// pushed by an unbalanced force at least this many times its weight, step after step).
+  /// 0 turns the early stop off.
+  double failure_ratio = 1.0;
+  int failure_steps = 10;  ///< steps in a row of the early stop
 };
 
 /// How a run to equilibrium ended.
@@ -29,6 +35,7 @@ struct EquilibriumResult {
   double unbalanced_ratio = 0.0;  ///< of the last step (-)
   double kinetic_ratio = 0.0;     ///< at the end (-)
   double increment = 0.0;         ///< largest vertex displacement of the last step (m)
+  bool failing = false;           ///< stopped early by the failure rule (not at rest)
 };
 
 /// Steps `sim` until it is at rest (EquilibriumSettings) or the step limit is reached.

@@ -214,6 +214,12 @@ class Simulation {
   /// All blocks: current geometry, velocity (12, zero tail when rigid), last step's
   /// displacement, stress, accumulated strain.
   const std::vector<BlockState>& blocks() const { return blocks_; }
+  /// Where each point load's material point is now (m), in model().point_loads order.
+  std::vector<geometry::Vec3> pointLoadPositions() const {
+    std::vector<geometry::Vec3> out;
+    for (const MaterialPoint& p : load_points_) out.push_back(p.current);
+    return out;
+  }
   /// Displacement of block b's centroid since time 0 (m).
   geometry::Vec3 centroidDisplacement(int b) const;
   /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
@@ -221,6 +227,10 @@ class Simulation {
   const std::vector<double>& contactReach() const { return reach_; }
   /// Contacts of the last accepted step, with states.
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// Starts from `contacts` (another run's, of a model with the same blocks and pieces): the
+  /// next step's detection carries their states, shear springs and forces over to the entries
+  /// it finds again, as between two steps of one run. Call before the first step.
+  void adoptContacts(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
   ContactCounts contactCounts() const;
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.

@@ -30,8 +30,10 @@ namespace {
 
 /// One run of `make(factor)` to equilibrium.
 FactorRun runFactor(const std::function<DdaModel(double)>& make, const DdaSettings& settings,
-                    const EquilibriumSettings& equilibrium, double factor, bool bisection) {
+                    const EquilibriumSettings& equilibrium,
+                    const std::vector<Contact>& start_contacts, double factor, bool bisection) {
   Simulation sim(make(factor), settings);
+  if (!start_contacts.empty()) sim.adoptContacts(start_contacts);
   FactorRun run;
   run.factor = factor;
   run.bisection = bisection;
@@ -54,7 +56,8 @@ FactorSearchResult searchCriticalFactor(const std::function<DdaModel(double)>& m
   }
   FactorSearchResult result;
   const auto run = [&](double factor, bool bisection) {
-    result.runs.push_back(runFactor(make, settings, search.equilibrium, factor, bisection));
+    result.runs.push_back(
+        runFactor(make, settings, search.equilibrium, search.start_contacts, factor, bisection));
     if (callback) callback(result.runs.back());
     return result.runs.back().equilibrium.reached;
   };
@@ -93,6 +96,25 @@ FactorSearchResult runStrengthReduction(const DdaModel& model, const DdaSettings
                                         const FactorRunCallback& callback) {
   return searchCriticalFactor([&](double srf) { return reducedStrength(model, srf); }, settings,
                               search, callback);
+}
+
+DdaModel settledModel(const Simulation& sim) {
+  DdaModel out = sim.model();
+  const std::vector<BlockState>& blocks = sim.blocks();
+  for (std::size_t b = 0; b < out.blocks.size(); ++b) {
+    out.blocks[b].pieces = blocks[b].pieces;
+    out.blocks[b].initial_stress = blocks[b].stress;
+    out.blocks[b].initial_velocity.setZero();
+    out.blocks[b].initial_angular_velocity.setZero();
+  }
+  const std::vector<MonitorState> monitors = sim.monitors();
+  for (std::size_t k = 0; k < out.monitors.size(); ++k)
+    out.monitors[k].point = monitors[k].position;
+  const std::vector<geometry::Vec3> loads = sim.pointLoadPositions();
+  for (std::size_t k = 0; k < out.point_loads.size() && k < loads.size(); ++k) {
+    out.point_loads[k].point = loads[k];
+  }
+  return out;
 }
 
 }  // namespace rockmass::dda3d

@@ -41,6 +41,9 @@ struct FactorSearch {
   /// rest (strength reduction).
   bool sweep_all = true;
   EquilibriumSettings equilibrium;  ///< what counts as at rest
+  /// Contacts every run starts from (Simulation::adoptContacts), e.g. those of the run that
+  /// settled the model (settledModel); empty: each run detects its own from scratch.
+  std::vector<Contact> start_contacts;
 };
 
 /// One run at one factor.
@@ -82,5 +85,15 @@ FactorSearchResult runOverload(const DdaModel& model, const DdaSettings& setting
 FactorSearchResult runStrengthReduction(const DdaModel& model, const DdaSettings& settings,
                                         const FactorSearch& search,
                                         const FactorRunCallback& callback = {});
+
+/// `sim`'s model with its blocks where the run has brought them: every piece as it is now,
+/// each deformable block's stress as its initial stress, the monitors and point loads at
+/// their current positions. A run of the result starts from that state: the contact springs
+/// stay as pressed as they are (their penetrations are in the geometry); with sim.contacts()
+/// as FactorSearch::start_contacts the contact states, shear springs and forces carry over
+/// too. The fixed points' springs start unloaded again. The start of the overload and
+/// strength-reduction runs from the settled (geostatic) state (analysis.equilibrium.start:
+/// settled, docs/stability.md).
+DdaModel settledModel(const Simulation& sim);
 
 }  // namespace rockmass::dda3d

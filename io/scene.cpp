@@ -884,12 +884,17 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 
 /// analysis.equilibrium
 EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c) {
-  const Cursor m =
-      c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps", "dynamic_ratio"});
+  const Cursor m = c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps",
+                          "dynamic_ratio", "start", "failure_ratio", "failure_steps"});
   EquilibriumAnalysis e;
+  e.settled_start = m.valueOr("start", e.settled_start, [](const Cursor& v) {
+    return v.choice("start", {"unloaded", "settled"}) == 1;
+  });
   if (const auto steps = m.get("max_steps")) e.max_steps = steps->integer(above(0));
   e.unbalanced_ratio = m.numberOr("unbalanced_ratio", e.unbalanced_ratio, kPositive);
   e.kinetic_ratio = m.numberOr("kinetic_ratio", e.kinetic_ratio, kPositive);
+  e.failure_ratio = m.numberOr("failure_ratio", e.failure_ratio, kNonNegative);
+  e.failure_steps = m.integerOr("failure_steps", e.failure_steps, above(0));
   e.settle_steps = m.integerOr("settle_steps", e.settle_steps, above(0));
   e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio,
                                {.low = 0, .high = 1, .low_open = false, .high_open = false});

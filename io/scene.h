@@ -172,6 +172,12 @@ struct EquilibriumAnalysis {
   double kinetic_ratio = 1e-6;     ///< kinetic energy / work of the loads
   int settle_steps = 5;            ///< calm steps in a row
   double dynamic_ratio = 0.95;     ///< velocity share kept per step in dynamic mode (damping)
+  /// start: settled | unloaded. settled: the model is first run to rest as it is (factor 1),
+  /// and every factor's run starts from that state (dda3d::settledModel); unloaded (the
+  /// default): every run starts from the cut geometry with unloaded contact springs.
+  bool settled_start = false;
+  double failure_ratio = 1.0;  ///< static runs: early stop at this unbalanced ratio (0: none)
+  int failure_steps = 10;      ///< ... held this many steps in a row
 };
 
 /// The `analysis` section: a stage runs only when its entry is present.

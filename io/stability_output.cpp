@@ -19,7 +19,8 @@ constexpr const char* kSearchRule =
     "work of the loads) at most their tolerances, within max_steps; the first factor "
     "(ascending) at which the run is not at rest marks the loss of stability; the critical "
     "factor is the middle of [last factor at rest, first factor not at rest], bisected to the "
-    "tolerance";
+    "tolerance; a static run whose unbalanced ratio is at least failure_ratio in failure_steps "
+    "steps in a row is not at rest and stops there (failing)";
 
 /// `value` or null.
 Json optionalJson(const std::optional<double>& value) {
@@ -65,10 +66,10 @@ std::string formatOverloadCsv(const std::vector<std::string>& monitor_names,
 }
 
 Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
-  return {{"unbalanced_ratio", settings.unbalanced_ratio},
-          {"kinetic_ratio", settings.kinetic_ratio},
-          {"settle_steps", settings.settle_steps},
-          {"max_steps", settings.max_steps}};
+  return {
+      {"unbalanced_ratio", settings.unbalanced_ratio}, {"kinetic_ratio", settings.kinetic_ratio},
+      {"settle_steps", settings.settle_steps},         {"max_steps", settings.max_steps},
+      {"failure_ratio", settings.failure_ratio},       {"failure_steps", settings.failure_steps}};
 }
 
 Json overloadJson(const dda3d::FactorSearchResult& overload, const std::vector<std::string>& scales,

@@ -47,6 +47,8 @@ dda3d::EquilibriumSettings equilibriumSettings(const Scene& scene) {
   settings.unbalanced_ratio = e.unbalanced_ratio;
   settings.kinetic_ratio = e.kinetic_ratio;
   settings.settle_steps = e.settle_steps;
+  settings.failure_ratio = e.failure_ratio;
+  settings.failure_steps = e.failure_steps;
   return settings;
 }
 

@@ -112,6 +112,85 @@ TEST(Equilibrium, BlockAtRestWhenPhiExceedsTheSlopeAndNotOtherwise) {
   EXPECT_GT(moving.unbalanced_ratio, 10.0 * settings.unbalanced_ratio);
 }
 
+// A run from the settled state (settledModel) starts where the first run came to rest. Two
+// boxes stacked on a fixed base, static and rigid, settle onto their contact springs over
+// tens of steps (each static step relaxes part of the way: its inertia term holds it back).
+// Taken as they are at rest, pressed into each other by their weight, and run again, they are
+// already in equilibrium: the first step moves them by round-off of the first run's first
+// step (1e-3 of it: the springs carry the weight from the start; only the contact states and
+// the unloaded shear springs are new, and nothing pulls sideways), and the run is at rest
+// after settle_steps.
+TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-2, -2, -1}, {2, 2, 0}, 0, true));
+  model.blocks.push_back(scenes::boxBlock({-1, -1, 0}, {1, 1, 1}, 0, false));
+  model.blocks.push_back(scenes::boxBlock({-1, -1, 1}, {1, 1, 2}, 0, false));
+  model.gravity = Vec3(0, 0, -kG);
+  model.monitors.push_back({"top", Vec3(0, 0, 1.5), 2});
+  DdaSettings settings;
+  settings.mode = AnalysisMode::Static;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 1e-3;
+  settings.penalty =
+      1e9;  // N/m: springs 2.5e-5 m deep under the top block, settled in tens of steps
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 400;
+  Simulation first(model, settings);
+  const double first_step = first.step().displacement_ratio;
+  const EquilibriumResult rest = runToEquilibrium(first, equilibrium);
+  ASSERT_TRUE(rest.reached);
+  ASSERT_GT(rest.steps, 2 * equilibrium.settle_steps);  // a real settling, not at rest at once
+  const DdaModel settled = settledModel(first);
+  // Pieces bit for bit where the run left them, the monitor where its block took it.
+  EXPECT_EQ(settled.blocks[2].pieces[0].vertices, first.blocks()[2].pieces[0].vertices);
+  EXPECT_EQ(settled.monitors[0].point, first.monitors()[0].position);
+  EXPECT_LT(settled.monitors[0].point.z(), 1.5);  // the stack has settled
+  Simulation again(settled, settings);
+  const double again_step = again.step().displacement_ratio;
+  EXPECT_LT(again_step, 1e-3 * first_step);
+  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
+  EXPECT_TRUE(restart.reached);
+  EXPECT_LE(restart.steps, equilibrium.settle_steps);
+}
+
+// The early stop of a failing static run. In a static run (velocities reset every step) the
+// unbalanced ratio is the unbalanced acceleration over g: a block sliding on a 60 degree slope
+// at phi = 10 degrees has a = g (sin 60 - cos 60 tan 10) = 0.78 g at every step, so with
+// failure_ratio 0.5 it stops after failure_steps steps, not at rest. A block that comes to
+// rest (20 degrees, phi 25) and one that slides slowly (20 degrees, phi 19: a = 0.018 g,
+// below the failure ratio) are unaffected: at rest within the limit, and run to the limit.
+TEST(Equilibrium, AFailingStaticRunStopsEarly) {
+  DdaSettings settings;
+  settings.mode = AnalysisMode::Static;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 1e-3;
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 60;
+  equilibrium.failure_ratio = 0.5;
+  equilibrium.failure_steps = 10;
+  Simulation steep(blockOnSlope(60.0, 10.0), settings);
+  const EquilibriumResult failing = runToEquilibrium(steep, equilibrium);
+  EXPECT_FALSE(failing.reached);
+  EXPECT_TRUE(failing.failing);
+  EXPECT_EQ(failing.steps, 10);
+  const double a = std::sin(radians(60.0)) - std::cos(radians(60.0)) * std::tan(radians(10.0));
+  // The step's displacement is a dt^2 / 2 less what the contact springs take up (1e-2).
+  EXPECT_NEAR(failing.unbalanced_ratio, a, 1e-2 * a);
+  Simulation held(blockOnSlope(20.0, 25.0), settings);
+  const EquilibriumResult rest = runToEquilibrium(held, equilibrium);
+  EXPECT_TRUE(rest.reached);
+  EXPECT_FALSE(rest.failing);
+  Simulation slow(blockOnSlope(20.0, 19.0), settings);
+  const EquilibriumResult sliding = runToEquilibrium(slow, equilibrium);
+  EXPECT_FALSE(sliding.reached);
+  EXPECT_FALSE(sliding.failing);
+  EXPECT_EQ(sliding.steps, equilibrium.max_steps);
+  // Dynamic runs never stop early (their ratio also counts the velocity).
+  Simulation dynamic(blockOnSlope(60.0, 10.0), dampedRigid());
+  EXPECT_FALSE(runToEquilibrium(dynamic, equilibrium).failing);
+}
+
 TEST(StrengthReduction, WedgeRecoversTheBlockTheoryFactorOfSafety) {
   const Vec3 g = kG * Vec3(std::sin(radians(35.0)), 0.0, -std::cos(radians(35.0)));
   const scenes::Wedge probe = scenes::vGrooveWedge(50.0, 35.0, 0.0, g);

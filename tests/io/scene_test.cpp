@@ -352,7 +352,8 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
                                      "tolerance: 0.05, scale_uplift: true}\n"
                                      "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01}\n"
                                      "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
-                                     "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9}\n",
+                                     "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9, "
+                                     "start: settled, failure_ratio: 2, failure_steps: 7}\n",
                                  "ok.yaml");
   EXPECT_EQ(scene.monitors.at(0).line, 4);  // the monitor's line, for messages
   EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
@@ -364,6 +365,14 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(scene.analysis.equilibrium->kinetic_ratio, 1e-7);
   EXPECT_EQ(scene.analysis.equilibrium->settle_steps, 3);
   EXPECT_EQ(scene.analysis.equilibrium->dynamic_ratio, 0.9);
+  EXPECT_TRUE(scene.analysis.equilibrium->settled_start);
+  EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
+  EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start: halfway}\n"),
+            "bad.yaml:4:24: analysis.equilibrium.start: unknown start 'halfway'; expected one "
+            "of: unloaded, settled");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {failure_ratio: -1}\n"),
+            "bad.yaml:4:32: analysis.equilibrium.failure_ratio: expected a number >= 0, got -1");
   // Defaults when absent.
   const Scene plain =
       parseScene(valid_head + "analysis:\n  strength_reduction: {factors: [1]}\n", "ok.yaml");
