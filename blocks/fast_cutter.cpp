@@ -1129,34 +1129,28 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   });
   std::vector<Piece> pieces;
   std::vector<int> planes;  // plane id of every face, in piece and face order (first_face)
-  ContactFaces tracked;     // tracked: the faces that may touch, the pairs of them
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> tracked_pairs;
+  // Tracked: per region, the faces that may touch and the pairs of them (each region's
+  // table stays where the region built it; the contact decisions read them in place).
+  std::vector<ContactTablePart> tracked;
   {
-    std::size_t piece_total = 0, face_total = 0, point_total = 0, pair_total = 0;
+    std::size_t piece_total = 0, face_total = 0;
     for (const RegionCut& cut : cuts) {
       piece_total += cut.pieces.size();
-      face_total += cut.faces.faces.size();
-      point_total += cut.faces.points.size();
-      pair_total += cut.pairs.size();
+      face_total += cut.planes.size();
     }
     pieces.reserve(piece_total);
-    tracked.faces.reserve(face_total);
-    tracked.points.reserve(point_total);
-    tracked.inward.reserve(point_total);
-    tracked_pairs.reserve(pair_total);
+    planes.reserve(face_total);
   }
   for (RegionCut& cut : cuts) {
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
-    const int offset = static_cast<int>(pieces.size());
-    const auto shift = static_cast<std::uint32_t>(tracked.faces.size());
-    for (const auto& [a, b] : cut.pairs) tracked_pairs.emplace_back(a + shift, b + shift);
-    tracked.append(cut.faces, offset);
+    if (!cut.pairs.empty()) {
+      tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs});
+    }
     for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
     planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
   }
-  cuts.clear();
   counters.pieces = static_cast<int>(pieces.size());
   for (int& id : planes) id = plane_ids.find(id);
   // Face f of piece i is face first_face[i] + f of the flat per-face tables.
@@ -1241,7 +1235,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // pieces of different regions can share area only in the plane between them).
     std::vector<FaceSource> inside_sources, across_sources;
     const std::vector<PieceContact> inside = decideTableContacts(
-        tracked, pieces.size(), tracked_pairs, tol.distance, tol.area, decide, &inside_sources);
+        tracked, pieces.size(), tol.distance, tol.area, decide, &inside_sources);
     std::vector<char> kd_plane(plane_ids.size(), 0);
     for (const Region& region : regions) {
       for (int id : region.face_plane) {
@@ -1271,6 +1265,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
   }
   counters.contact_seconds = secondsSince(contact_start);
+  tracked.clear();
+  cuts.clear();
   AssemblyReport assembly;
   BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;

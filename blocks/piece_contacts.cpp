@@ -423,10 +423,16 @@ class LocalClusters {
 class PairTests {
  public:
   using Face = PlaneFaces::Face;
-  PairTests(const PlaneFaces& table, double tolerance, double min_area)
-      : table_(table), points_(table.points), tolerance_(tolerance), min_area_(min_area) {}
+  PairTests(const PlaneFaces& table, double tolerance, double min_area, int piece_offset = 0)
+      : table_(table),
+        points_(table.points),
+        tolerance_(tolerance),
+        min_area_(min_area),
+        piece_offset_(piece_offset) {}
 
   const Face& face(std::uint32_t k) const { return table_.faces[k]; }
+  /// The piece of a face, counting the pieces of all tables.
+  int piece(const Face& f) const { return f.piece + piece_offset_; }
 
   /// Different pieces, opposite normals (within ~2.6 degrees; the plane test decides).
   bool viable(const Face& a, const Face& b) const {
@@ -446,9 +452,10 @@ class PairTests {
   void loopOf(const Face& f, std::vector<Vec3>& out) const {
     out.assign(points_.begin() + f.begin, points_.begin() + f.end);
   }
-  static PieceContact contactOf(const Face& a, const Face& b, double area) {
-    return a.piece < b.piece ? PieceContact{a.piece, a.face, b.piece, b.face, area}
-                             : PieceContact{b.piece, b.face, a.piece, a.face, area};
+  PieceContact contactOf(const Face& a, const Face& b, double area) const {
+    const int pa = piece(a), pb = piece(b);
+    return pa < pb ? PieceContact{pa, a.face, pb, b.face, area}
+                   : PieceContact{pb, b.face, pa, a.face, area};
   }
   /// The overlap of a candidate pair whose faces are not the same loop, into `overlap`
   /// (fewer than 3 points when they do not touch with area), and its area (m2). Separated
@@ -492,6 +499,7 @@ class PairTests {
   const PlaneFaces& table_;
   const std::vector<Vec3>& points_;
   double tolerance_, min_area_;
+  int piece_offset_ = 0;
 };
 
 using TablePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
@@ -500,14 +508,15 @@ using TablePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 /// (`candidates(g)` gives batch g): first every mirrored pair (both sides of one cut), then,
 /// per batch, the others whose pieces are not yet glued. Contacts and their sources go to
 /// found[g] / decided[g]. Deterministic: the batches are fixed, not the threads.
-template <class Candidates>
-void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t batches,
+template <class TestsOf, class Candidates>
+void decideBatches(const TestsOf& tests_of, std::size_t piece_count, std::size_t batches,
                    const Candidates& candidates, const ContactDecision& decide,
                    std::vector<std::vector<PieceContact>>& found,
                    std::vector<std::vector<FaceSource>>& decided) {
   // Pass 1: the mirrored pairs (cheap), decided; the other candidates wait.
   std::vector<TablePairs> waiting(batches);
   tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
+    const PairTests& tests = tests_of(g);
     std::vector<Vec3> loop;
     for (const auto& [ka, kb] : candidates(g)) {
       const PlaneFaces::Face& a = tests.face(ka);
@@ -521,7 +530,7 @@ void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t 
       tests.loopOf(a, loop);
       const double area = geometry::polygonArea(loop);
       if (!tests.real(loop, area)) continue;
-      found[g].push_back(PairTests::contactOf(a, b, area));
+      found[g].push_back(tests.contactOf(a, b, area));
       decided[g].push_back(decide(found[g].back(), true));
     }
   });
@@ -537,16 +546,17 @@ void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t 
   for (std::size_t i = 0; i < piece_count; ++i) root[i] = clusters.find(static_cast<int>(i));
   // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the batch).
   tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
+    const PairTests& tests = tests_of(g);
     LocalClusters local;
     std::vector<Vec3> loop_a, loop_b, overlap;
     for (const auto& [ka, kb] : waiting[g]) {
       const PlaneFaces::Face& a = tests.face(ka);
       const PlaneFaces::Face& b = tests.face(kb);
-      const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
+      const int ra = local.find(root[tests.piece(a)]), rb = local.find(root[tests.piece(b)]);
       if (ra == rb) continue;
       const double area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
       if (!tests.real(overlap, area)) continue;
-      found[g].push_back(PairTests::contactOf(a, b, area));
+      found[g].push_back(tests.contactOf(a, b, area));
       decided[g].push_back(decide(found[g].back(), false));
       if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
     }
@@ -617,12 +627,12 @@ std::vector<PieceContact> contactsByPlane(std::span<const Piece> pieces, const P
         } else {
           area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
         }
-        if (tests.real(overlap, area)) found[g].push_back(PairTests::contactOf(a, b, area));
+        if (tests.real(overlap, area)) found[g].push_back(tests.contactOf(a, b, area));
       }
     });
   } else {
     decideBatches(
-        tests, pieces.size(), group_count,
+        [&](std::size_t) -> const PairTests& { return tests; }, pieces.size(), group_count,
         [&](std::size_t g) {
           return candidatePairs(table, table.groups[g].first, table.groups[g].second, tolerance);
         },
@@ -740,10 +750,39 @@ std::vector<PieceContact> decideTableContacts(
   const std::size_t batches = (pairs.size() + kBatch - 1) / kBatch;
   std::vector<std::vector<PieceContact>> found(batches);
   std::vector<std::vector<FaceSource>> decided(batches);
+  decideBatches([&](std::size_t) -> const PairTests& { return tests; }, piece_count, batches,
+                [&](std::size_t g) {
+                  return pairs.subspan(g * kBatch,
+                                       std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+                },
+                decide, found, decided);
+  return sortedContacts(found, decided, true, sources);
+}
+
+std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> parts,
+                                              std::size_t piece_count, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  constexpr std::size_t kBatch = 4096;
+  std::vector<PairTests> tests;
+  tests.reserve(parts.size());
+  // Batch g: part part_of[g], its pairs from first_pair[g] on (kBatch at most).
+  std::vector<std::size_t> part_of, first_pair;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    tests.emplace_back(*parts[p].table, tolerance, min_area, parts[p].piece_offset);
+    for (std::size_t k = 0; k < parts[p].pairs.size(); k += kBatch) {
+      part_of.push_back(p);
+      first_pair.push_back(k);
+    }
+  }
+  const std::size_t batches = part_of.size();
+  std::vector<std::vector<PieceContact>> found(batches);
+  std::vector<std::vector<FaceSource>> decided(batches);
   decideBatches(
-      tests, piece_count, batches,
+      [&](std::size_t g) -> const PairTests& { return tests[part_of[g]]; }, piece_count, batches,
       [&](std::size_t g) {
-        return pairs.subspan(g * kBatch, std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+        const auto& pairs = parts[part_of[g]].pairs;
+        return pairs.subspan(first_pair[g], std::min(pairs.size() - first_pair[g], kBatch));
       },
       decide, found, decided);
   return sortedContacts(found, decided, true, sources);

@@ -125,6 +125,26 @@ std::vector<PieceContact> decideTableContacts(
     std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs, double tolerance,
     double min_area, const ContactDecision& decide, std::vector<FaceSource>* sources);
 
+/// One of several contact tables decided together (a cutter's regions, each with its own
+/// table, are not copied into one): its faces name pieces piece_offset + Face::piece, its
+/// pairs index table->faces.
+struct ContactTablePart {
+  const ContactFaces* table = nullptr;
+  int piece_offset = 0;
+  std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs;
+};
+
+/// decideTableContacts over several tables (pieces 0 .. piece_count - 1 over all parts): the
+/// candidates of each part in fixed batches of that part. Every real contact between two
+/// faces of a listed pair whose pieces end in different clusters is in the result, and the
+/// clusters are those of decideTableContacts on the parts' tables appended into one (only
+/// contacts inside a cluster may differ: the batches differ). Sorted as findContactsByPlane;
+/// `sources` gets the decisions in the same order.
+std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> parts,
+                                              std::size_t piece_count, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources);
+
 /// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
 /// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into
 /// `out` (counter-clockwise about `normal`; fewer than 3 points when they do not overlap).
