@@ -633,6 +633,9 @@ struct RegionCut {
   ContactFaces faces;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
+  /// Tracked: faces that are the two sides of one cut (the same loop, bitwise): (piece,
+  /// face, other piece, other face), piece indices into `pieces`. Their coverage is one.
+  std::vector<std::array<int, 4>> twins;
   long long piece_tests = 0;
   long long splits = 0;
 };
@@ -837,6 +840,31 @@ class CellStore {
       high = std::max(high, d);
     }
     return {low, high};
+  }
+  /// True when face g of cell d is face f of cell c run backwards (the two sides of one cut,
+  /// bitwise equal points), as sameLoop in piece_contacts.cpp decides it.
+  bool mirrored(int c, int f, int d, int g) const {
+    const int fc = f_begin_[c] + f, gd = f_begin_[d] + g;
+    const int n = face_size_[fc];
+    if (face_size_[gd] != n) return false;
+    const auto a = [&](int k) -> const Vec3& {
+      return vertices_[v_begin_[c] + loops_[face_begin_[fc] + k]];
+    };
+    const auto b = [&](int k) -> const Vec3& {
+      return vertices_[v_begin_[d] + loops_[face_begin_[gd] + k]];
+    };
+    int start = n;
+    for (int k = 0; k < n; ++k) {
+      if (b(k) == a(0)) {
+        start = k;
+        break;
+      }
+    }
+    if (start == n) return false;
+    for (int k = 0; k < n; ++k) {
+      if (a(k) != b((start + n - k) % n)) return false;
+    }
+    return true;
   }
   /// Cell c as a piece; the plane ids of its faces are appended to `planes`.
   Piece piece(int c, std::vector<int>& planes) const {
@@ -1061,6 +1089,10 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
           const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
           const std::uint32_t b = slotOf(link.other, other, link.other_face);
           out.pairs.emplace_back(a, b);
+          if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
+              store.mirrored(live[k], link.face, link.other, link.other_face)) {
+            out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
+          }
         }
       }
     }
@@ -1132,6 +1164,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   // Tracked: per region, the faces that may touch and the pairs of them (each region's
   // table stays where the region built it; the contact decisions read them in place).
   std::vector<ContactTablePart> tracked;
+  std::vector<std::array<int, 4>> twins;  // (piece, face, piece, face), global piece indices
   {
     std::size_t piece_total = 0, face_total = 0;
     for (const RegionCut& cut : cuts) {
@@ -1148,6 +1181,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     if (!cut.pairs.empty()) {
       tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs});
     }
+    const int first = static_cast<int>(pieces.size());
+    for (const auto& [i, f, j, g] : cut.twins) twins.push_back({first + i, f, first + j, g});
     for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
     planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
   }
@@ -1178,12 +1213,22 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   const auto coverOf = [&](int piece, int face) -> Cover& {
     return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
   };
+  // The second face of a pair of twins (the two sides of one cut) is not covered itself: it
+  // takes the coverage of the first, the same loop run backwards (a pair whose first face is
+  // itself a second, possible only for overlapping cells, is covered on both sides).
+  std::vector<char> second_twin(first_face.back(), 0);
+  std::erase_if(twins, [&](const std::array<int, 4>& t) {
+    if (second_twin[first_face[t[0]] + static_cast<std::size_t>(t[1])]) return true;
+    second_twin[first_face[t[2]] + static_cast<std::size_t>(t[3])] = 1;
+    return false;
+  });
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
     Cover* cover = &cover_table[first_face[i]];
+    const char* second = &second_twin[first_face[i]];
     thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-      if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
+      if (piece.face_sources[f].kind != FaceKind::Fictitious || second[f]) continue;
       const int g = groupOf(planeOf(static_cast<int>(i), static_cast<int>(f)));
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
@@ -1194,6 +1239,15 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     std::copy(piece.face_sources.begin(), piece.face_sources.end(),
               face_source.begin() + static_cast<std::ptrdiff_t>(first_face[i]));
   });
+  for (const auto& [i, f, j, g] : twins) {
+    const std::size_t from = first_face[i] + static_cast<std::size_t>(f);
+    const std::size_t to = first_face[j] + static_cast<std::size_t>(g);
+    if (pieces[j].face_sources[g].kind != FaceKind::Fictitious) continue;
+    cover_table[to] = cover_table[from];
+    if (cover_table[to] == Cover::Whole) {
+      pieces[j].face_sources[g] = face_source[to] = face_source[from];
+    }
+  }
 
   counters.coverage_seconds = secondsSince(assemble_start);
   const auto contact_start = std::chrono::steady_clock::now();
