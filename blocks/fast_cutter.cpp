@@ -987,6 +987,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   std::vector<int> live(store.size()), next;
   std::iota(live.begin(), live.end(), 0);
   std::vector<Vec3> section, covered, scratch;
+  SectionScratch crossed;  // the section's work, reused by the split that follows it
   FlatSplit split;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
@@ -1004,7 +1005,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       ++out.piece_tests;
       int on_face = -1;
       const SectionKind kind =
-          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face);
+          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face, crossed);
       if (kind == SectionKind::OnFace) {
         out.coincident.emplace_back(store.planeOf(id, on_face), polygon.plane_id);
       }
@@ -1044,7 +1045,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
         cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
-      if (!cut || !splitFlat(store.view(id), polygon.plane, tol.distance, split)) {
+      if (!cut || !splitFlat(store.view(id), crossed, split)) {
         next.push_back(id);
         continue;
       }

@@ -82,7 +82,7 @@ TEST(FlatSplit, SplitFlatGivesBitwiseTheHalvesOfSplitPiece) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int crossings = 0;
-  FlatSplit flat;
+  FlatSplit flat, reused;
   for (int trial = 0; trial < 200; ++trial) {
     const Piece piece = randomConvexPiece(rng, 1 + trial % 6);
     const Flat f = flatten(piece);
@@ -100,6 +100,24 @@ TEST(FlatSplit, SplitFlatGivesBitwiseTheHalvesOfSplitPiece) {
                    flat.below_size, flat.below_origin);
     expectSameHalf(split->above, split->above_origin, flat.above_vertices, flat.above_loops,
                    flat.above_size, flat.above_origin);
+    // The fast cutter's path: the section first, then the split from the section's work
+    // (SectionScratch) gives the very same halves, and the section is the new face of `below`
+    // (its last face), point for point.
+    std::vector<Vec3> section;
+    int face = -1;
+    SectionScratch scratch;
+    ASSERT_EQ(planeSectionFlat(f.view(), plane, 1e-12, section, &face, scratch),
+              SectionKind::Crossing);
+    ASSERT_TRUE(splitFlat(f.view(), scratch, reused));
+    expectSameHalf(split->below, split->below_origin, reused.below_vertices, reused.below_loops,
+                   reused.below_size, reused.below_origin);
+    expectSameHalf(split->above, split->above_origin, reused.above_vertices, reused.above_loops,
+                   reused.above_size, reused.above_origin);
+    const std::vector<int>& cap = split->below.shape.faces.back();
+    ASSERT_EQ(section.size(), cap.size());
+    for (std::size_t k = 0; k < cap.size(); ++k) {
+      EXPECT_EQ(section[k], split->below.shape.vertices[cap[k]]);
+    }
   }
   EXPECT_GT(crossings, 100);  // most planes through the box's middle cross the piece
 }
