@@ -636,6 +636,10 @@ struct RegionCut {
   /// Tracked: faces that are the two sides of one cut (the same loop, bitwise): (piece,
   /// face, other piece, other face), piece indices into `pieces`. Their coverage is one.
   std::vector<std::array<int, 4>> twins;
+  /// Tracked: the faces of `pieces` in the region's kd faces (planes between regions), for
+  /// the search across regions, with their plane ids (kd_planes, per entry of kd.faces).
+  ContactFaces kd;
+  std::vector<int> kd_planes;
   long long piece_tests = 0;
   long long splits = 0;
 };
@@ -1069,16 +1073,22 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   }
   if (track) {
     // The contact table straight from the flat store (sequential, still in cache), faces in
-    // first-use order of the pairs.
+    // first-use order of the pairs: slots and sizes first, then the table sized once and
+    // filled.
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
+    struct Use {
+      int cell, piece, face;
+      std::uint32_t begin;
+    };
+    std::vector<Use> uses;
+    std::uint32_t corners = 0;
     const auto slotOf = [&](int cell, int k, int face) {
       std::uint32_t& at = slot[store.faceIndex(cell, face)];
       if (at == kNone) {
-        const FlatPieceView view = store.view(cell);
-        at = out.faces.add(k, face, view.vertices,
-                           view.loops.subspan(static_cast<std::size_t>(view.face_begin[face]),
-                                              static_cast<std::size_t>(view.face_size[face])));
+        at = static_cast<std::uint32_t>(uses.size());
+        uses.push_back({cell, k, face, corners});
+        corners += static_cast<std::uint32_t>(store.view(cell).face_size[face]);
       }
       return at;
     };
@@ -1096,6 +1106,32 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
           }
         }
       }
+    }
+    // The faces in the region's kd faces, in piece and face order.
+    for (std::size_t k = 0; k < live.size(); ++k) {
+      const FlatPieceView view = store.view(live[k]);
+      for (int f = 0; f < store.faceCount(live[k]); ++f) {
+        const int plane = store.planeOf(live[k], f);
+        if (std::find(region.face_plane.begin(), region.face_plane.end(), plane) ==
+            region.face_plane.end()) {
+          continue;
+        }
+        out.kd.add(static_cast<int>(k), f, view.vertices,
+                   view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                      static_cast<std::size_t>(view.face_size[f])));
+        out.kd_planes.push_back(plane);
+      }
+    }
+    out.faces.faces.resize(uses.size());
+    out.faces.points.resize(corners);
+    out.faces.inward.resize(corners);
+    for (std::size_t u = 0; u < uses.size(); ++u) {
+      const FlatPieceView view = store.view(uses[u].cell);
+      const auto f = static_cast<std::size_t>(uses[u].face);
+      out.faces.set(static_cast<std::uint32_t>(u), uses[u].piece, uses[u].face, uses[u].begin,
+                    view.vertices,
+                    view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                       static_cast<std::size_t>(view.face_size[f])));
     }
   }
   return out;
@@ -1175,7 +1211,9 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     pieces.reserve(piece_total);
     planes.reserve(face_total);
   }
+  std::vector<int> piece_first;  // per region: the global index of its first piece
   for (RegionCut& cut : cuts) {
+    piece_first.push_back(static_cast<int>(pieces.size()));
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
@@ -1300,8 +1338,32 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // In place (no copy): the contacts inside regions are decided already, and the faces
     // searched now keep their (kd plane) ids, which is all `decide` reads of them.
     for (int& id : planes) id = kd_plane[id] ? id : -1;
+    // The regions' kd faces in one table, in plane order (ties in piece and face order):
+    // the table findContactsByPlane would build from the pieces.
+    ContactFaces kd;
+    std::vector<int> kd_root;
+    for (std::size_t r = 0; r < cuts.size(); ++r) {
+      kd.append(cuts[r].kd, piece_first[r]);
+      for (int id : cuts[r].kd_planes) kd_root.push_back(plane_ids.find(id));
+    }
+    {
+      std::vector<std::uint32_t> order(kd.faces.size());
+      std::iota(order.begin(), order.end(), 0u);
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return kd_root[a] < kd_root[b]; });
+      std::vector<ContactFaces::Face> sorted;
+      sorted.reserve(order.size());
+      for (std::uint32_t k : order) sorted.push_back(kd.faces[k]);
+      kd.faces = std::move(sorted);
+      for (std::size_t b = 0; b < order.size();) {
+        std::size_t e = b + 1;
+        while (e < order.size() && kd_root[order[e]] == kd_root[order[b]]) ++e;
+        if (e - b >= 2) kd.groups.emplace_back(b, e);
+        b = e;
+      }
+    }
     const std::vector<PieceContact> across =
-        findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &across_sources);
+        decidePlaneContacts(kd, pieces.size(), tol.distance, tol.area, decide, &across_sources);
     // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
     std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
     for (std::size_t k = 0; k < inside.size(); ++k)

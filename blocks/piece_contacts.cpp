@@ -631,17 +631,29 @@ std::vector<PieceContact> contactsByPlane(std::span<const Piece> pieces, const P
       }
     });
   } else {
-    decideBatches(
-        [&](std::size_t) -> const PairTests& { return tests; }, pieces.size(), group_count,
-        [&](std::size_t g) {
-          return candidatePairs(table, table.groups[g].first, table.groups[g].second, tolerance);
-        },
-        decide, found, decided);
+    return decidePlaneContacts(table, pieces.size(), tolerance, min_area, decide, sources);
   }
   return sortedContacts(found, decided, static_cast<bool>(decide), sources);
 }
 
 }  // namespace
+
+std::vector<PieceContact> decidePlaneContacts(const ContactFaces& table, std::size_t piece_count,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  const PairTests tests(table, tolerance, min_area);
+  const std::size_t group_count = table.groups.size();
+  std::vector<std::vector<PieceContact>> found(group_count);
+  std::vector<std::vector<FaceSource>> decided(group_count);
+  decideBatches([&](std::size_t) -> const PairTests& { return tests; }, piece_count, group_count,
+                [&](std::size_t g) {
+                  return candidatePairs(table, table.groups[g].first, table.groups[g].second,
+                                        tolerance);
+                },
+                decide, found, decided);
+  return sortedContacts(found, decided, true, sources);
+}
 
 std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const std::vector<std::vector<int>>& planes,
@@ -725,6 +737,14 @@ std::uint32_t ContactFaces::add(int piece, int face, std::span<const Vec3> verti
       [&](std::size_t v) -> const Vec3& { return vertices[loop[v]]; }, points.data(),
       inward.data());
   return k;
+}
+
+void ContactFaces::set(std::uint32_t k, int piece, int face, std::uint32_t begin,
+                       std::span<const Vec3> vertices, std::span<const int> loop) {
+  fillFace(
+      faces[k], piece, face, begin, loop.size(),
+      [&](std::size_t v) -> const Vec3& { return vertices[loop[v]]; }, points.data(),
+      inward.data());
 }
 
 void ContactFaces::append(const ContactFaces& other, int piece_offset) {

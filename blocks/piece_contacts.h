@@ -113,6 +113,11 @@ struct ContactFaces {
   /// index in `faces`.
   std::uint32_t add(int piece, int face, std::span<const geometry::Vec3> vertices,
                     std::span<const int> loop);
+  /// Fills entry k of a table sized beforehand (faces.size() > k, points and inward holding
+  /// begin + loop.size() corners or more) as `add` would: face `face` of piece `piece`, whose
+  /// corners are vertices[loop[j]], its corners at points[begin ..].
+  void set(std::uint32_t k, int piece, int face, std::uint32_t begin,
+           std::span<const geometry::Vec3> vertices, std::span<const int> loop);
   /// Appends the faces of `other`, their piece indices shifted by `piece_offset`.
   void append(const ContactFaces& other, int piece_offset);
 };
@@ -124,6 +129,16 @@ std::vector<PieceContact> decideTableContacts(
     const ContactFaces& table, std::size_t piece_count,
     std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs, double tolerance,
     double min_area, const ContactDecision& decide, std::vector<FaceSource>* sources);
+
+/// findContactsByPlane with `decide` on a prepared table: `table.groups` lists the [begin,
+/// end) ranges of table.faces that lie in one plane (two faces or more), faces of a plane in
+/// piece and face order; pieces are 0 .. piece_count - 1. The same contacts, decisions and
+/// order as findContactsByPlane on the pieces the table was filled from (a cutter that holds
+/// its pieces in flat arrays fills the table without reading them back).
+std::vector<PieceContact> decidePlaneContacts(const ContactFaces& table, std::size_t piece_count,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources);
 
 /// One of several contact tables decided together (a cutter's regions, each with its own
 /// table, are not copied into one): its faces name pieces piece_offset + Face::piece, its
