@@ -329,14 +329,18 @@ std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& pla
 void clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane, std::vector<Vec3>& out) {
   out.clear();
   const std::size_t n = polygon.size();
+  if (n == 0) return;
+  // Each point's distance once (the next edge's start is this edge's end).
+  const double first = plane.distance(polygon[0]);
+  double sp = first;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = polygon[i];
-    const Vec3& q = polygon[(i + 1) % n];
-    const double sp = plane.distance(p);
-    const double sq = plane.distance(q);
+    const Vec3& q = polygon[i + 1 == n ? 0 : i + 1];
+    const double sq = i + 1 == n ? first : plane.distance(q);
     if (sp >= 0.0) out.push_back(p);
     if ((sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0))
       out.push_back(p + (sp / (sp - sq)) * (q - p));
+    sp = sq;
   }
 }
 

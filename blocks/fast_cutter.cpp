@@ -1107,20 +1107,33 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
       }
     }
-    // The faces in the region's kd faces, in piece and face order.
+    // The faces in the region's kd faces, in piece and face order (counted, then the table
+    // sized once and filled).
+    std::vector<std::pair<int, int>> kd_faces;  // (k, face)
+    std::uint32_t kd_corners = 0;
     for (std::size_t k = 0; k < live.size(); ++k) {
-      const FlatPieceView view = store.view(live[k]);
       for (int f = 0; f < store.faceCount(live[k]); ++f) {
         const int plane = store.planeOf(live[k], f);
         if (std::find(region.face_plane.begin(), region.face_plane.end(), plane) ==
             region.face_plane.end()) {
           continue;
         }
-        out.kd.add(static_cast<int>(k), f, view.vertices,
-                   view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
-                                      static_cast<std::size_t>(view.face_size[f])));
+        kd_faces.emplace_back(static_cast<int>(k), f);
+        kd_corners += static_cast<std::uint32_t>(store.view(live[k]).face_size[f]);
         out.kd_planes.push_back(plane);
       }
+    }
+    out.kd.faces.resize(kd_faces.size());
+    out.kd.points.resize(kd_corners);
+    out.kd.inward.resize(kd_corners);
+    kd_corners = 0;
+    for (std::size_t u = 0; u < kd_faces.size(); ++u) {
+      const auto [k, f] = kd_faces[u];
+      const FlatPieceView view = store.view(live[static_cast<std::size_t>(k)]);
+      const auto loop = view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                           static_cast<std::size_t>(view.face_size[f]));
+      out.kd.set(static_cast<std::uint32_t>(u), k, f, kd_corners, view.vertices, loop);
+      kd_corners += static_cast<std::uint32_t>(loop.size());
     }
     out.faces.faces.resize(uses.size());
     out.faces.points.resize(corners);
