@@ -833,6 +833,19 @@ class CellStore {
     }
     links_.clear();
   }
+  /// Newell unit normal of face f of cell c (zero for a degenerate face).
+  Vec3 faceNormal(int c, int f) const {
+    const int g = f_begin_[c] + f;
+    const int n = face_size_[g];
+    Vec3 sum = Vec3::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Vec3& p = vertices_[v_begin_[c] + loops_[face_begin_[g] + k]];
+      const Vec3& q = vertices_[v_begin_[c] + loops_[face_begin_[g] + (k + 1 == n ? 0 : k + 1)]];
+      sum += p.cross(q);
+    }
+    const double length = sum.norm();
+    return length > 0.0 ? Vec3(sum / length) : Vec3(Vec3::Zero());
+  }
   /// The lowest and highest signed distance (m) of the points of face f of cell c from
   /// `plane`.
   std::pair<double, double> faceReach(int c, int f, const Plane& plane) const {
@@ -914,10 +927,17 @@ class CellStore {
 
 /// Hands the links of cell c to its two halves `below` and `above` (the split `split`), and
 /// updates the linked cells' own links. A face that goes to one half keeps its links; for a
-/// face split between the halves, a linked face stays with a half unless it lies wholly
-/// beyond twice the tolerance on the other side of the splitting plane, so a face that
-/// touches a half with area stays linked (conservative: the contact test decides). The two
-/// new faces are linked.
+/// face split between the halves, a linked face stays with a half unless the two can share
+/// no more than a strip narrower than half the tolerance: the half's part of the face lies
+/// on its side of the plane up to the new face's points (cap_low, cap_high: their lowest and
+/// highest distance), the linked face on the other side from its lowest (highest) point on,
+/// and a band of the plane's distances of height h is a strip of width h / sin(angle between
+/// the face's plane and the splitting plane) in the face. Such a strip is never a real
+/// contact (area at most half the tolerance times its extent, see realContact), nor is any
+/// part of it after further splits, so the link is dropped; the contact tests would only
+/// reject it (most such pairs are a face and the part of its former neighbour that the same
+/// plane split off: they share the line where the plane crosses them). The two new faces are
+/// linked.
 void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit& split,
             const Plane& plane, double tolerance) {
   thread_local std::vector<int> to_below, to_above;
@@ -937,15 +957,38 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
   above.clear();
   below.push_back({new_below, above_id, new_above, 0});
   above.push_back({new_above, below_id, new_below, 0});
-  const double margin = 2.0 * tolerance;
+  // The new face's points: the ON vertices and crossing points, the part of the plane both
+  // halves reach.
+  double cap_low = std::numeric_limits<double>::infinity(), cap_high = -cap_low;
+  {
+    const std::size_t n = static_cast<std::size_t>(split.below_size.back());
+    const std::size_t first = split.below_loops.size() - n;
+    for (std::size_t k = first; k < split.below_loops.size(); ++k) {
+      const double d = plane.distance(split.below_vertices[split.below_loops[k]]);
+      cap_low = std::min(cap_low, d);
+      cap_high = std::max(cap_high, d);
+    }
+  }
+  const double margin = 2.0 * tolerance;  // beyond it on the other side: no contact
+  // Per split face: half the tolerance times the sine of its angle with the plane (0: not
+  // computed yet).
+  thread_local std::vector<double> strip;
+  strip.assign(faces, 0.0);
   for (const Link& link : store.links(c)) {
     if (link.other_face < 0) continue;  // a link whose face vanished in an earlier split
     const int fb = to_below[link.face], fa = to_above[link.face];
     bool keep_below = fb >= 0, keep_above = fa >= 0;
     if (keep_below && keep_above) {
+      double& width = strip[static_cast<std::size_t>(link.face)];
+      if (width == 0.0) {
+        const Vec3 n = store.faceNormal(c, link.face);
+        width = 0.5 * tolerance * n.cross(plane.normal).norm();
+        // Parallel (degenerate): only the reach decides.
+        if (width == 0.0) width = -std::numeric_limits<double>::infinity();
+      }
       const auto [low, high] = store.faceReach(link.other, link.other_face, plane);
-      keep_below = low <= margin;
-      keep_above = high >= -margin;
+      keep_below = low <= margin && !(cap_high - low <= width);
+      keep_above = high >= -margin && !(high - cap_low <= width);
     }
     // The linked cell's link back to (c, face) goes to the half kept, or one per half.
     std::vector<Link>& other = store.links(link.other);
