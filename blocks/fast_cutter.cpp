@@ -636,6 +636,8 @@ struct RegionCut {
   /// Tracked: faces that are the two sides of one cut (the same loop, bitwise): (piece,
   /// face, other piece, other face), piece indices into `pieces`. Their coverage is one.
   std::vector<std::array<int, 4>> twins;
+  /// Tracked: the contacts of the twins that touch (mirroredContactArea), not in `pairs`.
+  std::vector<PieceContact> mirrored;
   /// Tracked: the faces of `pieces` in the region's kd faces (planes between regions), for
   /// the search across regions, with their plane ids (kd_planes, per entry of kd.faces).
   ContactFaces kd;
@@ -832,6 +834,14 @@ class CellStore {
       spare_links_.push_back(std::move(list));
     }
     links_.clear();
+  }
+  /// The corners of face f of cell c, in loop order, into `out`.
+  void faceCorners(int c, int f, std::vector<Vec3>& out) const {
+    const int g = f_begin_[c] + f;
+    out.clear();
+    for (int k = face_begin_[g]; k < face_begin_[g] + face_size_[g]; ++k) {
+      out.push_back(vertices_[v_begin_[c] + loops_[k]]);
+    }
   }
   /// Newell unit normal of face f of cell c (zero for a degenerate face).
   Vec3 faceNormal(int c, int f) const {
@@ -1126,6 +1136,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
     };
     std::vector<Use> uses;
     std::uint32_t corners = 0;
+    std::vector<Vec3> corners_a, corners_b;
     const auto slotOf = [&](int cell, int k, int face) {
       std::uint32_t& at = slot[store.faceIndex(cell, face)];
       if (at == kNone) {
@@ -1139,15 +1150,22 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       for (const Link& link : store.links(live[k])) {
         if (link.other_face < 0) continue;
         const int other = local[link.other];
-        if (other > static_cast<int>(k)) {
-          const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
-          const std::uint32_t b = slotOf(link.other, other, link.other_face);
-          out.pairs.emplace_back(a, b);
-          if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
-              store.mirrored(live[k], link.face, link.other, link.other_face)) {
-            out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
+        if (other <= static_cast<int>(k)) continue;
+        if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
+            store.mirrored(live[k], link.face, link.other, link.other_face)) {
+          // The two sides of one cut: their contact is decided without a table entry.
+          out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
+          store.faceCorners(live[k], link.face, corners_a);
+          store.faceCorners(link.other, link.other_face, corners_b);
+          if (const std::optional<double> area =
+                  mirroredContactArea(corners_a, corners_b, tol.distance, tol.area)) {
+            out.mirrored.push_back({static_cast<int>(k), link.face, other, link.other_face, *area});
           }
+          continue;
         }
+        const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
+        const std::uint32_t b = slotOf(link.other, other, link.other_face);
+        out.pairs.emplace_back(a, b);
       }
     }
     // The faces in the region's kd faces, in piece and face order (counted, then the table
@@ -1273,8 +1291,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
-    if (!cut.pairs.empty()) {
-      tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs});
+    if (!cut.pairs.empty() || !cut.mirrored.empty()) {
+      tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs, cut.mirrored});
     }
     const int first = static_cast<int>(pieces.size());
     for (const auto& [i, f, j, g] : cut.twins) twins.push_back({first + i, f, first + j, g});

@@ -779,6 +779,34 @@ std::vector<PieceContact> decideTableContacts(
   return sortedContacts(found, decided, true, sources);
 }
 
+std::optional<double> mirroredContactArea(std::span<const Vec3> a, std::span<const Vec3> b,
+                                          double tolerance, double min_area) {
+  // The numbers fillFace gives the two faces (Newell unit normals, a's offset through the
+  // mean of its corners) and the tests PairTests makes of a mirrored pair: viable (opposite
+  // normals), coplanarFaces (equal boxes: b's corners near a's plane), real.
+  const auto newell = [](std::span<const Vec3> points) {
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      sum += points[v].cross(points[v + 1 == points.size() ? 0 : v + 1]);
+    }
+    const double length = sum.norm();
+    return length > 0.0 ? Vec3(sum / length) : Vec3(Vec3::Zero());
+  };
+  const Vec3 normal_a = newell(a);
+  if (normal_a.dot(newell(b)) > -0.999) return std::nullopt;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : a) mean += p;
+  const double offset = normal_a.dot(mean / static_cast<double>(a.size()));
+  for (const Vec3& p : b) {
+    if (std::abs(normal_a.dot(p) - offset) > tolerance) return std::nullopt;
+  }
+  thread_local std::vector<Vec3> loop;
+  loop.assign(a.begin(), a.end());
+  const double area = geometry::polygonArea(loop);
+  if (!realContact(loop, area, tolerance, min_area)) return std::nullopt;
+  return area;
+}
+
 std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> parts,
                                               std::size_t piece_count, double tolerance,
                                               double min_area, const ContactDecision& decide,
@@ -786,11 +814,13 @@ std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> 
   constexpr std::size_t kBatch = 4096;
   std::vector<PairTests> tests;
   tests.reserve(parts.size());
-  // Batch g: part part_of[g], its pairs from first_pair[g] on (kBatch at most).
-  std::vector<std::size_t> part_of, first_pair;
+  // Batch g: part part_of[g], its pairs from first_pair[g] on (kBatch at most); a part's
+  // first batch starts with its mirrored contacts, decided here.
+  std::vector<std::size_t> part_of, first_pair, first_batch;
   for (std::size_t p = 0; p < parts.size(); ++p) {
     tests.emplace_back(*parts[p].table, tolerance, min_area, parts[p].piece_offset);
-    for (std::size_t k = 0; k < parts[p].pairs.size(); k += kBatch) {
+    first_batch.push_back(part_of.size());
+    for (std::size_t k = 0; k < std::max<std::size_t>(parts[p].pairs.size(), 1); k += kBatch) {
       part_of.push_back(p);
       first_pair.push_back(k);
     }
@@ -798,11 +828,25 @@ std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> 
   const std::size_t batches = part_of.size();
   std::vector<std::vector<PieceContact>> found(batches);
   std::vector<std::vector<FaceSource>> decided(batches);
+  tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t p) {
+    std::vector<PieceContact>& list = found[first_batch[p]];
+    std::vector<FaceSource>& sources_of = decided[first_batch[p]];
+    list.reserve(parts[p].mirrored.size());
+    sources_of.reserve(parts[p].mirrored.size());
+    for (PieceContact c : parts[p].mirrored) {
+      c.piece_a += parts[p].piece_offset;
+      c.piece_b += parts[p].piece_offset;
+      list.push_back(c);
+      sources_of.push_back(decide(c, true));
+    }
+  });
   decideBatches(
       [&](std::size_t g) -> const PairTests& { return tests[part_of[g]]; }, piece_count, batches,
       [&](std::size_t g) {
         const auto& pairs = parts[part_of[g]].pairs;
-        return pairs.subspan(first_pair[g], std::min(pairs.size() - first_pair[g], kBatch));
+        return pairs.empty()
+                   ? pairs
+                   : pairs.subspan(first_pair[g], std::min(pairs.size() - first_pair[g], kBatch));
       },
       decide, found, decided);
   return sortedContacts(found, decided, true, sources);

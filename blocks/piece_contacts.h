@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -142,12 +143,23 @@ std::vector<PieceContact> decidePlaneContacts(const ContactFaces& table, std::si
 
 /// One of several contact tables decided together (a cutter's regions, each with its own
 /// table, are not copied into one): its faces name pieces piece_offset + Face::piece, its
-/// pairs index table->faces.
+/// pairs index table->faces. `mirrored`: contacts the caller found itself between faces that
+/// are the two sides of one cut (mirroredContactArea; pieces numbered as in the table, not in
+/// `pairs`), decided with the mirrored pairs of `pairs`.
 struct ContactTablePart {
   const ContactFaces* table = nullptr;
   int piece_offset = 0;
   std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::span<const PieceContact> mirrored;
 };
+
+/// For two faces of different pieces that are the two sides of one cut (`b` holds the corners
+/// of `a` run backwards, bitwise), what decideTableContacts finds for them as a mirrored pair,
+/// without a table: their area (of `a`) when they touch (opposite Newell normals, coplanar
+/// within `tolerance`, a real contact), else nothing.
+std::optional<double> mirroredContactArea(std::span<const geometry::Vec3> a,
+                                          std::span<const geometry::Vec3> b, double tolerance,
+                                          double min_area);
 
 /// decideTableContacts over several tables (pieces 0 .. piece_count - 1 over all parts): the
 /// candidates of each part in fixed batches of that part. Every real contact between two

@@ -275,8 +275,8 @@ TEST(FlatSplit, TableContactsOfSeveralPartsGiveTheSameClustersAndBlockContacts) 
   std::vector<FaceSource> one_sources, sources;
   const std::vector<PieceContact> expected =
       decideTableContacts(one, pieces.size(), one_pairs, 1e-9, 1e-9, decide, &one_sources);
-  const ContactTablePart parts[2] = {{&part_table[0], 0, part_pairs[0]},
-                                     {&part_table[1], half, part_pairs[1]}};
+  const ContactTablePart parts[2] = {{&part_table[0], 0, part_pairs[0], {}},
+                                     {&part_table[1], half, part_pairs[1], {}}};
   const std::vector<PieceContact> got =
       decideTableContacts(parts, pieces.size(), 1e-9, 1e-9, decide, &sources);
   const auto clustersOf = [&](const std::vector<PieceContact>& contacts,
@@ -318,6 +318,81 @@ TEST(FlatSplit, TableContactsOfSeveralPartsGiveTheSameClustersAndBlockContacts) 
   const auto expected_between = between(expected, one_sources, expected_root);
   EXPECT_GT(expected_between.size(), 10u);  // the oblique cracks cut across many pieces
   EXPECT_EQ(between(got, sources, root), expected_between);
+}
+
+TEST(FlatSplit, MirroredContactsFoundOutsideTheTableAreDecidedAsInIt) {
+  // The fast cutter decides the two sides of one cut (bitwise the same loop, run backwards)
+  // without table entries: mirroredContactArea, passed as ContactTablePart::mirrored. Against
+  // one table holding every candidate pair of gridPieces, the same contacts, areas (bitwise)
+  // and decisions, in the same order.
+  const std::vector<Piece> pieces = gridPieces();
+  const int n = static_cast<int>(pieces.size());
+  const auto corners = [&](int piece, int face) {
+    std::vector<Vec3> out;
+    for (int v : pieces[piece].shape.faces[face]) out.push_back(pieces[piece].shape.vertices[v]);
+    return out;
+  };
+  const auto reversed = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+    if (a.size() != b.size()) return false;
+    const std::size_t m = a.size();
+    for (std::size_t start = 0; start < m; ++start) {
+      if (b[start] != a[0]) continue;
+      for (std::size_t k = 0; k < m; ++k) {
+        if (a[k] != b[(start + m - k) % m]) return false;
+      }
+      return true;
+    }
+    return false;
+  };
+  ContactFaces all, rest;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> all_pairs, rest_pairs;
+  std::vector<PieceContact> mirrored;
+  int mirrored_pairs = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int fa = 0; fa < static_cast<int>(pieces[i].shape.faces.size()); ++fa) {
+        for (int fb = 0; fb < static_cast<int>(pieces[j].shape.faces.size()); ++fb) {
+          const auto add = [&](ContactFaces& table, int piece, int face) {
+            const Piece& p = pieces[piece];
+            return table.add(piece, face, p.shape.vertices, p.shape.faces[face]);
+          };
+          const std::uint32_t a = add(all, i, fa);
+          all_pairs.emplace_back(a, add(all, j, fb));
+          const std::vector<Vec3> ca = corners(i, fa), cb = corners(j, fb);
+          if (reversed(ca, cb)) {
+            ++mirrored_pairs;
+            if (const auto area = mirroredContactArea(ca, cb, 1e-9, 1e-9)) {
+              mirrored.push_back({i, fa, j, fb, *area});
+            }
+            continue;
+          }
+          const std::uint32_t ra = add(rest, i, fa);
+          rest_pairs.emplace_back(ra, add(rest, j, fb));
+        }
+      }
+    }
+  }
+  const ContactDecision decide = gridDecision(pieces);
+  std::vector<FaceSource> expected_sources, sources;
+  const std::vector<PieceContact> expected =
+      decideTableContacts(all, pieces.size(), all_pairs, 1e-9, 1e-9, decide, &expected_sources);
+  const ContactTablePart part[1] = {{&rest, 0, rest_pairs, mirrored}};
+  const std::vector<PieceContact> got =
+      decideTableContacts(part, pieces.size(), 1e-9, 1e-9, decide, &sources);
+  EXPECT_GT(mirrored_pairs, 50);  // the grid's cuts: both sides of every cut face
+  EXPECT_EQ(static_cast<int>(mirrored.size()), mirrored_pairs);  // all of them touch
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    EXPECT_EQ(got[k].piece_a, expected[k].piece_a);
+    EXPECT_EQ(got[k].face_a, expected[k].face_a);
+    EXPECT_EQ(got[k].piece_b, expected[k].piece_b);
+    EXPECT_EQ(got[k].face_b, expected[k].face_b);
+    EXPECT_EQ(got[k].area, expected[k].area);  // bitwise: the same arithmetic
+    EXPECT_EQ(sources[k], expected_sources[k]);
+  }
+  // Faces that are not the same loop, or a face with itself not reversed, are no pair.
+  const std::vector<Vec3> face = corners(0, 0);
+  EXPECT_FALSE(mirroredContactArea(face, face, 1e-9, 1e-9));  // same normals: no contact
 }
 
 TEST(FlatSplit, PiecesWithoutCloseVerticesAreKeptAsTheyAreBySoundPiece) {
