@@ -1070,9 +1070,22 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         next.push_back(id);
         continue;
       }
-      // Does the polygon meet the section with area? Vertex signs first: an edge with the
-      // whole section outside (within the tolerance) leaves at most a strip of that width;
-      // a section inside every edge is covered whole; only the rest is clipped.
+      // Does the polygon meet the section with area? A section whose box misses the
+      // polygon's (grown by the tolerance) does not: no cut, as the tests below would find
+      // (their clip would come out empty). Then vertex signs: an edge with the whole section
+      // outside (within the tolerance) leaves at most a strip of that width; a section
+      // inside every edge is covered whole; only the rest is clipped.
+      if (!section.empty()) {
+        Vec3 low = section.front(), high = section.front();
+        for (const Vec3& x : section) {
+          low = low.cwiseMin(x);
+          high = high.cwiseMax(x);
+        }
+        if ((high.array() < reach.min.array()).any() || (low.array() > reach.max.array()).any()) {
+          next.push_back(id);
+          continue;
+        }
+      }
       bool apart = false, inside = true;
       for (const Plane& edge : polygon.edges) {
         double low = std::numeric_limits<double>::infinity(), high = -low;
@@ -1438,21 +1451,24 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     }
     const std::vector<PieceContact> across =
         decidePlaneContacts(kd, pieces.size(), tol.distance, tol.area, decide, &across_sources);
-    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
-    std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
-    for (std::size_t k = 0; k < inside.size(); ++k)
-      all.emplace_back(&inside[k], &inside_sources[k]);
-    for (std::size_t k = 0; k < across.size(); ++k)
-      all.emplace_back(&across[k], &across_sources[k]);
-    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) {
-      return std::tie(x.first->piece_a, x.first->piece_b, x.first->face_a, x.first->face_b) <
-             std::tie(y.first->piece_a, y.first->piece_b, y.first->face_a, y.first->face_b);
-    });
-    contacts.reserve(all.size());
-    sources.reserve(all.size());
-    for (const auto& [c, source] : all) {
-      contacts.push_back(*c);
-      sources.push_back(*source);
+    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts:
+    // both lists are in that order already (and share no face pair: a contact inside a region
+    // joins pieces of one region, one across regions pieces of two), so they are merged.
+    const auto before = [](const PieceContact& x, const PieceContact& y) {
+      return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
+             std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
+    };
+    contacts.reserve(inside.size() + across.size());
+    sources.reserve(inside.size() + across.size());
+    std::size_t i = 0, j = 0;
+    while (i < inside.size() || j < across.size()) {
+      if (j == across.size() || (i < inside.size() && !before(across[j], inside[i]))) {
+        contacts.push_back(inside[i]);
+        sources.push_back(inside_sources[i++]);
+      } else {
+        contacts.push_back(across[j]);
+        sources.push_back(across_sources[j++]);
+      }
     }
   }
   counters.contact_seconds = secondsSince(contact_start);
