@@ -50,9 +50,18 @@ void counterClockwise(const std::vector<Vec3>& points, const Vec3& normal,
     const Vec3 d = points[i] - center;
     angle[i] = pseudoAngle(d.dot(w), d.dot(u));
   }
+  // A stable insertion sort: sections have a handful of points, and std::stable_sort would
+  // allocate a buffer on every call (the same order: a stable sort's result is unique).
   order.resize(points.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int k = static_cast<int>(i);
+    std::size_t j = i;
+    while (j > 0 && angle[k] < angle[order[j - 1]]) {
+      order[j] = order[j - 1];
+      --j;
+    }
+    order[j] = k;
+  }
 }
 
 /// The point where edge (a, b) crosses the plane, from the signed distances of its ends
