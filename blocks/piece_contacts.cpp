@@ -10,7 +10,6 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
 
 #include "blocks/convex_split.h"
 #include "blocks/union_find.h"
@@ -388,13 +387,24 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> candidatePairs(const PlaneF
   return candidates;
 }
 
-/// Union-find over the clusters one plane group meets (ids are cluster roots, any int).
+/// Union-find over the clusters one batch meets (ids are cluster roots, 0 .. ids - 1). The
+/// slot of each root met is kept in a per-thread array of all ids (no hashing), which the
+/// destructor clears again; a batch runs on one thread from start to end.
 class LocalClusters {
  public:
+  explicit LocalClusters(std::size_t ids) {
+    thread_local std::vector<int> index;
+    if (index.size() < ids) index.assign(ids, -1);
+    index_ = &index;
+  }
+  LocalClusters(const LocalClusters&) = delete;
+  LocalClusters& operator=(const LocalClusters&) = delete;
+  ~LocalClusters() {
+    for (int root : label_) (*index_)[static_cast<std::size_t>(root)] = -1;
+  }
   int find(int root) {
-    const auto it = index_.find(root);
-    if (it == index_.end()) return root;
-    int i = it->second;
+    int i = (*index_)[static_cast<std::size_t>(root)];
+    if (i < 0) return root;
     while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
     return label_[i];
   }
@@ -408,14 +418,15 @@ class LocalClusters {
 
  private:
   int slot(int root) {
-    const auto [it, added] = index_.emplace(root, static_cast<int>(parent_.size()));
-    if (added) {
-      parent_.push_back(it->second);
+    int& at = (*index_)[static_cast<std::size_t>(root)];
+    if (at < 0) {
+      at = static_cast<int>(parent_.size());
+      parent_.push_back(at);
       label_.push_back(root);
     }
-    return it->second;
+    return at;
   }
-  std::unordered_map<int, int> index_;
+  std::vector<int>* index_ = nullptr;
   std::vector<int> parent_, label_;
 };
 
@@ -547,7 +558,7 @@ void decideBatches(const TestsOf& tests_of, std::size_t piece_count, std::size_t
   // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the batch).
   tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
     const PairTests& tests = tests_of(g);
-    LocalClusters local;
+    LocalClusters local(piece_count);
     std::vector<Vec3> loop_a, loop_b, overlap;
     for (const auto& [ka, kb] : waiting[g]) {
       const PlaneFaces::Face& a = tests.face(ka);
