@@ -642,6 +642,8 @@ struct RegionCut {
   /// the search across regions, with their plane ids (kd_planes, per entry of kd.faces).
   ContactFaces kd;
   std::vector<int> kd_planes;
+  /// Per piece: what the assembly needs of it (computed here, while the piece is in cache).
+  std::vector<PieceFacts> facts;
   long long piece_tests = 0;
   long long splits = 0;
 };
@@ -1030,7 +1032,7 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
 RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygons,
                     const std::vector<Piece>& domain,
                     const std::vector<std::vector<int>>& domain_planes, bool box_domain,
-                    const CutTolerances& tol, bool track) {
+                    const CutTolerances& tol, const SoundnessTolerances& soundness, bool track) {
   RegionCut out;
   // Cells stay at their index in `store` (dead ones are dropped from `live`); `live` lists
   // the live ones in order, a split cell's halves taking its place.
@@ -1133,9 +1135,13 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   }
   std::vector<int> local(store.size(), -1);
   out.pieces.reserve(live.size());
+  out.facts.reserve(live.size());
   for (std::size_t k = 0; k < live.size(); ++k) {
     local[live[k]] = static_cast<int>(k);
     out.pieces.push_back(store.piece(live[k], out.planes));
+    const Piece& piece = out.pieces.back();
+    out.facts.push_back({geometry::massProperties(piece.shape), geometry::bounds(piece.shape),
+                         hasCloseVertices(piece, soundness)});
   }
   if (track) {
     // The contact table straight from the flat store (sequential, still in cache), faces in
@@ -1278,9 +1284,10 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
                regions);
   counters.regions = static_cast<int>(regions.size());
 
+  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
   std::vector<RegionCut> cuts(regions.size());
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
-    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol,
+    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
                         options.track_contacts);
   });
   std::vector<Piece> pieces;
@@ -1298,7 +1305,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     pieces.reserve(piece_total);
     planes.reserve(face_total);
   }
-  std::vector<int> piece_first;  // per region: the global index of its first piece
+  std::vector<int> piece_first;   // per region: the global index of its first piece
+  std::vector<PieceFacts> facts;  // per piece, for the assembly
   for (RegionCut& cut : cuts) {
     piece_first.push_back(static_cast<int>(pieces.size()));
     counters.piece_tests += cut.piece_tests;
@@ -1311,6 +1319,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     for (const auto& [i, f, j, g] : cut.twins) twins.push_back({first + i, f, first + j, g});
     for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
     planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
+    facts.insert(facts.end(), cut.facts.begin(), cut.facts.end());
   }
   counters.pieces = static_cast<int>(pieces.size());
   for (int& id : planes) id = plane_ids.find(id);
@@ -1475,7 +1484,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   tracked.clear();
   cuts.clear();
   AssemblyReport assembly;
-  BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
+  BlockModel model =
+      assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources, &facts);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;
   counters.soundness = assembly.soundness;
   counters.pieces -= assembly.soundness.folded_pieces;
