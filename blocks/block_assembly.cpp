@@ -163,7 +163,8 @@ std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances&
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report,
-                          const std::vector<FaceSource>* contact_sources) {
+                          const std::vector<FaceSource>* contact_sources,
+                          const std::vector<PieceFacts>* rock_facts) {
   std::vector<Piece> all = std::move(rock_pieces);
   const std::size_t rock_count = all.size();
   std::vector<int> structure_of(rock_count, -1);
@@ -231,11 +232,14 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
   std::vector<char> repaired(rock_count, 0);
   std::vector<geometry::MassProperties> mass(all.size());
   tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
-    if (hasCloseVertices(all[i], soundness)) {
+    const PieceFacts* facts = rock_facts != nullptr ? &(*rock_facts)[i] : nullptr;
+    if (facts ? facts->close_vertices : hasCloseVertices(all[i], soundness)) {
       repaired[i] = 1;
       sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
     }
-    mass[i] = geometry::massProperties(sound[i] ? sound[i]->piece.shape : all[i].shape);
+    mass[i] = sound[i] ? geometry::massProperties(sound[i]->piece.shape)
+              : facts  ? facts->mass
+                       : geometry::massProperties(all[i].shape);
   });
   for (std::size_t i = rock_count; i < all.size(); ++i) {
     mass[i] = geometry::massProperties(all[i].shape);
@@ -295,7 +299,10 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
       const geometry::MassProperties& m = mass[i];
       b.mass += m;
       material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
-      const geometry::Box box = geometry::bounds(all[i].shape);
+      const geometry::Box box =
+          rock_facts != nullptr && static_cast<std::size_t>(i) < rock_count && !repaired[i]
+              ? (*rock_facts)[i].box
+              : geometry::bounds(all[i].shape);
       b.bounds.min = b.bounds.min.cwiseMin(box.min);
       b.bounds.max = b.bounds.max.cwiseMax(box.max);
     }

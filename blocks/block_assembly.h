@@ -54,6 +54,13 @@ void appendStructureContacts(const std::vector<Piece>& all, std::size_t rock_cou
 /// Returns the indices of `blocks` in id order.
 std::vector<int> blockOrder(const std::vector<Block>& blocks, const geometry::Box& domain);
 
+/// What the assembly computes of a rock piece as the cutter gives it.
+struct PieceFacts {
+  geometry::MassProperties mass;  ///< geometry::massProperties of its shape
+  geometry::Box box;              ///< geometry::bounds of its shape
+  bool close_vertices = false;    ///< hasCloseVertices with soundnessTolerances(domain box)
+};
+
 /// What the assembly noticed.
 struct AssemblyReport {
   int inconsistent_contacts = 0;  ///< contacts fictitious on one side only (treated as real)
@@ -75,9 +82,14 @@ struct AssemblyReport {
 /// where a face partly covered by a disc is labelled Fictitious but may touch a neighbour
 /// only where the disc covers it). Inconsistent contacts are then those between a
 /// Boundary or Structure face and a face of another kind.
+///
+/// `rock_facts`, when given (one per rock piece), holds what the assembly would compute of
+/// each rock piece as given (a cutter that computes it while the piece is still in cache):
+/// used instead, with the same results.
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report = nullptr,
-                          const std::vector<FaceSource>* contact_sources = nullptr);
+                          const std::vector<FaceSource>* contact_sources = nullptr,
+                          const std::vector<PieceFacts>* rock_facts = nullptr);
 
 }  // namespace rockmass::blocks

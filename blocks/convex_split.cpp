@@ -22,10 +22,21 @@ void classify(std::span<const Vec3> points, const Plane& plane, double tolerance
   }
 }
 
+/// A number that grows with atan2(y, x) over [-pi, pi] (the same order, signed zeros
+/// included, without an arc tangent): y / (|x| + |y|) for x >= 0, 2 - that for x < 0 and y
+/// positive, -2 - that for x < 0 and y negative.
+double pseudoAngle(double y, double x) {
+  const double sum = std::abs(x) + std::abs(y);
+  if (sum == 0.0) return 0.0;
+  const double r = y / sum;
+  if (x >= 0.0) return r;
+  return std::signbit(y) ? -2.0 - r : 2.0 - r;
+}
+
 /// Order of `points` (a convex polygon's vertices in any order, all in a plane with unit
 /// normal `normal`) counter-clockwise about `normal`: by angle about their mean, which lies
-/// inside the polygon, so points on a common edge still sort along it. Into `order` (a
-/// scratch buffer reused by the caller's thread).
+/// inside the polygon, so points on a common edge still sort along it (starting from the
+/// direction -u, as atan2 does). Into `order` (a scratch buffer reused by the caller's thread).
 void counterClockwise(const std::vector<Vec3>& points, const Vec3& normal,
                       std::vector<int>& order) {
   Vec3 center = Vec3::Zero();
@@ -37,11 +48,20 @@ void counterClockwise(const std::vector<Vec3>& points, const Vec3& normal,
   angle.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3 d = points[i] - center;
-    angle[i] = std::atan2(d.dot(w), d.dot(u));
+    angle[i] = pseudoAngle(d.dot(w), d.dot(u));
   }
+  // A stable insertion sort: sections have a handful of points, and std::stable_sort would
+  // allocate a buffer on every call (the same order: a stable sort's result is unique).
   order.resize(points.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int k = static_cast<int>(i);
+    std::size_t j = i;
+    while (j > 0 && angle[k] < angle[order[j - 1]]) {
+      order[j] = order[j - 1];
+      --j;
+    }
+    order[j] = k;
+  }
 }
 
 /// The point where edge (a, b) crosses the plane, from the signed distances of its ends
@@ -73,19 +93,52 @@ struct FlatFaces {
   }
 };
 
-/// The split shared by splitPiece and splitFlat: both halves into `out` (vertices, loops in
-/// face order with the new face last, origins). False when the plane does not cross.
+/// The plane's crossing of a convex piece (into `scratch`): every vertex classified, then, when
+/// vertices lie on both sides, the section's points (ON vertices in index order, then one
+/// crossing point per cut edge in the order the faces first meet the edges) and their
+/// counter-clockwise order. True when the plane crosses (vertices on both sides).
 template <class Faces>
-bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& plane,
-               double tolerance, FlatSplit& out) {
-  // Scratch buffers reused by this thread's splits (no allocation once grown).
-  thread_local std::vector<double> s;
-  thread_local std::vector<std::int8_t> side;
-  classify(vertices, plane, tolerance, side, s);
+bool crossCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& plane,
+               double tolerance, SectionScratch& scratch) {
+  classify(vertices, plane, tolerance, scratch.side, scratch.distance);
+  const std::vector<std::int8_t>& side = scratch.side;
+  const std::vector<double>& s = scratch.distance;
   const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
   const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
+  scratch.points.clear();
+  scratch.edges.clear();
   if (!has_below || !has_above) return false;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (side[i] == 0) scratch.points.push_back(vertices[i]);
+  }
+  scratch.on_count = static_cast<int>(scratch.points.size());
+  for (std::size_t f = 0; f < faces.count(); ++f) {
+    const std::span<const int> face = faces.face(f);
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const int a = face[k];
+      const int b = face[(k + 1) % face.size()];
+      if (side[a] * side[b] >= 0) continue;
+      const std::pair<int, int> edge{std::min(a, b), std::max(a, b)};
+      // Each cut edge is met twice (once per face): its point is made at the first meeting.
+      if (std::find(scratch.edges.begin(), scratch.edges.end(), edge) != scratch.edges.end()) {
+        continue;
+      }
+      scratch.edges.push_back(edge);
+      scratch.points.push_back(crossingPoint(vertices[edge.first], vertices[edge.second],
+                                             s[edge.first], s[edge.second]));
+    }
+  }
+  counterClockwise(scratch.points, plane.normal, scratch.order);
+  return true;
+}
 
+/// The split shared by splitPiece and splitFlat, from crossCore's `scratch` of the same piece
+/// and plane: both halves into `out` (vertices, loops in face order with the new face last,
+/// origins). False when the section has fewer than 3 points.
+template <class Faces>
+bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const SectionScratch& scratch,
+               FlatSplit& out) {
+  const std::vector<std::int8_t>& side = scratch.side;
   std::vector<Vec3>& below = out.below_vertices;
   std::vector<Vec3>& above = out.above_vertices;
   below.clear();
@@ -96,12 +149,12 @@ bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& 
   out.above_size.clear();
   out.below_origin.clear();
   out.above_origin.clear();
-  thread_local std::vector<int> below_index, above_index, order;
+  thread_local std::vector<int> below_index, above_index;
   below_index.assign(vertices.size(), -1);
   above_index.assign(vertices.size(), -1);
-  thread_local std::vector<Vec3> cap_points;  // the new face: ON vertices, then crossing points
-  thread_local std::vector<std::pair<int, int>> cap_index;  // (below, above) of each cap point
-  cap_points.clear();
+  // (below, above) index of each section point: ON vertices, then crossing points, which
+  // follow the kept vertices in both halves in the order crossCore made them.
+  thread_local std::vector<std::pair<int, int>> cap_index;
   cap_index.clear();
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     if (side[i] <= 0) {
@@ -112,30 +165,21 @@ bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& 
       above_index[i] = static_cast<int>(above.size());
       above.push_back(vertices[i]);
     }
-    if (side[i] == 0) {
-      cap_points.push_back(vertices[i]);
-      cap_index.emplace_back(below_index[i], above_index[i]);
-    }
+    if (side[i] == 0) cap_index.emplace_back(below_index[i], above_index[i]);
   }
-  // Crossing points, one per cut edge (an edge appears in two faces).
-  struct Cut {
-    int a, b, below, above;
-  };
-  thread_local std::vector<Cut> cuts;
-  cuts.clear();
-  const auto crossing = [&](int a, int b) -> Cut {
-    const int lo = std::min(a, b), hi = std::max(a, b);
-    for (const Cut& c : cuts) {
-      if (c.a == lo && c.b == hi) return c;
-    }
-    const Vec3 p = crossingPoint(vertices[lo], vertices[hi], s[lo], s[hi]);
-    Cut c{lo, hi, static_cast<int>(below.size()), static_cast<int>(above.size())};
+  const int below_kept = static_cast<int>(below.size());
+  const int above_kept = static_cast<int>(above.size());
+  const std::size_t crossings = scratch.edges.size();
+  for (std::size_t c = 0; c < crossings; ++c) {
+    const Vec3& p = scratch.points[static_cast<std::size_t>(scratch.on_count) + c];
     below.push_back(p);
     above.push_back(p);
-    cap_points.push_back(p);
-    cap_index.emplace_back(c.below, c.above);
-    cuts.push_back(c);
-    return c;
+    cap_index.emplace_back(below_kept + static_cast<int>(c), above_kept + static_cast<int>(c));
+  }
+  const auto crossing = [&](int a, int b) {
+    const std::pair<int, int> edge{std::min(a, b), std::max(a, b)};
+    return static_cast<int>(std::find(scratch.edges.begin(), scratch.edges.end(), edge) -
+                            scratch.edges.begin());
   };
 
   for (std::size_t f = 0; f < faces.count(); ++f) {
@@ -151,9 +195,9 @@ bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& 
       below_off_plane |= side[a] < 0;
       above_off_plane |= side[a] > 0;
       if (side[a] * side[b] < 0) {
-        const Cut c = crossing(a, b);
-        out.below_loops.push_back(c.below);
-        out.above_loops.push_back(c.above);
+        const int c = crossing(a, b);
+        out.below_loops.push_back(below_kept + c);
+        out.above_loops.push_back(above_kept + c);
       }
     }
     // A loop with no vertex off the plane lies in the new face: the cap replaces it.
@@ -172,10 +216,10 @@ bool splitCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& 
       out.above_loops.resize(above_start);
     }
   }
-  if (cap_points.size() < 3) return false;
+  if (scratch.points.size() < 3) return false;
   // The cap: counter-clockwise about +n seen from outside `below`; `above` gets the reverse
   // loop starting at the same vertex, so both fan it into the same triangles.
-  counterClockwise(cap_points, plane.normal, order);
+  const std::vector<int>& order = scratch.order;
   for (int k : order) out.below_loops.push_back(cap_index[k].first);
   out.above_loops.push_back(cap_index[order[0]].second);
   for (std::size_t k = order.size() - 1; k >= 1; --k) {
@@ -204,38 +248,18 @@ void halfPiece(const std::vector<Vec3>& vertices, const std::vector<int>& loops,
   }
 }
 
-/// The section shared by planeSection and planeSectionFlat.
+/// The section shared by planeSection and planeSectionFlat (crossCore into `scratch`).
 template <class Faces>
 SectionKind sectionCore(std::span<const Vec3> vertices, const Faces& faces, const Plane& plane,
-                        double tolerance, std::vector<Vec3>& polygon, int* face_out) {
+                        double tolerance, std::vector<Vec3>& polygon, int* face_out,
+                        SectionScratch& scratch) {
   polygon.clear();
-  thread_local std::vector<double> s;
-  thread_local std::vector<std::int8_t> side;
-  classify(vertices, plane, tolerance, side, s);
-  const bool has_below = std::find(side.begin(), side.end(), -1) != side.end();
-  const bool has_above = std::find(side.begin(), side.end(), 1) != side.end();
-  if (has_below && has_above) {
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      if (side[i] == 0) polygon.push_back(vertices[i]);
-    }
-    for (std::size_t f = 0; f < faces.count(); ++f) {
-      const std::span<const int> face = faces.face(f);
-      for (std::size_t k = 0; k < face.size(); ++k) {
-        const int a = face[k];
-        const int b = face[(k + 1) % face.size()];
-        // Each cut edge is met twice (once per face); keep it from the face where a < b.
-        if (side[a] * side[b] < 0 && a < b) {
-          polygon.push_back(crossingPoint(vertices[a], vertices[b], s[a], s[b]));
-        }
-      }
-    }
-    thread_local std::vector<int> order;
-    thread_local std::vector<Vec3> unsorted;
-    counterClockwise(polygon, plane.normal, order);
-    unsorted.assign(polygon.begin(), polygon.end());
-    for (std::size_t k = 0; k < order.size(); ++k) polygon[k] = unsorted[order[k]];
+  if (crossCore(vertices, faces, plane, tolerance, scratch)) {
+    polygon.reserve(scratch.order.size());
+    for (int k : scratch.order) polygon.push_back(scratch.points[k]);
     return SectionKind::Crossing;
   }
+  const std::vector<std::int8_t>& side = scratch.side;
   for (std::size_t f = 0; f < faces.count(); ++f) {
     const std::span<const int> face = faces.face(f);
     const bool on = std::all_of(face.begin(), face.end(), [&](int v) { return side[v] == 0; });
@@ -259,8 +283,11 @@ SectionKind sectionCore(std::span<const Vec3> vertices, const Faces& faces, cons
 
 std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, double tolerance,
                                       FaceSource cap) {
+  thread_local SectionScratch scratch;
   thread_local FlatSplit flat;
-  if (!splitCore(piece.shape.vertices, PolyhedronFaces{piece.shape}, plane, tolerance, flat)) {
+  const PolyhedronFaces faces{piece.shape};
+  if (!crossCore(piece.shape.vertices, faces, plane, tolerance, scratch) ||
+      !splitCore(piece.shape.vertices, faces, scratch, flat)) {
     return std::nullopt;
   }
   SplitPieces out;
@@ -274,19 +301,32 @@ std::optional<SplitPieces> splitPiece(const Piece& piece, const Plane& plane, do
 }
 
 bool splitFlat(const FlatPieceView& piece, const Plane& plane, double tolerance, FlatSplit& out) {
-  return splitCore(piece.vertices, FlatFaces{piece}, plane, tolerance, out);
+  thread_local SectionScratch scratch;
+  return crossCore(piece.vertices, FlatFaces{piece}, plane, tolerance, scratch) &&
+         splitCore(piece.vertices, FlatFaces{piece}, scratch, out);
+}
+
+bool splitFlat(const FlatPieceView& piece, const SectionScratch& scratch, FlatSplit& out) {
+  return splitCore(piece.vertices, FlatFaces{piece}, scratch, out);
 }
 
 Section planeSection(const Piece& piece, const Plane& plane, double tolerance) {
+  thread_local SectionScratch scratch;
   Section section;
   section.kind = sectionCore(piece.shape.vertices, PolyhedronFaces{piece.shape}, plane, tolerance,
-                             section.polygon, &section.face);
+                             section.polygon, &section.face, scratch);
   return section;
 }
 
 SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
                              std::vector<Vec3>& polygon, int* face) {
-  return sectionCore(piece.vertices, FlatFaces{piece}, plane, tolerance, polygon, face);
+  thread_local SectionScratch scratch;
+  return planeSectionFlat(piece, plane, tolerance, polygon, face, scratch);
+}
+
+SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
+                             std::vector<Vec3>& polygon, int* face, SectionScratch& scratch) {
+  return sectionCore(piece.vertices, FlatFaces{piece}, plane, tolerance, polygon, face, scratch);
 }
 
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane) {
@@ -298,14 +338,18 @@ std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& pla
 void clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane, std::vector<Vec3>& out) {
   out.clear();
   const std::size_t n = polygon.size();
+  if (n == 0) return;
+  // Each point's distance once (the next edge's start is this edge's end).
+  const double first = plane.distance(polygon[0]);
+  double sp = first;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = polygon[i];
-    const Vec3& q = polygon[(i + 1) % n];
-    const double sp = plane.distance(p);
-    const double sq = plane.distance(q);
+    const Vec3& q = polygon[i + 1 == n ? 0 : i + 1];
+    const double sq = i + 1 == n ? first : plane.distance(q);
     if (sp >= 0.0) out.push_back(p);
     if ((sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0))
       out.push_back(p + (sp / (sp - sq)) * (q - p));
+    sp = sq;
   }
 }
 

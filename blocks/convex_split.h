@@ -8,8 +8,10 @@
 // signs alone, so each half is closed whatever the round-off in the crossing points.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "blocks/block_model.h"
@@ -89,6 +91,26 @@ bool splitFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
 /// planeSection on a flat piece: the same kind, face and polygon (into `polygon`, cleared).
 SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
                              std::vector<Vec3>& polygon, int* face);
+
+/// What a section found, kept for a split of the same piece by the same plane (scratch
+/// storage reused by the caller): the split then classifies no vertex, computes no crossing
+/// point and sorts nothing again.
+struct SectionScratch {
+  std::vector<double> distance;            ///< per vertex: signed distance from the plane (m)
+  std::vector<std::int8_t> side;           ///< per vertex: -1, 0 (within the tolerance) or +1
+  std::vector<Vec3> points;                ///< section points: ON vertices, then crossing points
+  int on_count = 0;                        ///< how many of `points` are ON vertices
+  std::vector<std::pair<int, int>> edges;  ///< per crossing point: its edge (lower, higher)
+  std::vector<int> order;                  ///< `points` counter-clockwise about the plane's normal
+};
+
+/// planeSectionFlat keeping its work in `scratch`, for splitFlat(piece, scratch, out).
+SectionKind planeSectionFlat(const FlatPieceView& piece, const Plane& plane, double tolerance,
+                             std::vector<Vec3>& polygon, int* face, SectionScratch& scratch);
+
+/// splitFlat by the plane of the planeSectionFlat that filled `scratch` for this very piece
+/// and returned SectionKind::Crossing: the very same halves as splitFlat(piece, plane, ...).
+bool splitFlat(const FlatPieceView& piece, const SectionScratch& scratch, FlatSplit& out);
 
 /// The part of a convex polygon where plane.distance >= 0 (Sutherland-Hodgman, one plane).
 std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Plane& plane);

@@ -633,6 +633,17 @@ struct RegionCut {
   ContactFaces faces;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::pair<int, int>> coincident;  ///< plane ids found to be one plane
+  /// Tracked: faces that are the two sides of one cut (the same loop, bitwise): (piece,
+  /// face, other piece, other face), piece indices into `pieces`. Their coverage is one.
+  std::vector<std::array<int, 4>> twins;
+  /// Tracked: the contacts of the twins that touch (mirroredContactArea), not in `pairs`.
+  std::vector<PieceContact> mirrored;
+  /// Tracked: the faces of `pieces` in the region's kd faces (planes between regions), for
+  /// the search across regions, with their plane ids (kd_planes, per entry of kd.faces).
+  ContactFaces kd;
+  std::vector<int> kd_planes;
+  /// Per piece: what the assembly needs of it (computed here, while the piece is in cache).
+  std::vector<PieceFacts> facts;
   long long piece_tests = 0;
   long long splits = 0;
 };
@@ -826,6 +837,27 @@ class CellStore {
     }
     links_.clear();
   }
+  /// The corners of face f of cell c, in loop order, into `out`.
+  void faceCorners(int c, int f, std::vector<Vec3>& out) const {
+    const int g = f_begin_[c] + f;
+    out.clear();
+    for (int k = face_begin_[g]; k < face_begin_[g] + face_size_[g]; ++k) {
+      out.push_back(vertices_[v_begin_[c] + loops_[k]]);
+    }
+  }
+  /// Newell unit normal of face f of cell c (zero for a degenerate face).
+  Vec3 faceNormal(int c, int f) const {
+    const int g = f_begin_[c] + f;
+    const int n = face_size_[g];
+    Vec3 sum = Vec3::Zero();
+    for (int k = 0; k < n; ++k) {
+      const Vec3& p = vertices_[v_begin_[c] + loops_[face_begin_[g] + k]];
+      const Vec3& q = vertices_[v_begin_[c] + loops_[face_begin_[g] + (k + 1 == n ? 0 : k + 1)]];
+      sum += p.cross(q);
+    }
+    const double length = sum.norm();
+    return length > 0.0 ? Vec3(sum / length) : Vec3(Vec3::Zero());
+  }
   /// The lowest and highest signed distance (m) of the points of face f of cell c from
   /// `plane`.
   std::pair<double, double> faceReach(int c, int f, const Plane& plane) const {
@@ -837,6 +869,31 @@ class CellStore {
       high = std::max(high, d);
     }
     return {low, high};
+  }
+  /// True when face g of cell d is face f of cell c run backwards (the two sides of one cut,
+  /// bitwise equal points), as sameLoop in piece_contacts.cpp decides it.
+  bool mirrored(int c, int f, int d, int g) const {
+    const int fc = f_begin_[c] + f, gd = f_begin_[d] + g;
+    const int n = face_size_[fc];
+    if (face_size_[gd] != n) return false;
+    const auto a = [&](int k) -> const Vec3& {
+      return vertices_[v_begin_[c] + loops_[face_begin_[fc] + k]];
+    };
+    const auto b = [&](int k) -> const Vec3& {
+      return vertices_[v_begin_[d] + loops_[face_begin_[gd] + k]];
+    };
+    int start = n;
+    for (int k = 0; k < n; ++k) {
+      if (b(k) == a(0)) {
+        start = k;
+        break;
+      }
+    }
+    if (start == n) return false;
+    for (int k = 0; k < n; ++k) {
+      if (a(k) != b((start + n - k) % n)) return false;
+    }
+    return true;
   }
   /// Cell c as a piece; the plane ids of its faces are appended to `planes`.
   Piece piece(int c, std::vector<int>& planes) const {
@@ -882,10 +939,17 @@ class CellStore {
 
 /// Hands the links of cell c to its two halves `below` and `above` (the split `split`), and
 /// updates the linked cells' own links. A face that goes to one half keeps its links; for a
-/// face split between the halves, a linked face stays with a half unless it lies wholly
-/// beyond twice the tolerance on the other side of the splitting plane, so a face that
-/// touches a half with area stays linked (conservative: the contact test decides). The two
-/// new faces are linked.
+/// face split between the halves, a linked face stays with a half unless the two can share
+/// no more than a strip narrower than half the tolerance: the half's part of the face lies
+/// on its side of the plane up to the new face's points (cap_low, cap_high: their lowest and
+/// highest distance), the linked face on the other side from its lowest (highest) point on,
+/// and a band of the plane's distances of height h is a strip of width h / sin(angle between
+/// the face's plane and the splitting plane) in the face. Such a strip is never a real
+/// contact (area at most half the tolerance times its extent, see realContact), nor is any
+/// part of it after further splits, so the link is dropped; the contact tests would only
+/// reject it (most such pairs are a face and the part of its former neighbour that the same
+/// plane split off: they share the line where the plane crosses them). The two new faces are
+/// linked.
 void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit& split,
             const Plane& plane, double tolerance) {
   thread_local std::vector<int> to_below, to_above;
@@ -905,15 +969,38 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
   above.clear();
   below.push_back({new_below, above_id, new_above, 0});
   above.push_back({new_above, below_id, new_below, 0});
-  const double margin = 2.0 * tolerance;
+  // The new face's points: the ON vertices and crossing points, the part of the plane both
+  // halves reach.
+  double cap_low = std::numeric_limits<double>::infinity(), cap_high = -cap_low;
+  {
+    const std::size_t n = static_cast<std::size_t>(split.below_size.back());
+    const std::size_t first = split.below_loops.size() - n;
+    for (std::size_t k = first; k < split.below_loops.size(); ++k) {
+      const double d = plane.distance(split.below_vertices[split.below_loops[k]]);
+      cap_low = std::min(cap_low, d);
+      cap_high = std::max(cap_high, d);
+    }
+  }
+  const double margin = 2.0 * tolerance;  // beyond it on the other side: no contact
+  // Per split face: half the tolerance times the sine of its angle with the plane (0: not
+  // computed yet).
+  thread_local std::vector<double> strip;
+  strip.assign(faces, 0.0);
   for (const Link& link : store.links(c)) {
     if (link.other_face < 0) continue;  // a link whose face vanished in an earlier split
     const int fb = to_below[link.face], fa = to_above[link.face];
     bool keep_below = fb >= 0, keep_above = fa >= 0;
     if (keep_below && keep_above) {
+      double& width = strip[static_cast<std::size_t>(link.face)];
+      if (width == 0.0) {
+        const Vec3 n = store.faceNormal(c, link.face);
+        width = 0.5 * tolerance * n.cross(plane.normal).norm();
+        // Parallel (degenerate): only the reach decides.
+        if (width == 0.0) width = -std::numeric_limits<double>::infinity();
+      }
       const auto [low, high] = store.faceReach(link.other, link.other_face, plane);
-      keep_below = low <= margin;
-      keep_above = high >= -margin;
+      keep_below = low <= margin && !(cap_high - low <= width);
+      keep_above = high >= -margin && !(high - cap_low <= width);
     }
     // The linked cell's link back to (c, face) goes to the half kept, or one per half.
     std::vector<Link>& other = store.links(link.other);
@@ -945,7 +1032,7 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
 RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygons,
                     const std::vector<Piece>& domain,
                     const std::vector<std::vector<int>>& domain_planes, bool box_domain,
-                    const CutTolerances& tol, bool track) {
+                    const CutTolerances& tol, const SoundnessTolerances& soundness, bool track) {
   RegionCut out;
   // Cells stay at their index in `store` (dead ones are dropped from `live`); `live` lists
   // the live ones in order, a split cell's halves taking its place.
@@ -959,6 +1046,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   std::vector<int> live(store.size()), next;
   std::iota(live.begin(), live.end(), 0);
   std::vector<Vec3> section, covered, scratch;
+  SectionScratch crossed;  // the section's work, reused by the split that follows it
   FlatSplit split;
   for (int p : region.polygons) {
     const CutPolygon& polygon = polygons[p];
@@ -976,7 +1064,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       ++out.piece_tests;
       int on_face = -1;
       const SectionKind kind =
-          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face);
+          planeSectionFlat(store.view(id), polygon.plane, tol.distance, section, &on_face, crossed);
       if (kind == SectionKind::OnFace) {
         out.coincident.emplace_back(store.planeOf(id, on_face), polygon.plane_id);
       }
@@ -984,9 +1072,22 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         next.push_back(id);
         continue;
       }
-      // Does the polygon meet the section with area? Vertex signs first: an edge with the
-      // whole section outside (within the tolerance) leaves at most a strip of that width;
-      // a section inside every edge is covered whole; only the rest is clipped.
+      // Does the polygon meet the section with area? A section whose box misses the
+      // polygon's (grown by the tolerance) does not: no cut, as the tests below would find
+      // (their clip would come out empty). Then vertex signs: an edge with the whole section
+      // outside (within the tolerance) leaves at most a strip of that width; a section
+      // inside every edge is covered whole; only the rest is clipped.
+      if (!section.empty()) {
+        Vec3 low = section.front(), high = section.front();
+        for (const Vec3& x : section) {
+          low = low.cwiseMin(x);
+          high = high.cwiseMax(x);
+        }
+        if ((high.array() < reach.min.array()).any() || (low.array() > reach.max.array()).any()) {
+          next.push_back(id);
+          continue;
+        }
+      }
       bool apart = false, inside = true;
       for (const Plane& edge : polygon.edges) {
         double low = std::numeric_limits<double>::infinity(), high = -low;
@@ -1016,7 +1117,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         }
         cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
       }
-      if (!cut || !splitFlat(store.view(id), polygon.plane, tol.distance, split)) {
+      if (!cut || !splitFlat(store.view(id), crossed, split)) {
         next.push_back(id);
         continue;
       }
@@ -1034,22 +1135,33 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
   }
   std::vector<int> local(store.size(), -1);
   out.pieces.reserve(live.size());
+  out.facts.reserve(live.size());
   for (std::size_t k = 0; k < live.size(); ++k) {
     local[live[k]] = static_cast<int>(k);
     out.pieces.push_back(store.piece(live[k], out.planes));
+    const Piece& piece = out.pieces.back();
+    out.facts.push_back({geometry::massProperties(piece.shape), geometry::bounds(piece.shape),
+                         hasCloseVertices(piece, soundness)});
   }
   if (track) {
     // The contact table straight from the flat store (sequential, still in cache), faces in
-    // first-use order of the pairs.
+    // first-use order of the pairs: slots and sizes first, then the table sized once and
+    // filled.
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
+    struct Use {
+      int cell, piece, face;
+      std::uint32_t begin;
+    };
+    std::vector<Use> uses;
+    std::uint32_t corners = 0;
+    std::vector<Vec3> corners_a, corners_b;
     const auto slotOf = [&](int cell, int k, int face) {
       std::uint32_t& at = slot[store.faceIndex(cell, face)];
       if (at == kNone) {
-        const FlatPieceView view = store.view(cell);
-        at = out.faces.add(k, face, view.vertices,
-                           view.loops.subspan(static_cast<std::size_t>(view.face_begin[face]),
-                                              static_cast<std::size_t>(view.face_size[face])));
+        at = static_cast<std::uint32_t>(uses.size());
+        uses.push_back({cell, k, face, corners});
+        corners += static_cast<std::uint32_t>(store.view(cell).face_size[face]);
       }
       return at;
     };
@@ -1057,12 +1169,62 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
       for (const Link& link : store.links(live[k])) {
         if (link.other_face < 0) continue;
         const int other = local[link.other];
-        if (other > static_cast<int>(k)) {
-          const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
-          const std::uint32_t b = slotOf(link.other, other, link.other_face);
-          out.pairs.emplace_back(a, b);
+        if (other <= static_cast<int>(k)) continue;
+        if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
+            store.mirrored(live[k], link.face, link.other, link.other_face)) {
+          // The two sides of one cut: their contact is decided without a table entry.
+          out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
+          store.faceCorners(live[k], link.face, corners_a);
+          store.faceCorners(link.other, link.other_face, corners_b);
+          if (const std::optional<double> area =
+                  mirroredContactArea(corners_a, corners_b, tol.distance, tol.area)) {
+            out.mirrored.push_back({static_cast<int>(k), link.face, other, link.other_face, *area});
+          }
+          continue;
         }
+        const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
+        const std::uint32_t b = slotOf(link.other, other, link.other_face);
+        out.pairs.emplace_back(a, b);
       }
+    }
+    // The faces in the region's kd faces, in piece and face order (counted, then the table
+    // sized once and filled).
+    std::vector<std::pair<int, int>> kd_faces;  // (k, face)
+    std::uint32_t kd_corners = 0;
+    for (std::size_t k = 0; k < live.size(); ++k) {
+      for (int f = 0; f < store.faceCount(live[k]); ++f) {
+        const int plane = store.planeOf(live[k], f);
+        if (std::find(region.face_plane.begin(), region.face_plane.end(), plane) ==
+            region.face_plane.end()) {
+          continue;
+        }
+        kd_faces.emplace_back(static_cast<int>(k), f);
+        kd_corners += static_cast<std::uint32_t>(store.view(live[k]).face_size[f]);
+        out.kd_planes.push_back(plane);
+      }
+    }
+    out.kd.faces.resize(kd_faces.size());
+    out.kd.points.resize(kd_corners);
+    out.kd.inward.resize(kd_corners);
+    kd_corners = 0;
+    for (std::size_t u = 0; u < kd_faces.size(); ++u) {
+      const auto [k, f] = kd_faces[u];
+      const FlatPieceView view = store.view(live[static_cast<std::size_t>(k)]);
+      const auto loop = view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                           static_cast<std::size_t>(view.face_size[f]));
+      out.kd.set(static_cast<std::uint32_t>(u), k, f, kd_corners, view.vertices, loop);
+      kd_corners += static_cast<std::uint32_t>(loop.size());
+    }
+    out.faces.faces.resize(uses.size());
+    out.faces.points.resize(corners);
+    out.faces.inward.resize(corners);
+    for (std::size_t u = 0; u < uses.size(); ++u) {
+      const FlatPieceView view = store.view(uses[u].cell);
+      const auto f = static_cast<std::size_t>(uses[u].face);
+      out.faces.set(static_cast<std::uint32_t>(u), uses[u].piece, uses[u].face, uses[u].begin,
+                    view.vertices,
+                    view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                       static_cast<std::size_t>(view.face_size[f])));
     }
   }
   return out;
@@ -1122,41 +1284,43 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
                regions);
   counters.regions = static_cast<int>(regions.size());
 
+  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
   std::vector<RegionCut> cuts(regions.size());
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
-    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol,
+    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
                         options.track_contacts);
   });
   std::vector<Piece> pieces;
   std::vector<int> planes;  // plane id of every face, in piece and face order (first_face)
-  ContactFaces tracked;     // tracked: the faces that may touch, the pairs of them
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> tracked_pairs;
+  // Tracked: per region, the faces that may touch and the pairs of them (each region's
+  // table stays where the region built it; the contact decisions read them in place).
+  std::vector<ContactTablePart> tracked;
+  std::vector<std::array<int, 4>> twins;  // (piece, face, piece, face), global piece indices
   {
-    std::size_t piece_total = 0, face_total = 0, point_total = 0, pair_total = 0;
+    std::size_t piece_total = 0, face_total = 0;
     for (const RegionCut& cut : cuts) {
       piece_total += cut.pieces.size();
-      face_total += cut.faces.faces.size();
-      point_total += cut.faces.points.size();
-      pair_total += cut.pairs.size();
+      face_total += cut.planes.size();
     }
     pieces.reserve(piece_total);
-    tracked.faces.reserve(face_total);
-    tracked.points.reserve(point_total);
-    tracked.inward.reserve(point_total);
-    tracked_pairs.reserve(pair_total);
+    planes.reserve(face_total);
   }
+  std::vector<int> piece_first;   // per region: the global index of its first piece
+  std::vector<PieceFacts> facts;  // per piece, for the assembly
   for (RegionCut& cut : cuts) {
+    piece_first.push_back(static_cast<int>(pieces.size()));
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
-    const int offset = static_cast<int>(pieces.size());
-    const auto shift = static_cast<std::uint32_t>(tracked.faces.size());
-    for (const auto& [a, b] : cut.pairs) tracked_pairs.emplace_back(a + shift, b + shift);
-    tracked.append(cut.faces, offset);
+    if (!cut.pairs.empty() || !cut.mirrored.empty()) {
+      tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs, cut.mirrored});
+    }
+    const int first = static_cast<int>(pieces.size());
+    for (const auto& [i, f, j, g] : cut.twins) twins.push_back({first + i, f, first + j, g});
     for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
     planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
+    facts.insert(facts.end(), cut.facts.begin(), cut.facts.end());
   }
-  cuts.clear();
   counters.pieces = static_cast<int>(pieces.size());
   for (int& id : planes) id = plane_ids.find(id);
   // Face f of piece i is face first_face[i] + f of the flat per-face tables.
@@ -1184,12 +1348,22 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   const auto coverOf = [&](int piece, int face) -> Cover& {
     return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
   };
+  // The second face of a pair of twins (the two sides of one cut) is not covered itself: it
+  // takes the coverage of the first, the same loop run backwards (a pair whose first face is
+  // itself a second, possible only for overlapping cells, is covered on both sides).
+  std::vector<char> second_twin(first_face.back(), 0);
+  std::erase_if(twins, [&](const std::array<int, 4>& t) {
+    if (second_twin[first_face[t[0]] + static_cast<std::size_t>(t[1])]) return true;
+    second_twin[first_face[t[2]] + static_cast<std::size_t>(t[3])] = 1;
+    return false;
+  });
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
     Cover* cover = &cover_table[first_face[i]];
+    const char* second = &second_twin[first_face[i]];
     thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-      if (piece.face_sources[f].kind != FaceKind::Fictitious) continue;
+      if (piece.face_sources[f].kind != FaceKind::Fictitious || second[f]) continue;
       const int g = groupOf(planeOf(static_cast<int>(i), static_cast<int>(f)));
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
@@ -1200,6 +1374,15 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     std::copy(piece.face_sources.begin(), piece.face_sources.end(),
               face_source.begin() + static_cast<std::ptrdiff_t>(first_face[i]));
   });
+  for (const auto& [i, f, j, g] : twins) {
+    const std::size_t from = first_face[i] + static_cast<std::size_t>(f);
+    const std::size_t to = first_face[j] + static_cast<std::size_t>(g);
+    if (pieces[j].face_sources[g].kind != FaceKind::Fictitious) continue;
+    cover_table[to] = cover_table[from];
+    if (cover_table[to] == Cover::Whole) {
+      pieces[j].face_sources[g] = face_source[to] = face_source[from];
+    }
+  }
 
   counters.coverage_seconds = secondsSince(assemble_start);
   const auto contact_start = std::chrono::steady_clock::now();
@@ -1241,7 +1424,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // pieces of different regions can share area only in the plane between them).
     std::vector<FaceSource> inside_sources, across_sources;
     const std::vector<PieceContact> inside = decideTableContacts(
-        tracked, pieces.size(), tracked_pairs, tol.distance, tol.area, decide, &inside_sources);
+        tracked, pieces.size(), tol.distance, tol.area, decide, &inside_sources);
     std::vector<char> kd_plane(plane_ids.size(), 0);
     for (const Region& region : regions) {
       for (int id : region.face_plane) {
@@ -1251,28 +1434,58 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     // In place (no copy): the contacts inside regions are decided already, and the faces
     // searched now keep their (kd plane) ids, which is all `decide` reads of them.
     for (int& id : planes) id = kd_plane[id] ? id : -1;
+    // The regions' kd faces in one table, in plane order (ties in piece and face order):
+    // the table findContactsByPlane would build from the pieces.
+    ContactFaces kd;
+    std::vector<int> kd_root;
+    for (std::size_t r = 0; r < cuts.size(); ++r) {
+      kd.append(cuts[r].kd, piece_first[r]);
+      for (int id : cuts[r].kd_planes) kd_root.push_back(plane_ids.find(id));
+    }
+    {
+      std::vector<std::uint32_t> order(kd.faces.size());
+      std::iota(order.begin(), order.end(), 0u);
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return kd_root[a] < kd_root[b]; });
+      std::vector<ContactFaces::Face> sorted;
+      sorted.reserve(order.size());
+      for (std::uint32_t k : order) sorted.push_back(kd.faces[k]);
+      kd.faces = std::move(sorted);
+      for (std::size_t b = 0; b < order.size();) {
+        std::size_t e = b + 1;
+        while (e < order.size() && kd_root[order[e]] == kd_root[order[b]]) ++e;
+        if (e - b >= 2) kd.groups.emplace_back(b, e);
+        b = e;
+      }
+    }
     const std::vector<PieceContact> across =
-        findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &across_sources);
-    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts.
-    std::vector<std::pair<const PieceContact*, const FaceSource*>> all;
-    for (std::size_t k = 0; k < inside.size(); ++k)
-      all.emplace_back(&inside[k], &inside_sources[k]);
-    for (std::size_t k = 0; k < across.size(); ++k)
-      all.emplace_back(&across[k], &across_sources[k]);
-    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) {
-      return std::tie(x.first->piece_a, x.first->piece_b, x.first->face_a, x.first->face_b) <
-             std::tie(y.first->piece_a, y.first->piece_b, y.first->face_a, y.first->face_b);
-    });
-    contacts.reserve(all.size());
-    sources.reserve(all.size());
-    for (const auto& [c, source] : all) {
-      contacts.push_back(*c);
-      sources.push_back(*source);
+        decidePlaneContacts(kd, pieces.size(), tol.distance, tol.area, decide, &across_sources);
+    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts:
+    // both lists are in that order already (and share no face pair: a contact inside a region
+    // joins pieces of one region, one across regions pieces of two), so they are merged.
+    const auto before = [](const PieceContact& x, const PieceContact& y) {
+      return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
+             std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
+    };
+    contacts.reserve(inside.size() + across.size());
+    sources.reserve(inside.size() + across.size());
+    std::size_t i = 0, j = 0;
+    while (i < inside.size() || j < across.size()) {
+      if (j == across.size() || (i < inside.size() && !before(across[j], inside[i]))) {
+        contacts.push_back(inside[i]);
+        sources.push_back(inside_sources[i++]);
+      } else {
+        contacts.push_back(across[j]);
+        sources.push_back(across_sources[j++]);
+      }
     }
   }
   counters.contact_seconds = secondsSince(contact_start);
+  tracked.clear();
+  cuts.clear();
   AssemblyReport assembly;
-  BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources);
+  BlockModel model =
+      assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources, &facts);
   counters.inconsistent_contacts = assembly.inconsistent_contacts;
   counters.soundness = assembly.soundness;
   counters.pieces -= assembly.soundness.folded_pieces;

@@ -10,7 +10,6 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
-#include <unordered_map>
 
 #include "blocks/convex_split.h"
 #include "blocks/union_find.h"
@@ -388,13 +387,24 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> candidatePairs(const PlaneF
   return candidates;
 }
 
-/// Union-find over the clusters one plane group meets (ids are cluster roots, any int).
+/// Union-find over the clusters one batch meets (ids are cluster roots, 0 .. ids - 1). The
+/// slot of each root met is kept in a per-thread array of all ids (no hashing), which the
+/// destructor clears again; a batch runs on one thread from start to end.
 class LocalClusters {
  public:
+  explicit LocalClusters(std::size_t ids) {
+    thread_local std::vector<int> index;
+    if (index.size() < ids) index.assign(ids, -1);
+    index_ = &index;
+  }
+  LocalClusters(const LocalClusters&) = delete;
+  LocalClusters& operator=(const LocalClusters&) = delete;
+  ~LocalClusters() {
+    for (int root : label_) (*index_)[static_cast<std::size_t>(root)] = -1;
+  }
   int find(int root) {
-    const auto it = index_.find(root);
-    if (it == index_.end()) return root;
-    int i = it->second;
+    int i = (*index_)[static_cast<std::size_t>(root)];
+    if (i < 0) return root;
     while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
     return label_[i];
   }
@@ -408,14 +418,15 @@ class LocalClusters {
 
  private:
   int slot(int root) {
-    const auto [it, added] = index_.emplace(root, static_cast<int>(parent_.size()));
-    if (added) {
-      parent_.push_back(it->second);
+    int& at = (*index_)[static_cast<std::size_t>(root)];
+    if (at < 0) {
+      at = static_cast<int>(parent_.size());
+      parent_.push_back(at);
       label_.push_back(root);
     }
-    return it->second;
+    return at;
   }
-  std::unordered_map<int, int> index_;
+  std::vector<int>* index_ = nullptr;
   std::vector<int> parent_, label_;
 };
 
@@ -423,10 +434,16 @@ class LocalClusters {
 class PairTests {
  public:
   using Face = PlaneFaces::Face;
-  PairTests(const PlaneFaces& table, double tolerance, double min_area)
-      : table_(table), points_(table.points), tolerance_(tolerance), min_area_(min_area) {}
+  PairTests(const PlaneFaces& table, double tolerance, double min_area, int piece_offset = 0)
+      : table_(table),
+        points_(table.points),
+        tolerance_(tolerance),
+        min_area_(min_area),
+        piece_offset_(piece_offset) {}
 
   const Face& face(std::uint32_t k) const { return table_.faces[k]; }
+  /// The piece of a face, counting the pieces of all tables.
+  int piece(const Face& f) const { return f.piece + piece_offset_; }
 
   /// Different pieces, opposite normals (within ~2.6 degrees; the plane test decides).
   bool viable(const Face& a, const Face& b) const {
@@ -446,9 +463,10 @@ class PairTests {
   void loopOf(const Face& f, std::vector<Vec3>& out) const {
     out.assign(points_.begin() + f.begin, points_.begin() + f.end);
   }
-  static PieceContact contactOf(const Face& a, const Face& b, double area) {
-    return a.piece < b.piece ? PieceContact{a.piece, a.face, b.piece, b.face, area}
-                             : PieceContact{b.piece, b.face, a.piece, a.face, area};
+  PieceContact contactOf(const Face& a, const Face& b, double area) const {
+    const int pa = piece(a), pb = piece(b);
+    return pa < pb ? PieceContact{pa, a.face, pb, b.face, area}
+                   : PieceContact{pb, b.face, pa, a.face, area};
   }
   /// The overlap of a candidate pair whose faces are not the same loop, into `overlap`
   /// (fewer than 3 points when they do not touch with area), and its area (m2). Separated
@@ -492,6 +510,7 @@ class PairTests {
   const PlaneFaces& table_;
   const std::vector<Vec3>& points_;
   double tolerance_, min_area_;
+  int piece_offset_ = 0;
 };
 
 using TablePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
@@ -500,14 +519,15 @@ using TablePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 /// (`candidates(g)` gives batch g): first every mirrored pair (both sides of one cut), then,
 /// per batch, the others whose pieces are not yet glued. Contacts and their sources go to
 /// found[g] / decided[g]. Deterministic: the batches are fixed, not the threads.
-template <class Candidates>
-void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t batches,
+template <class TestsOf, class Candidates>
+void decideBatches(const TestsOf& tests_of, std::size_t piece_count, std::size_t batches,
                    const Candidates& candidates, const ContactDecision& decide,
                    std::vector<std::vector<PieceContact>>& found,
                    std::vector<std::vector<FaceSource>>& decided) {
   // Pass 1: the mirrored pairs (cheap), decided; the other candidates wait.
   std::vector<TablePairs> waiting(batches);
   tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
+    const PairTests& tests = tests_of(g);
     std::vector<Vec3> loop;
     for (const auto& [ka, kb] : candidates(g)) {
       const PlaneFaces::Face& a = tests.face(ka);
@@ -521,7 +541,7 @@ void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t 
       tests.loopOf(a, loop);
       const double area = geometry::polygonArea(loop);
       if (!tests.real(loop, area)) continue;
-      found[g].push_back(PairTests::contactOf(a, b, area));
+      found[g].push_back(tests.contactOf(a, b, area));
       decided[g].push_back(decide(found[g].back(), true));
     }
   });
@@ -537,16 +557,17 @@ void decideBatches(const PairTests& tests, std::size_t piece_count, std::size_t 
   for (std::size_t i = 0; i < piece_count; ++i) root[i] = clusters.find(static_cast<int>(i));
   // Pass 2: the others, skipping pairs already glued (by pass 1, or earlier in the batch).
   tbb::parallel_for(std::size_t{0}, batches, [&](std::size_t g) {
-    LocalClusters local;
+    const PairTests& tests = tests_of(g);
+    LocalClusters local(piece_count);
     std::vector<Vec3> loop_a, loop_b, overlap;
     for (const auto& [ka, kb] : waiting[g]) {
       const PlaneFaces::Face& a = tests.face(ka);
       const PlaneFaces::Face& b = tests.face(kb);
-      const int ra = local.find(root[a.piece]), rb = local.find(root[b.piece]);
+      const int ra = local.find(root[tests.piece(a)]), rb = local.find(root[tests.piece(b)]);
       if (ra == rb) continue;
       const double area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
       if (!tests.real(overlap, area)) continue;
-      found[g].push_back(PairTests::contactOf(a, b, area));
+      found[g].push_back(tests.contactOf(a, b, area));
       decided[g].push_back(decide(found[g].back(), false));
       if (decided[g].back().kind == FaceKind::Fictitious) local.unite(ra, rb);
     }
@@ -617,21 +638,33 @@ std::vector<PieceContact> contactsByPlane(std::span<const Piece> pieces, const P
         } else {
           area = tests.overlapOf(a, b, loop_a, loop_b, overlap);
         }
-        if (tests.real(overlap, area)) found[g].push_back(PairTests::contactOf(a, b, area));
+        if (tests.real(overlap, area)) found[g].push_back(tests.contactOf(a, b, area));
       }
     });
   } else {
-    decideBatches(
-        tests, pieces.size(), group_count,
-        [&](std::size_t g) {
-          return candidatePairs(table, table.groups[g].first, table.groups[g].second, tolerance);
-        },
-        decide, found, decided);
+    return decidePlaneContacts(table, pieces.size(), tolerance, min_area, decide, sources);
   }
   return sortedContacts(found, decided, static_cast<bool>(decide), sources);
 }
 
 }  // namespace
+
+std::vector<PieceContact> decidePlaneContacts(const ContactFaces& table, std::size_t piece_count,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  const PairTests tests(table, tolerance, min_area);
+  const std::size_t group_count = table.groups.size();
+  std::vector<std::vector<PieceContact>> found(group_count);
+  std::vector<std::vector<FaceSource>> decided(group_count);
+  decideBatches([&](std::size_t) -> const PairTests& { return tests; }, piece_count, group_count,
+                [&](std::size_t g) {
+                  return candidatePairs(table, table.groups[g].first, table.groups[g].second,
+                                        tolerance);
+                },
+                decide, found, decided);
+  return sortedContacts(found, decided, true, sources);
+}
 
 std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               const std::vector<std::vector<int>>& planes,
@@ -717,6 +750,14 @@ std::uint32_t ContactFaces::add(int piece, int face, std::span<const Vec3> verti
   return k;
 }
 
+void ContactFaces::set(std::uint32_t k, int piece, int face, std::uint32_t begin,
+                       std::span<const Vec3> vertices, std::span<const int> loop) {
+  fillFace(
+      faces[k], piece, face, begin, loop.size(),
+      [&](std::size_t v) -> const Vec3& { return vertices[loop[v]]; }, points.data(),
+      inward.data());
+}
+
 void ContactFaces::append(const ContactFaces& other, int piece_offset) {
   const auto shift = static_cast<std::uint32_t>(points.size());
   for (Face d : other.faces) {
@@ -740,10 +781,83 @@ std::vector<PieceContact> decideTableContacts(
   const std::size_t batches = (pairs.size() + kBatch - 1) / kBatch;
   std::vector<std::vector<PieceContact>> found(batches);
   std::vector<std::vector<FaceSource>> decided(batches);
+  decideBatches([&](std::size_t) -> const PairTests& { return tests; }, piece_count, batches,
+                [&](std::size_t g) {
+                  return pairs.subspan(g * kBatch,
+                                       std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+                },
+                decide, found, decided);
+  return sortedContacts(found, decided, true, sources);
+}
+
+std::optional<double> mirroredContactArea(std::span<const Vec3> a, std::span<const Vec3> b,
+                                          double tolerance, double min_area) {
+  // The numbers fillFace gives the two faces (Newell unit normals, a's offset through the
+  // mean of its corners) and the tests PairTests makes of a mirrored pair: viable (opposite
+  // normals), coplanarFaces (equal boxes: b's corners near a's plane), real.
+  const auto newell = [](std::span<const Vec3> points) {
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      sum += points[v].cross(points[v + 1 == points.size() ? 0 : v + 1]);
+    }
+    const double length = sum.norm();
+    return length > 0.0 ? Vec3(sum / length) : Vec3(Vec3::Zero());
+  };
+  const Vec3 normal_a = newell(a);
+  if (normal_a.dot(newell(b)) > -0.999) return std::nullopt;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : a) mean += p;
+  const double offset = normal_a.dot(mean / static_cast<double>(a.size()));
+  for (const Vec3& p : b) {
+    if (std::abs(normal_a.dot(p) - offset) > tolerance) return std::nullopt;
+  }
+  thread_local std::vector<Vec3> loop;
+  loop.assign(a.begin(), a.end());
+  const double area = geometry::polygonArea(loop);
+  if (!realContact(loop, area, tolerance, min_area)) return std::nullopt;
+  return area;
+}
+
+std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> parts,
+                                              std::size_t piece_count, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources) {
+  constexpr std::size_t kBatch = 4096;
+  std::vector<PairTests> tests;
+  tests.reserve(parts.size());
+  // Batch g: part part_of[g], its pairs from first_pair[g] on (kBatch at most); a part's
+  // first batch starts with its mirrored contacts, decided here.
+  std::vector<std::size_t> part_of, first_pair, first_batch;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    tests.emplace_back(*parts[p].table, tolerance, min_area, parts[p].piece_offset);
+    first_batch.push_back(part_of.size());
+    for (std::size_t k = 0; k < std::max<std::size_t>(parts[p].pairs.size(), 1); k += kBatch) {
+      part_of.push_back(p);
+      first_pair.push_back(k);
+    }
+  }
+  const std::size_t batches = part_of.size();
+  std::vector<std::vector<PieceContact>> found(batches);
+  std::vector<std::vector<FaceSource>> decided(batches);
+  tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t p) {
+    std::vector<PieceContact>& list = found[first_batch[p]];
+    std::vector<FaceSource>& sources_of = decided[first_batch[p]];
+    list.reserve(parts[p].mirrored.size());
+    sources_of.reserve(parts[p].mirrored.size());
+    for (PieceContact c : parts[p].mirrored) {
+      c.piece_a += parts[p].piece_offset;
+      c.piece_b += parts[p].piece_offset;
+      list.push_back(c);
+      sources_of.push_back(decide(c, true));
+    }
+  });
   decideBatches(
-      tests, piece_count, batches,
+      [&](std::size_t g) -> const PairTests& { return tests[part_of[g]]; }, piece_count, batches,
       [&](std::size_t g) {
-        return pairs.subspan(g * kBatch, std::min(pairs.size(), (g + 1) * kBatch) - g * kBatch);
+        const auto& pairs = parts[part_of[g]].pairs;
+        return pairs.empty()
+                   ? pairs
+                   : pairs.subspan(first_pair[g], std::min(pairs.size() - first_pair[g], kBatch));
       },
       decide, found, decided);
   return sortedContacts(found, decided, true, sources);

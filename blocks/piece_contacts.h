@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -113,6 +114,11 @@ struct ContactFaces {
   /// index in `faces`.
   std::uint32_t add(int piece, int face, std::span<const geometry::Vec3> vertices,
                     std::span<const int> loop);
+  /// Fills entry k of a table sized beforehand (faces.size() > k, points and inward holding
+  /// begin + loop.size() corners or more) as `add` would: face `face` of piece `piece`, whose
+  /// corners are vertices[loop[j]], its corners at points[begin ..].
+  void set(std::uint32_t k, int piece, int face, std::uint32_t begin,
+           std::span<const geometry::Vec3> vertices, std::span<const int> loop);
   /// Appends the faces of `other`, their piece indices shifted by `piece_offset`.
   void append(const ContactFaces& other, int piece_offset);
 };
@@ -124,6 +130,47 @@ std::vector<PieceContact> decideTableContacts(
     const ContactFaces& table, std::size_t piece_count,
     std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs, double tolerance,
     double min_area, const ContactDecision& decide, std::vector<FaceSource>* sources);
+
+/// findContactsByPlane with `decide` on a prepared table: `table.groups` lists the [begin,
+/// end) ranges of table.faces that lie in one plane (two faces or more), faces of a plane in
+/// piece and face order; pieces are 0 .. piece_count - 1. The same contacts, decisions and
+/// order as findContactsByPlane on the pieces the table was filled from (a cutter that holds
+/// its pieces in flat arrays fills the table without reading them back).
+std::vector<PieceContact> decidePlaneContacts(const ContactFaces& table, std::size_t piece_count,
+                                              double tolerance, double min_area,
+                                              const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources);
+
+/// One of several contact tables decided together (a cutter's regions, each with its own
+/// table, are not copied into one): its faces name pieces piece_offset + Face::piece, its
+/// pairs index table->faces. `mirrored`: contacts the caller found itself between faces that
+/// are the two sides of one cut (mirroredContactArea; pieces numbered as in the table, not in
+/// `pairs`), decided with the mirrored pairs of `pairs`.
+struct ContactTablePart {
+  const ContactFaces* table = nullptr;
+  int piece_offset = 0;
+  std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::span<const PieceContact> mirrored;
+};
+
+/// For two faces of different pieces that are the two sides of one cut (`b` holds the corners
+/// of `a` run backwards, bitwise), what decideTableContacts finds for them as a mirrored pair,
+/// without a table: their area (of `a`) when they touch (opposite Newell normals, coplanar
+/// within `tolerance`, a real contact), else nothing.
+std::optional<double> mirroredContactArea(std::span<const geometry::Vec3> a,
+                                          std::span<const geometry::Vec3> b, double tolerance,
+                                          double min_area);
+
+/// decideTableContacts over several tables (pieces 0 .. piece_count - 1 over all parts): the
+/// candidates of each part in fixed batches of that part. Every real contact between two
+/// faces of a listed pair whose pieces end in different clusters is in the result, and the
+/// clusters are those of decideTableContacts on the parts' tables appended into one (only
+/// contacts inside a cluster may differ: the batches differ). Sorted as findContactsByPlane;
+/// `sources` gets the decisions in the same order.
+std::vector<PieceContact> decideTableContacts(std::span<const ContactTablePart> parts,
+                                              std::size_t piece_count, double tolerance,
+                                              double min_area, const ContactDecision& decide,
+                                              std::vector<FaceSource>* sources);
 
 /// The overlap of two convex planar faces given counter-clockwise about `normal` (for `a`)
 /// and about -normal (for `b`), assumed coplanar: `a` clipped by the edges of `b`, into
