@@ -1,14 +1,12 @@
 #!/usr/bin/env bash
-# Builds rockmass and runs the Xiangjiaba example as far as the project goes today: the
-# discrete fracture network, then rock quality (RQD balls, virtual boreholes), and the
-# stereonet figure. Outputs go to out/xiangjiaba/ (RQD in out/xiangjiaba/rqd/: every
-# command writes its own summary.json).
+# Builds rockmass and runs the Xiangjiaba example end to end with one command, `rockmass
+# run`: the discrete fracture network, the blocks, rock quality (RQD balls, virtual
+# boreholes, the RQD/P32 grid), the 3D DDA of the dam's foundation under self-weight and
+# water, the overload method and the strength reduction, and the figures. About 9 minutes on
+# 2 free cores (docs/xiangjiaba.md). Outputs go to out/xiangjiaba/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-debian.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)" --target rockmass
-build/app/rockmass dfn examples/xiangjiaba/scene.yaml -o out/xiangjiaba
-build/app/rockmass rqd examples/xiangjiaba/scene.yaml -o out/xiangjiaba/rqd
-/usr/bin/python3 scripts/figures/stereonet.py out/xiangjiaba/fractures.csv \
-  -o out/xiangjiaba/stereonet.png --sets J1,J2,J3,J4,J5
+build/app/rockmass run examples/xiangjiaba/scene.yaml -o out/xiangjiaba
