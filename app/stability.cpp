@@ -1,6 +1,7 @@
 #include "app/stability.h"
 
 #include <cstdio>
+#include <string>
 
 #include "app/scene_blocks.h"
 #include "io/atomic_file.h"
@@ -16,12 +17,21 @@ namespace {
 /// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps".
 dda3d::FactorRunCallback progress(const char* label) {
   return [label](const dda3d::FactorRun& run) {
-    std::fprintf(stderr, "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g)\n", label,
+    const dda3d::EquilibriumResult& e = run.equilibrium;
+    std::string fastest;
+    if (e.fastest_block >= 0) {
+      char text[160];
+      std::snprintf(text, sizeof text, "; fastest block %d, %.3g m3 at (%.1f, %.1f, %.1f)",
+                    e.fastest_block, e.fastest_volume, e.fastest_centroid.x(),
+                    e.fastest_centroid.y(), e.fastest_centroid.z());
+      fastest = text;
+    }
+    std::fprintf(stderr, "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g%s)\n", label,
                  run.factor, run.bisection ? " (bisection)" : "",
-                 run.equilibrium.reached   ? "at rest"
-                 : run.equilibrium.failing ? "NOT at rest (failing: stopped early)"
-                                           : "NOT at rest",
-                 run.equilibrium.steps, run.equilibrium.unbalanced_ratio);
+                 e.reached   ? "at rest"
+                 : e.failing ? "NOT at rest (failing: stopped early)"
+                             : "NOT at rest",
+                 e.steps, e.unbalanced_ratio, fastest.c_str());
   };
 }
 

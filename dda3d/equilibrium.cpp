@@ -29,6 +29,12 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     result.increment =
         report.displacement_ratio * sim.settings().max_displacement_ratio * sim.halfDomainSize();
     result.unbalanced_ratio = result.increment / (0.5 * g * report.time_step * report.time_step);
+    result.fastest_block = report.fastest_block;
+    if (report.fastest_block >= 0) {
+      const BlockState& fastest = sim.blocks()[static_cast<std::size_t>(report.fastest_block)];
+      result.fastest_volume = fastest.volume;
+      result.fastest_centroid = fastest.centroid;
+    }
     const EnergyAccount energy = sim.energy();
     const double work = std::abs(energy.work_of_loads);
     result.kinetic_ratio = energy.kinetic > 0.0 ? energy.kinetic / std::max(work, 1e-300) : 0.0;

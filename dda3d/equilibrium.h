@@ -36,6 +36,11 @@ struct EquilibriumResult {
   double kinetic_ratio = 0.0;     ///< at the end (-)
   double increment = 0.0;         ///< largest vertex displacement of the last step (m)
   bool failing = false;           ///< stopped early by the failure rule (not at rest)
+  /// The block that moved most in the last step (-1: none), its volume (m3) and centroid
+  /// (m): where the unbalanced ratio comes from.
+  int fastest_block = -1;
+  double fastest_volume = 0.0;
+  geometry::Vec3 fastest_centroid = geometry::Vec3::Zero();
 };
 
 /// Steps `sim` until it is at rest (EquilibriumSettings) or the step limit is reached.

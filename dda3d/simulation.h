@@ -147,6 +147,7 @@ struct StepReport {
   int redo_penetration = 0;         ///< redos with a stiffer penalty
   bool forced = false;              ///< accepted without meeting every check (dt at its minimum)
   double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
+  int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
   double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)
   double penalty = 0.0;             ///< N/m, normal penalty used
   int pattern_changes = 0;          ///< symbolic analyses redone
@@ -282,7 +283,9 @@ class Simulation {
   };
   /// Updates every contact's state from the iteration's solution.
   StateChanges updateContactStates(const Eigen::VectorXd& solution);
-  double maxDisplacementRatio(const Eigen::VectorXd& solution) const;
+  /// Largest vertex displacement of `solution` over g2 l0; `fastest` (when given) gets the
+  /// movable block it belongs to (-1 when none moved).
+  double maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest = nullptr) const;
   double maxPenetration() const;
   void updateBlocks(const Eigen::VectorXd& solution, double dt);
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;

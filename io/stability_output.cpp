@@ -27,6 +27,14 @@ Json optionalJson(const std::optional<double>& value) {
   return value ? Json(*value) : Json(nullptr);
 }
 
+/// The block that moved most in a run's last step, or null.
+Json fastestJson(const dda3d::EquilibriumResult& e) {
+  if (e.fastest_block < 0) return Json(nullptr);
+  return {{"block", e.fastest_block},
+          {"volume", e.fastest_volume},
+          {"centroid", {e.fastest_centroid.x(), e.fastest_centroid.y(), e.fastest_centroid.z()}}};
+}
+
 /// One entry per run, in the order they ran.
 Json runsJson(const dda3d::FactorSearchResult& result) {
   Json runs = Json::array();
@@ -37,7 +45,9 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
                     {"steps", r.equilibrium.steps},
                     {"time", r.equilibrium.time},
                     {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
-                    {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)}});
+                    {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
+                    {"failing", r.equilibrium.failing},
+                    {"fastest_block", fastestJson(r.equilibrium)}});
   }
   return runs;
 }

@@ -174,6 +174,8 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   EXPECT_FALSE(failing.reached);
   EXPECT_TRUE(failing.failing);
   EXPECT_EQ(failing.steps, 10);
+  EXPECT_EQ(failing.fastest_block, 1);  // the sliding block, not the fixed base
+  EXPECT_NEAR(failing.fastest_volume, 1.0, 1e-12);
   const double a = std::sin(radians(60.0)) - std::cos(radians(60.0)) * std::tan(radians(10.0));
   // The step's displacement is a dt^2 / 2 less what the contact springs take up (1e-2).
   EXPECT_NEAR(failing.unbalanced_ratio, a, 1e-2 * a);
