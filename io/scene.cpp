@@ -721,6 +721,19 @@ BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
   return blocks;
 }
 
+/// A box {min, max} with min < max in every component (m).
+geometry::Box readBox(const Cursor& c) {
+  const Cursor box = c.map({"min", "max"});
+  const geometry::Box read{box.at("min").vec3(), box.at("max").vec3()};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(read.min[axis] < read.max[axis])) {
+      box.fail("expected min < max in every component, got " + formatDouble(read.min[axis]) +
+               " >= " + formatDouble(read.max[axis]) + " in " + "xyz"[axis]);
+    }
+  }
+  return read;
+}
+
 /// analysis.rqd.boreholes.calibration; `joint_sets` names the joint sets in order.
 RqdCalibration readRqdCalibration(const Cursor& c, const std::vector<std::string>& joint_sets) {
   const Cursor m = c.map({"sets", "range", "tolerance", "max_evaluations"});
@@ -792,17 +805,7 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
     rqd.grid_direction_count =
         grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
     if (const auto length = grid->get("length")) rqd.grid_length = length->number(kPositive);
-    if (const auto region = grid->get("region")) {
-      const Cursor box = region->map({"min", "max"});
-      const geometry::Box read{box.at("min").vec3(), box.at("max").vec3()};
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!(read.min[axis] < read.max[axis])) {
-          box.fail("expected min < max in every component, got " + formatDouble(read.min[axis]) +
-                   " >= " + formatDouble(read.max[axis]) + " in " + "xyz"[axis]);
-        }
-      }
-      rqd.grid_region = read;
-    }
+    if (const auto region = grid->get("region")) rqd.grid_region = readBox(*region);
   }
   return rqd;
 }
@@ -833,18 +836,13 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
                                         {.low = 0, .high = 1, .high_open = true});
   if (const auto region = m.get("region")) {
     if (mesh_domain) region->fail("a DDA region needs a box domain (domain.box)");
-    const Cursor box = region->map({"min", "max"});
-    const geometry::Box read{box.at("min").vec3(), box.at("max").vec3()};
+    const geometry::Box read = readBox(*region);
     for (int axis = 0; axis < 3; ++axis) {
-      if (!(read.min[axis] < read.max[axis])) {
-        box.fail("expected min < max in every component, got " + formatDouble(read.min[axis]) +
-                 " >= " + formatDouble(read.max[axis]) + " in " + "xyz"[axis]);
-      }
       if (read.min[axis] < domain.min[axis] || read.max[axis] > domain.max[axis]) {
-        box.fail(std::string("expected a box inside the domain box; in ") + "xyz"[axis] +
-                 " the region spans " + formatDouble(read.min[axis]) + " .. " +
-                 formatDouble(read.max[axis]) + ", the domain " + formatDouble(domain.min[axis]) +
-                 " .. " + formatDouble(domain.max[axis]));
+        region->fail(std::string("expected a box inside the domain box; in ") + "xyz"[axis] +
+                     " the region spans " + formatDouble(read.min[axis]) + " .. " +
+                     formatDouble(read.max[axis]) + ", the domain " +
+                     formatDouble(domain.min[axis]) + " .. " + formatDouble(domain.max[axis]));
       }
     }
     dda.region = read;
