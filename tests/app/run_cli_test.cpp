@@ -261,8 +261,18 @@ TEST(RunCli, XiangjiabaQuick) {
   for (const Json& f : s["run"]["files"]) {
     EXPECT_TRUE(fs::exists(run.out / f.get<std::string>())) << f;
   }
+  // The scene starts every factor from the settled state (analysis.equilibrium.start), timed
+  // on its own; a run not at rest either used its 40 steps or stopped after 10 as failing.
+  EXPECT_TRUE(s["timings"].contains("stability_start"));
+  for (const char* search : {"overload", "strength_reduction"}) {
+    for (const Json& r : s[search]["runs"]) {
+      if (r["at_rest"].get<bool>()) continue;
+      EXPECT_EQ(r["steps"].get<int>(), r["failing"].get<bool>() ? 10 : 40) << r.dump();
+    }
+  }
   // A finite safety factor (one test with the run above: the quick run is the suite's
-  // longest, ~2 min). The dam stands under its own loads: the overload starts at K = 1, at rest.
+  // longest, about 20 s). The dam stands under its own loads: the overload starts at K = 1, at
+  // rest.
   ASSERT_TRUE(s["safety_factor"].is_number()) << s["overload"].dump();
   EXPECT_TRUE(std::isfinite(s["safety_factor"].get<double>()));
   EXPECT_GT(s["safety_factor"].get<double>(), 1.0);
