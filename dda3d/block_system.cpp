@@ -75,26 +75,47 @@ BlockMatrix& BlockSystem::pairBlock(int i, int j, bool& transposed) {
   return off_diagonal_[static_cast<std::size_t>(found->second)];
 }
 
+namespace {
+
+/// m += k x y^T over the first `dofs` rows and columns (6: rigid blocks, whose strain rows and
+/// columns the matrix never reads; 12: all). The same products entry by entry, so the used
+/// entries are bitwise those of the full update.
+void addOuter(BlockMatrix& m, double k, const BlockVector& x, const BlockVector& y, int dofs) {
+  if (dofs == 6) {
+    m.topLeftCorner<6, 6>().noalias() += k * x.head<6>() * y.head<6>().transpose();
+  } else {
+    m.noalias() += k * x * y.transpose();
+  }
+}
+
+}  // namespace
+
 void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k,
                             double d0) {
   if (i >= 0) {
-    diagonal_[static_cast<std::size_t>(i)].noalias() += k * a * a.transpose();
+    addOuter(diagonal_[static_cast<std::size_t>(i)], k, a, a, dofs_);
     rhs_[static_cast<std::size_t>(i)] -= k * d0 * a;
   }
   if (j >= 0) {
-    diagonal_[static_cast<std::size_t>(j)].noalias() += k * b * b.transpose();
+    addOuter(diagonal_[static_cast<std::size_t>(j)], k, b, b, dofs_);
     rhs_[static_cast<std::size_t>(j)] -= k * d0 * b;
   }
   if (i >= 0 && j >= 0 && i != j) {
     bool transposed = false;
     BlockMatrix& m = pairBlock(i, j, transposed);
     if (transposed) {
-      m.noalias() += k * b * a.transpose();  // stored K_ji
+      addOuter(m, k, b, a, dofs_);  // stored K_ji
     } else {
-      m.noalias() += k * a * b.transpose();
+      addOuter(m, k, a, b, dofs_);
     }
   } else if (i >= 0 && i == j) {
-    diagonal_[static_cast<std::size_t>(i)].noalias() += k * (a * b.transpose() + b * a.transpose());
+    BlockMatrix& m = diagonal_[static_cast<std::size_t>(i)];
+    if (dofs_ == 6) {
+      m.topLeftCorner<6, 6>().noalias() +=
+          k * (a.head<6>() * b.head<6>().transpose() + b.head<6>() * a.head<6>().transpose());
+    } else {
+      m.noalias() += k * (a * b.transpose() + b * a.transpose());
+    }
   }
 }
 
