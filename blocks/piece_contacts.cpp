@@ -268,16 +268,51 @@ void fillFromPiece(ContactFaces& table, std::span<const Piece> pieces, int i, in
 
 using PlaneFaces = ContactFaces;
 
+/// A face with no slot in a table (left out).
+constexpr std::uint32_t kNoSlot = std::numeric_limits<std::uint32_t>::max();
+
+/// first_face[i]: the index of piece i's face 0 among all faces in piece order (and the
+/// count of all faces at the end).
+std::vector<std::size_t> firstFaces(std::span<const Piece> pieces) {
+  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  }
+  return first_face;
+}
+
+/// The table of `first_point.size() - 1` faces: face f of piece i goes to slot
+/// slot[first_face[i] + f] (none when kNoSlot), its points from first_point[slot]. Reads the
+/// pieces in order (sequential in memory: a piece's faces were allocated together) and writes
+/// each face to its slot; in slot order every face was a cache miss.
+PlaneFaces faceTable(std::span<const Piece> pieces, const std::vector<std::size_t>& first_face,
+                     const std::vector<std::uint32_t>& slot,
+                     const std::vector<std::uint32_t>& first_point) {
+  PlaneFaces table;
+  table.faces.resize(first_point.size() - 1);
+  table.points.resize(first_point.back());
+  table.inward.resize(first_point.back());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
+                          const std::uint32_t k = slot[first_face[i] + f];
+                          if (k == kNoSlot) continue;
+                          fillFromPiece(table, pieces, static_cast<int>(i), static_cast<int>(f), k,
+                                        first_point[k]);
+                        }
+                      }
+                    });
+  return table;
+}
+
 /// The faces of all pieces with a plane id >= 0, in plane order (faces with a negative id are
 /// left out), for findContactsByPlane.
 /// `plane_of(i, f)`: the plane id of face f of piece i.
 template <class PlaneOf>
 PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   // Faces in piece order: their plane ids and sizes.
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
-  }
+  const std::vector<std::size_t> first_face = firstFaces(pieces);
   const std::size_t all = first_face.back();
   std::vector<int> plane(all);
   std::size_t count = 0;
@@ -294,8 +329,7 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   }
   // slot[k]: where face k (piece order) goes in plane order, ties in piece and face order
   // (a counting sort by plane id when the ids are dense, else a stable sort).
-  constexpr std::uint32_t kLeftOut = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> slot(all, kLeftOut);
+  std::vector<std::uint32_t> slot(all, kNoSlot);
   if (count > 0 &&
       static_cast<long long>(highest) - lowest < 16LL * static_cast<long long>(count) + 4096) {
     std::vector<std::uint32_t> start(static_cast<std::size_t>(highest - lowest) + 2, 0);
@@ -320,7 +354,7 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
       const std::uint32_t k = slot[first_face[i] + f];
-      if (k == kLeftOut) continue;
+      if (k == kNoSlot) continue;
       sorted_size[k] = static_cast<std::uint32_t>(pieces[i].shape.faces[f].size());
       sorted_plane[k] = static_cast<std::uint32_t>(plane[first_face[i] + f] - lowest);
     }
@@ -328,22 +362,7 @@ PlaneFaces planeFaces(std::span<const Piece> pieces, const PlaneOf& plane_of) {
   std::vector<std::uint32_t> first_point(count + 1, 0);
   for (std::size_t k = 0; k < count; ++k) first_point[k + 1] = first_point[k] + sorted_size[k];
 
-  PlaneFaces out;
-  out.faces.resize(count);
-  out.points.resize(first_point.back());
-  out.inward.resize(first_point.back());
-  // Read the pieces in order (sequential), write each face to its slot.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
-                          const std::uint32_t k = slot[first_face[i] + f];
-                          if (k == kLeftOut) continue;
-                          fillFromPiece(out, pieces, static_cast<int>(i), static_cast<int>(f), k,
-                                        first_point[k]);
-                        }
-                      }
-                    });
+  PlaneFaces out = faceTable(pieces, first_face, slot, first_point);
   for (std::size_t b = 0; b < count;) {
     std::size_t e = b + 1;
     while (e < count && sorted_plane[e] == sorted_plane[b]) ++e;
@@ -680,10 +699,7 @@ std::vector<PieceContact> findContactsByPlane(std::span<const Piece> pieces,
                                               std::span<const int> face_planes, double tolerance,
                                               double min_area, const ContactDecision& decide,
                                               std::vector<FaceSource>* sources) {
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
-  }
+  const std::vector<std::size_t> first_face = firstFaces(pieces);
   return contactsByPlane(
       pieces, [&](std::size_t i, std::size_t f) { return face_planes[first_face[i] + f]; },
       tolerance, min_area, decide, sources);
@@ -695,19 +711,15 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
                                                   const ContactDecision& decide,
                                                   std::vector<FaceSource>* sources) {
   // Table slots for the faces the candidates name, in first-use order.
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
-  }
-  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> slot(first_face.back(), kNone);
+  const std::vector<std::size_t> first_face = firstFaces(pieces);
+  std::vector<std::uint32_t> slot(first_face.back(), kNoSlot);
   std::vector<FaceRef> refs;
   std::vector<std::uint32_t> first_point{0};
   TablePairs pairs;
   pairs.reserve(candidates.size());
   const auto slotOf = [&](const FaceRef& r) {
     std::uint32_t& k = slot[first_face[r.piece] + r.face];
-    if (k == kNone) {
+    if (k == kNoSlot) {
       k = static_cast<std::uint32_t>(refs.size());
       refs.push_back(r);
       first_point.push_back(first_point.back() +
@@ -716,23 +728,7 @@ std::vector<PieceContact> decideCandidateContacts(std::span<const Piece> pieces,
     return k;
   };
   for (const FacePair& c : candidates) pairs.emplace_back(slotOf(c.first), slotOf(c.second));
-  PlaneFaces table;
-  table.faces.resize(refs.size());
-  table.points.resize(first_point.back());
-  table.inward.resize(first_point.back());
-  // Read the pieces in order (sequential in memory: a piece's faces were allocated together),
-  // write each named face to its slot; in first-use order every face was a cache miss.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        for (std::size_t f = 0; f < pieces[i].shape.faces.size(); ++f) {
-                          const std::uint32_t k = slot[first_face[i] + f];
-                          if (k == kNone) continue;
-                          fillFromPiece(table, pieces, static_cast<int>(i), static_cast<int>(f), k,
-                                        first_point[k]);
-                        }
-                      }
-                    });
+  const PlaneFaces table = faceTable(pieces, first_face, slot, first_point);
   return decideTableContacts(table, pieces.size(), pairs, tolerance, min_area, decide, sources);
 }
 

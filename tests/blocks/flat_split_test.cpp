@@ -197,6 +197,24 @@ ContactDecision gridDecision(const std::vector<Piece>& pieces) {
   };
 }
 
+/// `got` (with its face sources) equals `expected` entry by entry, areas bitwise: the same
+/// arithmetic on the same table numbers.
+void expectSameContacts(const std::vector<PieceContact>& got,
+                        const std::vector<FaceSource>& sources,
+                        const std::vector<PieceContact>& expected,
+                        const std::vector<FaceSource>& expected_sources) {
+  ASSERT_EQ(got.size(), expected.size());
+  ASSERT_EQ(sources.size(), expected_sources.size());
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    EXPECT_EQ(got[k].piece_a, expected[k].piece_a);
+    EXPECT_EQ(got[k].face_a, expected[k].face_a);
+    EXPECT_EQ(got[k].piece_b, expected[k].piece_b);
+    EXPECT_EQ(got[k].face_b, expected[k].face_b);
+    EXPECT_EQ(got[k].area, expected[k].area);
+    EXPECT_EQ(sources[k], expected_sources[k]);
+  }
+}
+
 TEST(FlatSplit, TableContactsEqualCandidateContacts) {
   // Every pair of faces of different pieces of gridPieces is a candidate. A table built face
   // by face with ContactFaces::add must give the very contacts and decisions
@@ -230,15 +248,7 @@ TEST(FlatSplit, TableContactsEqualCandidateContacts) {
   const std::vector<PieceContact> got =
       decideTableContacts(table, pieces.size(), pairs, 1e-9, 1e-9, decide, &sources);
   ASSERT_GT(expected.size(), 50u);  // 27+ pieces touching across many faces
-  ASSERT_EQ(got.size(), expected.size());
-  for (std::size_t k = 0; k < got.size(); ++k) {
-    EXPECT_EQ(got[k].piece_a, expected[k].piece_a);
-    EXPECT_EQ(got[k].face_a, expected[k].face_a);
-    EXPECT_EQ(got[k].piece_b, expected[k].piece_b);
-    EXPECT_EQ(got[k].face_b, expected[k].face_b);
-    EXPECT_EQ(got[k].area, expected[k].area);  // bitwise: the same table numbers
-    EXPECT_EQ(sources[k], expected_sources[k]);
-  }
+  expectSameContacts(got, sources, expected, expected_sources);
 }
 
 TEST(FlatSplit, TableContactsOfSeveralPartsGiveTheSameClustersAndBlockContacts) {
@@ -381,15 +391,7 @@ TEST(FlatSplit, MirroredContactsFoundOutsideTheTableAreDecidedAsInIt) {
       decideTableContacts(part, pieces.size(), 1e-9, 1e-9, decide, &sources);
   EXPECT_GT(mirrored_pairs, 50);  // the grid's cuts: both sides of every cut face
   EXPECT_EQ(static_cast<int>(mirrored.size()), mirrored_pairs);  // all of them touch
-  ASSERT_EQ(got.size(), expected.size());
-  for (std::size_t k = 0; k < got.size(); ++k) {
-    EXPECT_EQ(got[k].piece_a, expected[k].piece_a);
-    EXPECT_EQ(got[k].face_a, expected[k].face_a);
-    EXPECT_EQ(got[k].piece_b, expected[k].piece_b);
-    EXPECT_EQ(got[k].face_b, expected[k].face_b);
-    EXPECT_EQ(got[k].area, expected[k].area);  // bitwise: the same arithmetic
-    EXPECT_EQ(sources[k], expected_sources[k]);
-  }
+  expectSameContacts(got, sources, expected, expected_sources);
   // Faces that are not the same loop, or a face with itself not reversed, are no pair.
   const std::vector<Vec3> face = corners(0, 0);
   EXPECT_FALSE(mirroredContactArea(face, face, 1e-9, 1e-9));  // same normals: no contact
