@@ -477,9 +477,7 @@ int runAll(const RunOptions& options) {
     const StabilityStart begin =
         stabilityStart(dda_scene, io::buildDdaModel(dda_scene, *dda_blocks));
     const dda3d::DdaModel& model = begin.model;
-    if (scene.analysis.equilibrium && scene.analysis.equilibrium->settled_start) {
-      run.timings.emplace_back("stability_start", secondsSince(start_state));
-    }
+    if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start_state));
     std::optional<dda3d::FactorSearchResult> overload;
     std::optional<dda3d::FactorSearchResult> strength;
     dda3d::ActiveTerms terms;

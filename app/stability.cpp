@@ -62,7 +62,7 @@ dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
 
 StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
-    return {model, {}};
+    return {model, {}, std::nullopt};
   }
   dda3d::Simulation sim(model, io::equilibriumDdaSettings(scene));
   const dda3d::EquilibriumResult settled =
@@ -72,7 +72,7 @@ StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& mod
                "runs from it\n",
                settled.reached ? "at rest" : "NOT at rest", settled.steps,
                settled.unbalanced_ratio);
-  return {dda3d::settledModel(sim), sim.contacts()};
+  return {dda3d::settledModel(sim), sim.contacts(), settled};
 }
 
 std::vector<std::string> monitorNames(const dda3d::DdaModel& model) {
@@ -133,9 +133,7 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   const StabilityStart begin = stabilityStart(
       dda_scene, io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued)));
   const dda3d::DdaModel& model = begin.model;
-  if (scene.analysis.equilibrium && scene.analysis.equilibrium->settled_start) {
-    run.timings.emplace_back("stability_start", secondsSince(start));
-  }
+  if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start));
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),
                model.blocks.size(), model.pressures.size(), search.factors.size());
 

@@ -20,6 +20,8 @@ namespace rockmass::app {
 struct StabilityStart {
   dda3d::DdaModel model;                 ///< the model of factor 1
   std::vector<dda3d::Contact> contacts;  ///< contacts to start from (empty: none)
+  /// The run that settled the model (start: settled); none for an unloaded start.
+  std::optional<dda3d::EquilibriumResult> settling;
 };
 
 /// `model` itself, or with analysis.equilibrium.start: settled, `model` run to rest as it is

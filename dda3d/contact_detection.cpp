@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -303,6 +304,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
 void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                 std::vector<Contact>& out) {
   const Box reach_b = b.box.enlarged(range.larger());
+  std::optional<double> overlap;  // faceOverlap(a, b)
   for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
     const Vec3& a0 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][0])];
     const Vec3& a1 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][1])];
@@ -370,7 +372,10 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       // compression have skew edges (one lying in the shared face, one ending on it) whose
       // crossing read as a 0.25 m horizontal penetration on the Xiangjiaba model, and its
       // penalty force, 10^4 times the model's weight, threw the blocks apart.
-      if (c.gap0 < -tolerance && faceOverlap(a, b) + tolerance < 0.5 * -c.gap0) continue;
+      if (c.gap0 < -tolerance) {
+        if (!overlap) overlap = faceOverlap(a, b);  // once per pair, when first needed
+        if (*overlap + tolerance < 0.5 * -c.gap0) continue;
+      }
       out.push_back(c);
     }
   }
