@@ -125,22 +125,25 @@ std::string pointText(const geometry::Vec3& p) {
 }
 
 /// The quick variant of a scene: the quick box as domain (and as the DDA's region); monitors, RQD
-/// ball centres and point loads outside it moved to the nearest point of the box shrunk by 5%; at
+/// ball centres and point loads outside it (but inside the scene's domain: a point outside it is
+/// on a structure, which the quick run keeps whole) moved to the nearest point of the box shrunk
+/// by 5%; at
 /// most kQuickBallDirections ball directions and kQuickGridDirections grid axes; at most
 /// kQuickDdaSteps DDA steps (see quickSteps). Returns what it moved, for the summary.
 std::vector<std::string> makeQuick(io::Scene& scene) {
   std::vector<std::string> notes;
   const geometry::Box box = quickBox(scene);
+  const geometry::Box full = scene.dfn.domain;
   scene.dfn.domain = box;
   for (io::Monitor& m : scene.monitors) {
-    if (box.contains(m.point)) continue;
+    if (box.contains(m.point) || !full.contains(m.point)) continue;
     const geometry::Vec3 moved = clampInto(box, m.point);
     notes.push_back("quick: monitor " + m.name + " moved from " + pointText(m.point) + " to " +
                     pointText(moved));
     m.point = moved;
   }
   for (io::PointLoad& load : scene.loads.point_loads) {
-    if (box.contains(load.point)) continue;
+    if (box.contains(load.point) || !full.contains(load.point)) continue;
     load.point = clampInto(box, load.point);
   }
   if (scene.analysis.rqd) {

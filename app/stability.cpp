@@ -26,12 +26,21 @@ dda3d::FactorRunCallback progress(const char* label) {
                     e.fastest_centroid.y(), e.fastest_centroid.z());
       fastest = text;
     }
-    std::fprintf(stderr, "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g%s)\n", label,
-                 run.factor, run.bisection ? " (bisection)" : "",
+    if (e.watched_block >= 0) {
+      char text[160];
+      std::snprintf(text, sizeof text, "; fastest watched block %d, %.3g m3 at (%.1f, %.1f, %.1f)",
+                    e.watched_block, e.watched_volume, e.watched_centroid.x(),
+                    e.watched_centroid.y(), e.watched_centroid.z());
+      fastest += text;
+    }
+    std::fprintf(stderr,
+                 "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g, all blocks "
+                 "%.3g%s)\n",
+                 label, run.factor, run.bisection ? " (bisection)" : "",
                  e.reached   ? "at rest"
                  : e.failing ? "NOT at rest (failing: stopped early)"
                              : "NOT at rest",
-                 e.steps, e.unbalanced_ratio, fastest.c_str());
+                 e.steps, e.unbalanced_ratio, e.all_blocks_ratio, fastest.c_str());
   };
 }
 
@@ -61,6 +70,19 @@ dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
 }
 
 StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
+  if (scene.analysis.equilibrium && scene.analysis.equilibrium->watch_monitors) {
+    bool movable = false;
+    for (const dda3d::DdaMonitor& m : model.monitors) {
+      movable = movable || !model.blocks.at(static_cast<std::size_t>(m.block)).fixed;
+    }
+    if (!movable) {
+      throw io::InputError(io::locate(
+          scene.file, scene.analysis.equilibrium->watch_line, 0,
+          "analysis.equilibrium.watch: monitors, but every monitor lies in a held block (a "
+          "support), so no block would decide equilibrium; move a monitor into a free block or "
+          "use watch: all"));
+    }
+  }
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
     return {model, {}, std::nullopt};
   }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include "dda3d/contact_detection.h"
 
 namespace rockmass::dda3d {
 
@@ -16,9 +19,33 @@ double referenceAcceleration(const DdaModel& model) {
 
 }  // namespace
 
+std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch) {
+  std::vector<int> watched;
+  if (watch == EquilibriumWatch::All) {
+    for (std::size_t b = 0; b < sim.blocks().size(); ++b) {
+      if (!sim.blocks()[b].fixed) watched.push_back(static_cast<int>(b));
+    }
+    return watched;
+  }
+  for (const DdaMonitor& monitor : sim.model().monitors) {
+    const auto b = static_cast<std::size_t>(monitor.block);
+    if (b < sim.blocks().size() && !sim.blocks()[b].fixed) watched.push_back(monitor.block);
+  }
+  std::sort(watched.begin(), watched.end());
+  watched.erase(std::unique(watched.begin(), watched.end()), watched.end());
+  if (watched.empty()) {
+    throw std::invalid_argument(
+        "the equilibrium watches the monitored blocks, but no monitor is in a movable block");
+  }
+  return watched;
+}
+
 EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings) {
   EquilibriumResult result;
   const double g = referenceAcceleration(sim.model());
+  const bool every_block = settings.watch == EquilibriumWatch::All;
+  const std::vector<int> watched =
+      every_block ? std::vector<int>{} : watchedBlocks(sim, settings.watch);
   int calm = 0;
   int pushed = 0;
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
@@ -26,9 +53,28 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   while (result.steps < settings.max_steps) {
     const StepReport report = sim.step();
     ++result.steps;
-    result.increment =
+    const double free_fall = 0.5 * g * report.time_step * report.time_step;
+    const double all_increment =
         report.displacement_ratio * sim.settings().max_displacement_ratio * sim.halfDomainSize();
-    result.unbalanced_ratio = result.increment / (0.5 * g * report.time_step * report.time_step);
+    result.all_blocks_ratio = all_increment / free_fall;
+    result.increment = all_increment;
+    if (!every_block) {
+      // The step's displacement field of each watched block, at its vertices (the blocks have
+      // moved; the field is affine, so its largest value is at a vertex).
+      result.increment = 0.0;
+      result.watched_block = -1;
+      for (const int b : watched) {
+        const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
+        const double moved = largestVertexDisplacement(block, block.last_displacement);
+        if (moved > result.increment) {
+          result.increment = moved;
+          result.watched_block = b;
+          result.watched_volume = block.volume;
+          result.watched_centroid = block.centroid;
+        }
+      }
+    }
+    result.unbalanced_ratio = result.increment / free_fall;
     result.fastest_block = report.fastest_block;
     if (report.fastest_block >= 0) {
       const BlockState& fastest = sim.blocks()[static_cast<std::size_t>(report.fastest_block)];
@@ -37,7 +83,15 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     }
     const EnergyAccount energy = sim.energy();
     const double work = std::abs(energy.work_of_loads);
-    result.kinetic_ratio = energy.kinetic > 0.0 ? energy.kinetic / std::max(work, 1e-300) : 0.0;
+    double kinetic = energy.kinetic;
+    if (!every_block) {
+      kinetic = 0.0;
+      for (const int b : watched) {
+        const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
+        kinetic += 0.5 * block.velocity.dot(massMatrix(block) * block.velocity);
+      }
+    }
+    result.kinetic_ratio = kinetic > 0.0 ? kinetic / std::max(work, 1e-300) : 0.0;
     const bool still = !report.forced && result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;

@@ -6,6 +6,12 @@
 
 namespace rockmass::dda3d {
 
+/// Which blocks the criterion judges.
+enum class EquilibriumWatch {
+  All,       ///< every movable block
+  Monitors,  ///< the movable blocks that carry a monitor (DdaModel::monitors)
+};
+
 /// When a run counts as being at rest. A step is calm when it was accepted on every check
 /// (not forced), its unbalanced ratio is at most `unbalanced_ratio` and its kinetic energy
 /// ratio at most `kinetic_ratio`; equilibrium is `settle_steps` calm steps in a row.
@@ -25,6 +31,11 @@ struct EquilibriumSettings {
   /// 0 turns the early stop off.
   double failure_ratio = 1.0;
   int failure_steps = 10;  ///< steps in a row of the early stop
+  /// The blocks whose unbalanced ratio, kinetic energy and failure decide the run. With
+  /// Monitors, a block elsewhere that keeps moving (a loose block under a free face) does not
+  /// keep the run from being at rest, nor stop it early; it is still reported
+  /// (EquilibriumResult::all_blocks_ratio and fastest_block).
+  EquilibriumWatch watch = EquilibriumWatch::All;
 };
 
 /// How a run to equilibrium ended.
@@ -32,16 +43,28 @@ struct EquilibriumResult {
   bool reached = false;           ///< at rest within the step limit
   int steps = 0;                  ///< accepted steps taken
   double time = 0.0;              ///< simulated time at the end (s)
-  double unbalanced_ratio = 0.0;  ///< of the last step (-)
-  double kinetic_ratio = 0.0;     ///< at the end (-)
-  double increment = 0.0;         ///< largest vertex displacement of the last step (m)
-  bool failing = false;           ///< stopped early by the failure rule (not at rest)
-  /// The block that moved most in the last step (-1: none), its volume (m3) and centroid
-  /// (m): where the unbalanced ratio comes from.
+  double unbalanced_ratio = 0.0;  ///< of the last step, over the watched blocks (-)
+  double kinetic_ratio = 0.0;     ///< at the end, of the watched blocks (-)
+  double increment = 0.0;  ///< largest vertex displacement of the last step, watched blocks (m)
+  /// The unbalanced ratio of the last step over every block (equal to unbalanced_ratio when
+  /// every block is watched).
+  double all_blocks_ratio = 0.0;
+  bool failing = false;  ///< stopped early by the failure rule (not at rest)
+  /// The block that moved most in the last step, of all blocks (-1: none), its volume (m3)
+  /// and centroid (m): where all_blocks_ratio comes from.
   int fastest_block = -1;
   double fastest_volume = 0.0;
   geometry::Vec3 fastest_centroid = geometry::Vec3::Zero();
+  /// With EquilibriumWatch::Monitors, the watched block that moved most in the last step
+  /// (where unbalanced_ratio comes from; -1: none moved, or every block is watched).
+  int watched_block = -1;
+  double watched_volume = 0.0;                               ///< m3
+  geometry::Vec3 watched_centroid = geometry::Vec3::Zero();  ///< m
 };
+
+/// The movable blocks `watch` selects in `sim`'s model, in increasing order. Throws
+/// std::invalid_argument when Monitors selects none (no monitor, or all in held blocks).
+std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch);
 
 /// Steps `sim` until it is at rest (EquilibriumSettings) or the step limit is reached.
 EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings);

@@ -218,8 +218,13 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
   }
   half_domain_ = settings_.half_domain_size > 0.0 ? settings_.half_domain_size
                                                   : 0.5 * (all.max - all.min).maxCoeff();
+  // The stiffest material of the blocks in the model (a material no block uses, e.g. one the
+  // scene declares for a structure elsewhere, does not stiffen the contacts).
   double young_max = 0.0;
-  for (const DdaMaterial& m : model_.materials) young_max = std::max(young_max, m.young);
+  for (const BlockState& block : blocks_) {
+    young_max =
+        std::max(young_max, model_.materials.at(static_cast<std::size_t>(block.material)).young);
+  }
   const double block_length =
       blocks_.empty() ? 1.0 : std::cbrt(total_volume / static_cast<double>(blocks_.size()));
   penalty_ = settings_.penalty > 0.0 ? settings_.penalty

@@ -881,10 +881,17 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 }
 
 /// analysis.equilibrium
-EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c) {
+EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) {
   const Cursor m = c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps",
-                          "dynamic_ratio", "start", "failure_ratio", "failure_steps"});
+                          "dynamic_ratio", "start", "failure_ratio", "failure_steps", "watch"});
   EquilibriumAnalysis e;
+  if (const auto watch = m.get("watch")) {
+    e.watch_monitors = watch->choice("watch", {"all", "monitors"}) == 1;
+    if (e.watch_monitors && !has_monitors) {
+      watch->fail("`monitors` needs a `monitors` list in the scene (the blocks it watches)");
+    }
+    e.watch_line = watch->line();
+  }
   e.settled_start = m.valueOr("start", e.settled_start, [](const Cursor& v) {
     return v.choice("start", {"unloaded", "settled"}) == 1;
   });
@@ -901,7 +908,7 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c) {
 
 /// The `analysis` section: each stage present only when its key is.
 Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets,
-                      const geometry::Box& domain, bool mesh_domain) {
+                      const geometry::Box& domain, bool mesh_domain, bool has_monitors) {
   const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction", "equilibrium"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
@@ -911,7 +918,8 @@ Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_set
   if (const auto v = m.get("strength_reduction")) {
     analysis.strength_reduction = readStrengthReductionAnalysis(*v);
   }
-  if (const auto v = m.get("equilibrium")) analysis.equilibrium = readEquilibriumAnalysis(*v);
+  if (const auto v = m.get("equilibrium"))
+    analysis.equilibrium = readEquilibriumAnalysis(*v, has_monitors);
   return analysis;
 }
 
@@ -985,7 +993,7 @@ class SceneReader {
     });
     if (const auto analysis = m.get("analysis")) {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
-                                     !scene_.domain_mesh.empty());
+                                     !scene_.domain_mesh.empty(), !scene_.monitors.empty());
     }
     return std::move(scene_);
   }

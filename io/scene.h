@@ -178,6 +178,10 @@ struct EquilibriumAnalysis {
   bool settled_start = false;
   double failure_ratio = 1.0;  ///< static runs: early stop at this unbalanced ratio (0: none)
   int failure_steps = 10;      ///< ... held this many steps in a row
+  /// watch: all | monitors. monitors: only the blocks that carry a monitor decide whether a
+  /// run is at rest (or failing); needs a monitor in a movable block.
+  bool watch_monitors = false;
+  int watch_line = 0;  ///< line of `watch` in the scene file (messages)
 };
 
 /// The `analysis` section: a stage runs only when its entry is present.

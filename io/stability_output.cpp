@@ -20,7 +20,9 @@ constexpr const char* kSearchRule =
     "(ascending) at which the run is not at rest marks the loss of stability; the critical "
     "factor is the middle of [last factor at rest, first factor not at rest], bisected to the "
     "tolerance; a static run whose unbalanced ratio is at least failure_ratio in failure_steps "
-    "steps in a row is not at rest and stops there (failing)";
+    "steps in a row is not at rest and stops there (failing); the ratios are of the blocks "
+    "that equilibrium.watch names (all: every movable block; monitors: the blocks that carry "
+    "a monitor)";
 
 /// `value` or null.
 Json optionalJson(const std::optional<double>& value) {
@@ -35,6 +37,15 @@ Json fastestJson(const dda3d::EquilibriumResult& e) {
           {"centroid", {e.fastest_centroid.x(), e.fastest_centroid.y(), e.fastest_centroid.z()}}};
 }
 
+/// The watched block that moved most in a run's last step (equilibrium.watch: monitors), or
+/// null.
+Json watchedJson(const dda3d::EquilibriumResult& e) {
+  if (e.watched_block < 0) return Json(nullptr);
+  return {{"block", e.watched_block},
+          {"volume", e.watched_volume},
+          {"centroid", {e.watched_centroid.x(), e.watched_centroid.y(), e.watched_centroid.z()}}};
+}
+
 /// One entry per run, in the order they ran.
 Json runsJson(const dda3d::FactorSearchResult& result) {
   Json runs = Json::array();
@@ -47,7 +58,9 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
                     {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
                     {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
                     {"failing", r.equilibrium.failing},
-                    {"fastest_block", fastestJson(r.equilibrium)}});
+                    {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
+                    {"fastest_block", fastestJson(r.equilibrium)},
+                    {"fastest_watched_block", watchedJson(r.equilibrium)}});
   }
   return runs;
 }
@@ -76,10 +89,13 @@ std::string formatOverloadCsv(const std::vector<std::string>& monitor_names,
 }
 
 Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
-  return {
-      {"unbalanced_ratio", settings.unbalanced_ratio}, {"kinetic_ratio", settings.kinetic_ratio},
-      {"settle_steps", settings.settle_steps},         {"max_steps", settings.max_steps},
-      {"failure_ratio", settings.failure_ratio},       {"failure_steps", settings.failure_steps}};
+  return {{"unbalanced_ratio", settings.unbalanced_ratio},
+          {"kinetic_ratio", settings.kinetic_ratio},
+          {"settle_steps", settings.settle_steps},
+          {"max_steps", settings.max_steps},
+          {"failure_ratio", settings.failure_ratio},
+          {"failure_steps", settings.failure_steps},
+          {"watch", settings.watch == dda3d::EquilibriumWatch::All ? "all" : "monitors"}};
 }
 
 Json overloadJson(const dda3d::FactorSearchResult& overload, const std::vector<std::string>& scales,

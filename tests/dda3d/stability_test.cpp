@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
 #include "dda3d/block_terms.h"
 #include "dda_scenes.h"
@@ -191,6 +193,76 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   // Dynamic runs never stop early (their ratio also counts the velocity).
   Simulation dynamic(blockOnSlope(60.0, 10.0), dampedRigid());
   EXPECT_FALSE(runToEquilibrium(dynamic, equilibrium).failing);
+}
+
+// Equilibrium judged on the monitored blocks (watch: monitors). Two 1 m cubes on one fixed
+// slab tilted 20 degrees: the monitored one on a joint of phi = 25 degrees (at rest), the other
+// on a joint of phi = 10 degrees (sliding at a = g (sin 20 - cos 20 tan 10) = 0.18 g, static
+// run: unbalanced ratio 0.18 at every step). Watching every block, the run is not at rest and,
+// with failure_ratio 0.1, stops early as failing; watching the monitored cube, it is at rest,
+// while all_blocks_ratio still reports the sliding cube's 0.18 and fastest_block names it.
+TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
+  DdaModel model = blockOnSlope(20.0, 25.0);
+  model.materials.push_back(model.materials[0]);
+  model.joints.push_back({std::tan(radians(10.0)), 0.0, 0.0});
+  model.joint_table = {{0, 1}, {1, 0}};  // slab (material 0) against material 1: phi = 10
+  model.blocks.push_back(scenes::boxBlock({1.5, -0.5, 0}, {2.5, 0.5, 1}, 1, false));
+  model.monitors.push_back({"held", Vec3(0, 0, 0.5), 1});
+  DdaSettings settings;
+  settings.mode = AnalysisMode::Static;
+  settings.kinematics = Kinematics::Rigid;
+  settings.time_step = 1e-3;
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 60;
+  equilibrium.failure_ratio = 0.1;
+  Simulation every(model, settings);
+  const EquilibriumResult all = runToEquilibrium(every, equilibrium);
+  EXPECT_FALSE(all.reached);
+  EXPECT_TRUE(all.failing);
+  EXPECT_EQ(all.fastest_block, 2);
+  const double a = std::sin(radians(20.0)) - std::cos(radians(20.0)) * std::tan(radians(10.0));
+  EXPECT_NEAR(all.unbalanced_ratio, a, 1e-2 * a);  // less what the springs take up (1e-2)
+  EXPECT_EQ(all.all_blocks_ratio, all.unbalanced_ratio);
+  EXPECT_EQ(all.watched_block, -1);  // every block watched: no separate report
+
+  equilibrium.watch = EquilibriumWatch::Monitors;
+  Simulation watched(model, settings);
+  EXPECT_EQ(watchedBlocks(watched, EquilibriumWatch::Monitors), std::vector<int>{1});
+  const EquilibriumResult rest = runToEquilibrium(watched, equilibrium);
+  EXPECT_TRUE(rest.reached);
+  EXPECT_FALSE(rest.failing);
+  EXPECT_LE(rest.unbalanced_ratio, equilibrium.unbalanced_ratio);
+  EXPECT_NEAR(rest.all_blocks_ratio, a, 1e-2 * a);
+  EXPECT_EQ(rest.fastest_block, 2);
+  EXPECT_EQ(rest.watched_block, 1);
+  EXPECT_NEAR(rest.watched_volume, 1.0, 1e-12);
+  // The same run of the held cube alone (no loose block) ends after as many steps: the loose
+  // block does not change what the monitored one does.
+  DdaModel single = blockOnSlope(20.0, 25.0);
+  single.monitors = model.monitors;
+  Simulation alone(single, settings);
+  EXPECT_EQ(runToEquilibrium(alone, equilibrium).steps, rest.steps);
+
+  // A monitor only in held blocks leaves nothing to watch.
+  model.monitors = {{"slab", Vec3(0, 0, -0.5), 0}};
+  Simulation none(model, settings);
+  EXPECT_THROW(watchedBlocks(none, EquilibriumWatch::Monitors), std::invalid_argument);
+}
+
+// The automatic penalty (penalty_factor x the largest Young's modulus x the mean block size)
+// reads the materials of the blocks in the model only: a stiffer material that no block uses
+// (a scene's material for a structure elsewhere) leaves it as it is.
+TEST(Penalty, AutomaticPenaltyIgnoresMaterialsNoBlockUses) {
+  const DdaModel model = blockOnSlope(20.0, 25.0);
+  DdaModel with_steel = model;
+  with_steel.materials.push_back({7800.0, 200e9, 0.3});
+  DdaSettings settings;
+  const Simulation plain(model, settings);
+  const Simulation steel(with_steel, settings);
+  // 10 GPa (setRock) x penalty_factor x cbrt of the mean block volume ((24 + 1) / 2 m3).
+  EXPECT_NEAR(plain.penalty(), settings.penalty_factor * 10e9 * std::cbrt(12.5),
+              1e-12 * plain.penalty());
+  EXPECT_EQ(steel.penalty(), plain.penalty());
 }
 
 TEST(StrengthReduction, WedgeRecoversTheBlockTheoryFactorOfSafety) {

@@ -353,7 +353,8 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
                                      "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01}\n"
                                      "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
                                      "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9, "
-                                     "start: settled, failure_ratio: 2, failure_steps: 7}\n",
+                                     "start: settled, failure_ratio: 2, failure_steps: 7, "
+                                     "watch: monitors}\n",
                                  "ok.yaml");
   EXPECT_EQ(scene.monitors.at(0).line, 4);  // the monitor's line, for messages
   EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
@@ -368,6 +369,15 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_TRUE(scene.analysis.equilibrium->settled_start);
   EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
   EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
+  EXPECT_TRUE(scene.analysis.equilibrium->watch_monitors);
+  EXPECT_EQ(scene.analysis.equilibrium->watch_line, 8);
+  // watch: monitors without a monitor to watch.
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {watch: monitors}\n"),
+            "bad.yaml:4:24: analysis.equilibrium.watch: `monitors` needs a `monitors` list in the "
+            "scene (the blocks it watches)");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {watch: dam}\n"),
+            "bad.yaml:4:24: analysis.equilibrium.watch: unknown watch 'dam'; expected one of: "
+            "all, monitors");
   EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start: halfway}\n"),
             "bad.yaml:4:24: analysis.equilibrium.start: unknown start 'halfway'; expected one "
             "of: unloaded, settled");
@@ -378,6 +388,7 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
       parseScene(valid_head + "analysis:\n  strength_reduction: {factors: [1]}\n", "ok.yaml");
   EXPECT_EQ(plain.analysis.strength_reduction->tolerance, 0.02);
   EXPECT_FALSE(plain.analysis.equilibrium.has_value());
+  EXPECT_FALSE(EquilibriumAnalysis{}.watch_monitors);
 }
 
 TEST(SceneErrors, MissingMeshFile) {
