@@ -94,6 +94,16 @@ DdaSettings dampedRigid() {
   return s;
 }
 
+/// Static runs (velocities reset every step) of rigid blocks at dt = 1 ms: the setting of the
+/// dam tests and of the overload method on the Xiangjiaba scene.
+DdaSettings staticRigid() {
+  DdaSettings s;
+  s.mode = AnalysisMode::Static;
+  s.kinematics = Kinematics::Rigid;
+  s.time_step = 1e-3;
+  return s;
+}
+
 TEST(Equilibrium, BlockAtRestWhenPhiExceedsTheSlopeAndNotOtherwise) {
   EquilibriumSettings settings;
   settings.max_steps = 200;
@@ -130,10 +140,7 @@ TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
   model.blocks.push_back(scenes::boxBlock({-1, -1, 1}, {1, 1, 2}, 0, false));
   model.gravity = Vec3(0, 0, -kG);
   model.monitors.push_back({"top", Vec3(0, 0, 1.5), 2});
-  DdaSettings settings;
-  settings.mode = AnalysisMode::Static;
-  settings.kinematics = Kinematics::Rigid;
-  settings.time_step = 1e-3;
+  DdaSettings settings = staticRigid();
   settings.penalty =
       1e9;  // N/m: springs 2.5e-5 m deep under the top block, settled in tens of steps
   EquilibriumSettings equilibrium;
@@ -163,10 +170,7 @@ TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
 // rest (20 degrees, phi 25) and one that slides slowly (20 degrees, phi 19: a = 0.018 g,
 // below the failure ratio) are unaffected: at rest within the limit, and run to the limit.
 TEST(Equilibrium, AFailingStaticRunStopsEarly) {
-  DdaSettings settings;
-  settings.mode = AnalysisMode::Static;
-  settings.kinematics = Kinematics::Rigid;
-  settings.time_step = 1e-3;
+  DdaSettings settings = staticRigid();
   EquilibriumSettings equilibrium;
   equilibrium.max_steps = 60;
   equilibrium.failure_ratio = 0.5;
@@ -208,10 +212,7 @@ TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   model.joint_table = {{0, 1}, {1, 0}};  // slab (material 0) against material 1: phi = 10
   model.blocks.push_back(scenes::boxBlock({1.5, -0.5, 0}, {2.5, 0.5, 1}, 1, false));
   model.monitors.push_back({"held", Vec3(0, 0, 0.5), 1});
-  DdaSettings settings;
-  settings.mode = AnalysisMode::Static;
-  settings.kinematics = Kinematics::Rigid;
-  settings.time_step = 1e-3;
+  DdaSettings settings = staticRigid();
   EquilibriumSettings equilibrium;
   equilibrium.max_steps = 60;
   equilibrium.failure_ratio = 0.1;
