@@ -44,6 +44,92 @@ ContactKey keyOf(const Contact& c) {
   return {1, c.block_i, c.piece_i, c.edge_i, c.block_j, c.piece_j, c.edge_j};
 }
 
+/// The last step's contacts, found by what identifies them (keyOf): vertex-face entries
+/// through a table indexed by the vertex (each vertex lists the few pieces it touched), edge
+/// entries through a hash map. The narrow phase asks for the face of every vertex near a
+/// piece, about a million questions a step on the Xiangjiaba region; a node-based hash map of
+/// all 2e5 contacts spent most of its time in cache misses along its bucket chains. Like the
+/// map it replaces, a key found twice answers with its first contact.
+class PreviousContacts {
+ public:
+  PreviousContacts(const std::vector<BlockState>& blocks, const std::vector<Contact>& contacts)
+      : contacts_(contacts) {
+    piece_start_.resize(blocks.size() + 1, 0);
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      piece_start_[b + 1] = piece_start_[b] + blocks[b].pieces.size();
+    }
+    vertex_start_.assign(piece_start_.back() + 1, 0);
+    std::size_t piece = 0;
+    for (const BlockState& block : blocks) {
+      for (const geometry::Polyhedron& shape : block.pieces) {
+        vertex_start_[piece + 1] = vertex_start_[piece] + shape.vertices.size();
+        ++piece;
+      }
+    }
+    // Counting sort of the vertex-face entries by vertex, in contact order within a vertex.
+    std::vector<std::size_t> vertex_of(contacts.size(), kNone);
+    entry_start_.assign(vertex_start_.back() + 1, 0);
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const Contact& c = contacts[k];
+      if (c.kind != ContactKind::VertexFace) {
+        edges_.emplace(keyOf(c), static_cast<int>(k));
+        continue;
+      }
+      vertex_of[k] = vertexIndex(c.block_i, c.piece_i, c.vertex);
+      if (vertex_of[k] != kNone) ++entry_start_[vertex_of[k] + 1];
+    }
+    for (std::size_t v = 0; v + 1 < entry_start_.size(); ++v) entry_start_[v + 1] += entry_start_[v];
+    entries_.resize(entry_start_.back());
+    std::vector<std::size_t> next(entry_start_.begin(), entry_start_.end() - 1);
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      if (vertex_of[k] != kNone) entries_[next[vertex_of[k]]++] = static_cast<int>(k);
+    }
+  }
+
+  /// Index of the last step's contact with the key of `c`, or -1.
+  int find(const Contact& c) const {
+    if (c.kind != ContactKind::VertexFace) {
+      const auto found = edges_.find(keyOf(c));
+      return found == edges_.end() ? -1 : found->second;
+    }
+    return findVertex(c.block_i, c.piece_i, c.vertex, c.block_j, c.piece_j);
+  }
+
+  /// The face the vertex used against piece (block_j, piece_j) last step, or -1.
+  int face(int block_i, int piece_i, int vertex, int block_j, int piece_j) const {
+    const int k = findVertex(block_i, piece_i, vertex, block_j, piece_j);
+    return k < 0 ? -1 : contacts_[static_cast<std::size_t>(k)].face;
+  }
+
+ private:
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+
+  std::size_t vertexIndex(int block, int piece, int vertex) const {
+    if (block < 0 || static_cast<std::size_t>(block) + 1 >= piece_start_.size()) return kNone;
+    const std::size_t p = piece_start_[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece);
+    if (piece < 0 || p >= piece_start_[static_cast<std::size_t>(block) + 1]) return kNone;
+    const std::size_t v = vertex_start_[p] + static_cast<std::size_t>(vertex);
+    return vertex < 0 || v >= vertex_start_[p + 1] ? kNone : v;
+  }
+
+  int findVertex(int block_i, int piece_i, int vertex, int block_j, int piece_j) const {
+    const std::size_t v = vertexIndex(block_i, piece_i, vertex);
+    if (v == kNone) return -1;
+    for (std::size_t e = entry_start_[v]; e < entry_start_[v + 1]; ++e) {
+      const Contact& c = contacts_[static_cast<std::size_t>(entries_[e])];
+      if (c.block_j == block_j && c.piece_j == piece_j) return entries_[e];
+    }
+    return -1;
+  }
+
+  const std::vector<Contact>& contacts_;
+  std::vector<std::size_t> piece_start_;   ///< first piece of each block, then the count
+  std::vector<std::size_t> vertex_start_;  ///< first vertex of each piece, then the count
+  std::vector<std::size_t> entry_start_;   ///< first entry of each vertex, then the count
+  std::vector<int> entries_;               ///< vertex-face contact indices, by vertex
+  std::unordered_map<ContactKey, int, ContactKeyHash> edges_;
+};
+
 /// Two unit tangents completing n to an orthonormal basis.
 void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -357,13 +443,9 @@ const DdaJoint& Simulation::jointOf(const Contact& c) const {
 }
 
 void Simulation::detectContacts() {
-  std::unordered_map<ContactKey, int, ContactKeyHash> previous;
-  previous.reserve(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k)
-    previous.emplace(keyOf(contacts_[k]), static_cast<int>(k));
+  const PreviousContacts previous(blocks_, contacts_);
   const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
-    const auto found = previous.find(ContactKey{0, bi, pi, v, bj, pj, -1});
-    return found == previous.end() ? -1 : contacts_[static_cast<std::size_t>(found->second)].face;
+    return previous.face(bi, pi, v, bj, pj);
   };
   // Each block's reach: how far its vertices may move in this step, from its motion and
   // the step control's limit 1.5 g2 l0; step() redoes a step that moves a block farther, so
@@ -379,9 +461,9 @@ void Simulation::detectContacts() {
       findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face);
   std::vector<std::pair<int, int>> pairs;
   for (Contact& c : detected) {
-    const auto found = previous.find(keyOf(c));
-    if (found != previous.end()) {
-      const Contact& old = contacts_[static_cast<std::size_t>(found->second)];
+    const int found = previous.find(c);
+    if (found >= 0) {
+      const Contact& old = contacts_[static_cast<std::size_t>(found)];
       c.state = old.state;
       c.bonded = old.bonded;
       c.shear = tangential(old.shear, c.normal);
