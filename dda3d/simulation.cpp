@@ -78,7 +78,8 @@ class PreviousContacts {
       vertex_of[k] = vertexIndex(c.block_i, c.piece_i, c.vertex);
       if (vertex_of[k] != kNone) ++entry_start_[vertex_of[k] + 1];
     }
-    for (std::size_t v = 0; v + 1 < entry_start_.size(); ++v) entry_start_[v + 1] += entry_start_[v];
+    for (std::size_t v = 0; v + 1 < entry_start_.size(); ++v)
+      entry_start_[v + 1] += entry_start_[v];
     entries_.resize(entry_start_.back());
     std::vector<std::size_t> next(entry_start_.begin(), entry_start_.end() - 1);
     for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -106,7 +107,8 @@ class PreviousContacts {
 
   std::size_t vertexIndex(int block, int piece, int vertex) const {
     if (block < 0 || static_cast<std::size_t>(block) + 1 >= piece_start_.size()) return kNone;
-    const std::size_t p = piece_start_[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece);
+    const std::size_t p =
+        piece_start_[static_cast<std::size_t>(block)] + static_cast<std::size_t>(piece);
     if (piece < 0 || p >= piece_start_[static_cast<std::size_t>(block) + 1]) return kNone;
     const std::size_t v = vertex_start_[p] + static_cast<std::size_t>(vertex);
     return vertex < 0 || v >= vertex_start_[p + 1] ? kNone : v;
