@@ -1151,6 +1151,26 @@ class SceneReader {
     } else {
       structure.joint = jointOf(m);
     }
+    // The DDA picks the joint between two blocks by their materials, so two structures of
+    // one material share one joint to the rock: a different joint on the second would
+    // silently replace the first's.
+    const auto strength = [&](int j) {
+      const Joint& joint = scene_.joints.at(static_cast<std::size_t>(j));
+      return std::tie(joint.friction, joint.cohesion, joint.tensile_strength);
+    };
+    for (const StructureSpec& other : scene_.structures) {
+      if (other.material != structure.material || other.joint < 0 || structure.joint < 0 ||
+          strength(other.joint) == strength(structure.joint)) {
+        continue;
+      }
+      (contact ? *contact : m.at("material"))
+          .fail("structure " + structure.name + " is of material " +
+                scene_.materials[static_cast<std::size_t>(structure.material)].name +
+                " like structure " + other.name +
+                " but has a different joint to the rock; joints between blocks are chosen by "
+                "their materials, so one would silently replace the other: give both the same "
+                "joint, or this structure a material of its own");
+    }
     return structure;
   }
 

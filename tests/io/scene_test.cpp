@@ -441,6 +441,39 @@ TEST(SceneErrors, ZeroFacingVector) {
             "bad.yaml:9:51: loads.water[0].on.facing: expected a nonzero vector");
 }
 
+// Joints between blocks are chosen by material pair: a second structure of the dam's material
+// with another joint to the rock would silently replace the dam's joint (seen in a test scene:
+// a loose concrete cube without a joint gave the dam the default, cohesionless joint). The
+// same joint twice is fine.
+TEST(SceneErrors, TwoStructuresOfOneMaterialWithDifferentJoints) {
+  const std::string head =
+      valid_head +
+      "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
+      "joints: {rj: {friction: 0.6}}\n"
+      "default_joint: rj\n"
+      "structures:\n"
+      "  - name: dam\n"
+      "    prism: {profile: [[0, 0], [1, 0], [0, 1]], sweep: x, from: 0, to: 1}\n"
+      "    material: c\n"
+      "    joint: {friction: 1.2, cohesion: 1.4e6}\n"
+      "  - name: cube\n"
+      "    prism: {profile: [[5, 0], [6, 0], [6, 1], [5, 1]], sweep: x, from: 0, "
+      "to: 1}\n"
+      "    material: c\n";
+  EXPECT_EQ(errorOf(head),
+            "bad.yaml:13:15: structures[1].material: structure cube is of material c like "
+            "structure dam but has a different joint to the rock; joints between blocks are "
+            "chosen by their materials, so one would silently replace the other: give both the "
+            "same joint, or this structure a material of its own");
+  EXPECT_EQ(errorOf(head + "    joint: {friction: 0.9}\n"),
+            "bad.yaml:14:12: structures[1].joint: structure cube is of material c like "
+            "structure dam but has a different joint to the rock; joints between blocks are "
+            "chosen by their materials, so one would silently replace the other: give both the "
+            "same joint, or this structure a material of its own");
+  const Scene same = parseScene(head + "    joint: {friction: 1.2, cohesion: 1.4e6}\n", "ok.yaml");
+  EXPECT_EQ(same.structures.size(), 2u);
+}
+
 // ----- valid scenes -----
 
 TEST(SceneDefaults, MinimalSceneGetsTheDocumentedDefaults) {
