@@ -168,9 +168,12 @@ class Cursor {
   const std::string& path() const { return path_; }
 
   /// Throws "file:line:column: path: what" located at this node.
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(locate(source_->file, mark_.line + 1, mark_.column + 1,
-                            path_.empty() ? what : path_ + ": " + what));
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(located(what)); }
+
+  /// "file:line:column: path: what", the message fail() throws.
+  std::string located(const std::string& what) const {
+    return locate(source_->file, mark_.line + 1, mark_.column + 1,
+                  path_.empty() ? what : path_ + ": " + what);
   }
 
   // ----- maps -----
@@ -995,6 +998,7 @@ class SceneReader {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
                                      !scene_.domain_mesh.empty(), !scene_.monitors.empty());
     }
+    if (scene_.joint_conflict && scene_.analysis.dda) throw InputError(*scene_.joint_conflict);
     return std::move(scene_);
   }
 
@@ -1044,6 +1048,33 @@ class SceneReader {
   /// The entry's `joint`, or the default joint when it has none.
   int jointOf(const Cursor& entry) const {
     return entry.valueOr("joint", scene_.default_joint, [&](const Cursor& v) { return joint(v); });
+  }
+
+  /// Records that the blocks of `material` meet the rock through `joint`, for the fault,
+  /// interlayer or structure `owner` read from `entry`. The DDA picks the joint between two
+  /// blocks by their materials, so two owners of one material share one joint to the rock:
+  /// a joint of another strength on the second would silently replace the first's. The first
+  /// such conflict is kept (Scene::joint_conflict, located at the second's `joint`, or
+  /// `material` when it names none): an error for a scene that runs a DDA, nothing for one
+  /// that only cuts blocks or measures RQD, where joints do not act.
+  void claimRockJoint(const Cursor& entry, int material, int joint, const std::string& owner) {
+    if (material < 0 || joint < 0) return;
+    const auto strength = [&](int j) {
+      const Joint& found = scene_.joints.at(static_cast<std::size_t>(j));
+      return std::tie(found.friction, found.cohesion, found.tensile_strength);
+    };
+    const auto [claim, fresh] = rock_joints_.try_emplace(material, joint, owner);
+    if (fresh || strength(claim->second.first) == strength(joint)) return;
+    if (scene_.joint_conflict) return;
+    const std::optional<Cursor> key = entry.get("joint");
+    scene_.joint_conflict =
+        (key ? *key : entry.at("material"))
+            .located(owner + " is of material " +
+                     scene_.materials[static_cast<std::size_t>(material)].name + " like " +
+                     claim->second.second +
+                     " but has a different joint to the rock; joints between blocks are chosen by "
+                     "their materials, so one would silently replace the other: give both the same "
+                     "joint, or this one a material of its own");
   }
 
   /// thickness (default 0) and material of a fault or interlayer; `what` is "a fault".
@@ -1113,6 +1144,7 @@ class SceneReader {
     }
     std::tie(fault.thickness, fault.material) = readSlab(m, "a fault");
     fault.joint = jointOf(m);
+    claimRockJoint(m, fault.material, fault.joint, "fault " + fault.name);
     return fault;
   }
 
@@ -1125,6 +1157,7 @@ class SceneReader {
     layer.sweep = readSweep(m.at("sweep"));
     std::tie(layer.thickness, layer.material) = readSlab(m, "an interlayer");
     layer.joint = jointOf(m);
+    claimRockJoint(m, layer.material, layer.joint, "interlayer " + layer.name);
     return layer;
   }
 
@@ -1151,26 +1184,7 @@ class SceneReader {
     } else {
       structure.joint = jointOf(m);
     }
-    // The DDA picks the joint between two blocks by their materials, so two structures of
-    // one material share one joint to the rock: a different joint on the second would
-    // silently replace the first's.
-    const auto strength = [&](int j) {
-      const Joint& joint = scene_.joints.at(static_cast<std::size_t>(j));
-      return std::tie(joint.friction, joint.cohesion, joint.tensile_strength);
-    };
-    for (const StructureSpec& other : scene_.structures) {
-      if (other.material != structure.material || other.joint < 0 || structure.joint < 0 ||
-          strength(other.joint) == strength(structure.joint)) {
-        continue;
-      }
-      (contact ? *contact : m.at("material"))
-          .fail("structure " + structure.name + " is of material " +
-                scene_.materials[static_cast<std::size_t>(structure.material)].name +
-                " like structure " + other.name +
-                " but has a different joint to the rock; joints between blocks are chosen by "
-                "their materials, so one would silently replace the other: give both the same "
-                "joint, or this structure a material of its own");
-    }
+    claimRockJoint(m, structure.material, structure.joint, "structure " + structure.name);
     return structure;
   }
 
@@ -1228,6 +1242,8 @@ class SceneReader {
   std::vector<std::string> named_joints_;  ///< joints of the `joints` section (referable by name)
   UniqueNames dfn_names_;                  ///< joint sets, fractures files, faults, interlayers
   UniqueNames structure_names_;            ///< structures
+  /// The joint to the rock of each slab or structure material, and who claimed it first.
+  std::map<int, std::pair<int, std::string>> rock_joints_;
 };
 
 /// The single YAML document of `text`, or an InputError for invalid YAML.

@@ -216,6 +216,11 @@ struct Scene {
   std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
   std::vector<Monitor> monitors;         ///< measure points
   Analysis analysis;                     ///< what to compute
+  /// Two faults, interlayers or structures of one material with joints of different
+  /// strength to the rock (the DDA picks joints by material pair, so it would use one for
+  /// both): the located message. Reading a scene with analysis.dda throws it, and so does
+  /// buildDdaModel.
+  std::optional<std::string> joint_conflict;
 };
 
 /// Reads and validates a scene. Relative paths inside it are resolved against its folder;

@@ -302,6 +302,7 @@ std::vector<bool> blocksOnDomainFaces(const blocks::BlockModel& blocks,
 }
 
 dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks) {
+  if (scene.joint_conflict) throw InputError(*scene.joint_conflict);
   if (scene.default_joint < 0) {
     throw InputError(locate(scene.file, 0, 0,
                             "analysis.dda needs the strength of the contacts between blocks: "

@@ -445,7 +445,7 @@ TEST(SceneErrors, ZeroFacingVector) {
 // with another joint to the rock would silently replace the dam's joint (seen in a test scene:
 // a loose concrete cube without a joint gave the dam the default, cohesionless joint). The
 // same joint twice is fine.
-TEST(SceneErrors, TwoStructuresOfOneMaterialWithDifferentJoints) {
+TEST(SceneErrors, TwoOwnersOfOneMaterialWithDifferentJointsToTheRock) {
   const std::string head =
       valid_head +
       "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
@@ -460,18 +460,44 @@ TEST(SceneErrors, TwoStructuresOfOneMaterialWithDifferentJoints) {
       "    prism: {profile: [[5, 0], [6, 0], [6, 1], [5, 1]], sweep: x, from: 0, "
       "to: 1}\n"
       "    material: c\n";
-  EXPECT_EQ(errorOf(head),
+  const std::string dda = "analysis:\n  dda: {steps: 1}\n";
+  EXPECT_EQ(errorOf(head + dda),
             "bad.yaml:13:15: structures[1].material: structure cube is of material c like "
             "structure dam but has a different joint to the rock; joints between blocks are "
             "chosen by their materials, so one would silently replace the other: give both the "
-            "same joint, or this structure a material of its own");
-  EXPECT_EQ(errorOf(head + "    joint: {friction: 0.9}\n"),
+            "same joint, or this one a material of its own");
+  EXPECT_EQ(errorOf(head + "    joint: {friction: 0.9}\n" + dda),
             "bad.yaml:14:12: structures[1].joint: structure cube is of material c like "
             "structure dam but has a different joint to the rock; joints between blocks are "
             "chosen by their materials, so one would silently replace the other: give both the "
-            "same joint, or this structure a material of its own");
-  const Scene same = parseScene(head + "    joint: {friction: 1.2, cohesion: 1.4e6}\n", "ok.yaml");
+            "same joint, or this one a material of its own");
+  const Scene same =
+      parseScene(head + "    joint: {friction: 1.2, cohesion: 1.4e6}\n" + dda, "ok.yaml");
   EXPECT_EQ(same.structures.size(), 2u);
+  // The same for slabs: a fault zone and an interlayer of one material.
+  const std::string slabs =
+      valid_head +
+      "materials: {clay: {density: 2000, young: 1e9, poisson: 0.4}}\n"
+      "joints: {rj: {friction: 0.6}, soft: {friction: 0.3}}\n"
+      "default_joint: rj\n"
+      "faults:\n"
+      "  - {name: F1, center: [5, 5, -5], dip_direction: 0, dip: 60, "
+      "size: [4, 2], thickness: 0.2, material: clay, joint: soft}\n"
+      "interlayers:\n"
+      "  - {name: P1, profile: [[0, -3], [10, -4]], sweep: y, thickness: 0.3, "
+      "material: clay}\n";
+  EXPECT_EQ(errorOf(slabs + dda),
+            "bad.yaml:9:82: interlayers[0].material: interlayer P1 is of material clay like fault "
+            "F1 but has a different joint to the rock; joints between blocks are chosen by their "
+            "materials, so one would silently replace the other: give both the same joint, or "
+            "this one a material of its own");
+  EXPECT_NO_THROW(
+      parseScene(slabs.substr(0, slabs.size() - 2) + ", joint: soft}\n" + dda, "ok.yaml"));
+  // Without a DDA the joints do not act: the scene reads, and keeps the message for a DDA
+  // model built from it (io::buildDdaModel throws it).
+  const Scene cut_only = parseScene(slabs, "bad.yaml");
+  ASSERT_TRUE(cut_only.joint_conflict.has_value());
+  EXPECT_EQ(cut_only.joint_conflict->substr(0, 41), "bad.yaml:9:82: interlayers[0].material: i");
 }
 
 // ----- valid scenes -----
@@ -609,6 +635,7 @@ interlayers:
     sweep: y
     thickness: 1.0
     material: soft_layer
+    joint: soft
 structures:
   - name: dam
     prism: {profile: [[60, 0], [170, 0], [80, 160], [60, 160]], sweep: y, from: 20, to: 140}
@@ -742,7 +769,9 @@ TEST_F(SceneFiles, FullSceneParsesToTheExpectedValues) {
   EXPECT_EQ(p1.sweep, 'y');
   EXPECT_EQ(p1.thickness, 1.0);
   EXPECT_EQ(p1.material, 2);
-  EXPECT_EQ(p1.joint, 0);
+  // soft, like the fault F1 of the same material: with analysis.dda a different joint to the
+  // rock would be an error (the DDA picks joints by material pair).
+  EXPECT_EQ(p1.joint, 1);
 
   ASSERT_EQ(scene.structures.size(), 1u);
   const StructureSpec& dam = scene.structures[0];
