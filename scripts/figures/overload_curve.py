@@ -4,9 +4,14 @@
 Usage: /usr/bin/python3 scripts/figures/overload_curve.py overload.csv
        [--summary summary.json] -o overload_curve.png
 
-overload.csv (factor,monitor,ux,uy,uz,u): horizontal (ux) and vertical (uz) displacement
-of every monitor, in cm, against K. When summary.json has a finite `safety_factor`, it is
-marked with a vertical line.
+overload.csv (factor,monitor,ux,uy,uz,u[,at_rest,steps]): horizontal (ux) and vertical (uz)
+displacement of every monitor against K, in cm, mm or um (whichever suits the largest value).
+Each point shows how its run ended: a filled circle at rest, an open circle not at rest
+within the step limit, a cross stopped early as failing (summary.json's runs[].failing).
+Displacements of runs that did not come to rest are where the run stopped, so they are not
+comparable from one factor to the next. When summary.json has the overload's bracket
+[last_stable, first_unstable] it is shaded, and a finite `safety_factor` is marked with a
+vertical line.
 """
 import argparse
 import math
@@ -15,33 +20,82 @@ import numpy as np
 
 from figure_io import number, plt, read_rows, read_summary, save
 
+# (scale from m, label), largest first: the first whose values reach 0.1 of it is used.
+UNITS = ((100.0, "cm"), (1000.0, "mm"), (1e6, "µm"))
+
+
+def unit_for(values):
+    """The scale and label that show the largest |value| (m) as at least 0.1."""
+    largest = max((abs(v) for v in values), default=0.0)
+    for scale, label in UNITS:
+        if largest * scale >= 0.1:
+            return scale, label
+    return UNITS[-1]
+
+
+def outcomes(summary):
+    """{factor: 'rest' | 'moving' | 'failing'} from summary.json's overload runs."""
+    runs = (summary.get("overload") or {}).get("runs") or []
+    result = {}
+    for run in runs:
+        if not isinstance(run, dict) or "factor" not in run:
+            continue
+        if run.get("at_rest"):
+            result[run["factor"]] = "rest"
+        elif run.get("failing"):
+            result[run["factor"]] = "failing"
+        else:
+            result[run["factor"]] = "moving"
+    return result
+
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv", help="overload.csv")
-    parser.add_argument("--summary", help="summary.json (safety_factor)")
+    parser.add_argument("--summary", help="summary.json (safety_factor, overload runs)")
     parser.add_argument("-o", "--output", default="overload_curve.png")
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["factor", "monitor", "ux", "uy", "uz", "u"])
+    summary = read_summary(args.summary) if args.summary else {}
+    ended = outcomes(summary)
     series = {}
     for line, row in enumerate(rows, start=2):
+        factor = number(row, "factor", args.csv, line)
+        if factor not in ended and row.get("at_rest") in ("0", "1"):
+            ended[factor] = "rest" if row["at_rest"] == "1" else "moving"
         series.setdefault(row["monitor"], []).append(
-            [number(row, k, args.csv, line) for k in ("factor", "ux", "uz")])
-    ks = read_summary(args.summary).get("safety_factor") if args.summary else None
+            [factor] + [number(row, k, args.csv, line) for k in ("ux", "uz")])
+    ks = summary.get("safety_factor")
+    overload = summary.get("overload") or {}
+    low, high = overload.get("last_stable"), overload.get("first_unstable")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharex=True)
-    for ax, column, label in ((axes[0], 1, "horizontal displacement ux (cm)"),
-                              (axes[1], 2, "vertical displacement uz (cm)")):
-        for monitor in series:
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for ax, column, name in ((axes[0], 1, "horizontal displacement ux"),
+                             (axes[1], 2, "vertical displacement uz")):
+        scale, unit = unit_for(v[column] for points in series.values() for v in points)
+        for i, monitor in enumerate(series):
+            colour = colours[i % len(colours)]
             data = np.array(sorted(series[monitor]))
-            ax.plot(data[:, 0], 100.0 * data[:, column], "o-", ms=3, label=monitor)
+            ax.plot(data[:, 0], scale * data[:, column], "-", color=colour, lw=1, label=monitor)
+            for factor, value in zip(data[:, 0], scale * data[:, column]):
+                how = ended.get(factor, "rest")
+                if how == "failing":
+                    ax.plot(factor, value, "x", color=colour, ms=6)
+                else:
+                    ax.plot(factor, value, "o", ms=5, color=colour,
+                            mfc=colour if how == "rest" else "white")
+        if all(isinstance(v, (int, float)) for v in (low, high)):
+            ax.axvspan(low, high, color="r", alpha=0.08, label=f"bracket [{low:g}, {high:g}]")
         if isinstance(ks, (int, float)) and math.isfinite(ks):
             ax.axvline(ks, color="r", ls="--", lw=1, label=f"K_s = {ks:g}")
         ax.set_xlabel("overload factor K")
-        ax.set_ylabel(label)
+        ax.set_ylabel(f"{name} ({unit})")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle("Overload: monitor displacement against K")
+    fig.suptitle("Overload: monitor displacement at the end of each run against K\n"
+                 "● at rest   ○ not at rest within the step limit   × stopped early, failing",
+                 fontsize=10)
     fig.tight_layout()
     save(fig, args.output)
     print(f"overload_curve: wrote {args.output}")
