@@ -44,6 +44,20 @@ def read_summary(path):
         return {}
 
 
+# (scale from m, label), largest first: unit_for picks the first that shows the data well.
+UNITS = ((100.0, "cm"), (1000.0, "mm"), (1e6, "µm"))
+
+
+def unit_for(values):
+    """(scale, label) among cm, mm and um that shows the largest |value| (m) as at least 0.1
+    (the paper's cm when the values are that large)."""
+    largest = max((abs(v) for v in values), default=0.0)
+    for scale, label in UNITS:
+        if largest * scale >= 0.1:
+            return scale, label
+    return UNITS[-1]
+
+
 def save(fig, path):
     """Saves a figure as PNG without a timestamp (same inputs, same bytes)."""
     fig.savefig(path, dpi=120, metadata={"Software": None})

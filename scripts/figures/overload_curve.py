@@ -18,20 +18,7 @@ import math
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, read_summary, save
-
-# (scale from m, label), largest first: the first whose values reach 0.1 of it is used.
-UNITS = ((100.0, "cm"), (1000.0, "mm"), (1e6, "µm"))
-
-
-def unit_for(values):
-    """The scale and label that show the largest |value| (m) as at least 0.1."""
-    largest = max((abs(v) for v in values), default=0.0)
-    for scale, label in UNITS:
-        if largest * scale >= 0.1:
-            return scale, label
-    return UNITS[-1]
-
+from figure_io import number, plt, read_rows, read_summary, save, unit_for
 
 def outcomes(summary):
     """{factor: 'rest' | 'moving' | 'failing'} from summary.json's overload runs."""

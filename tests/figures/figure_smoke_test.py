@@ -59,10 +59,19 @@ def make_inputs(d):
     write(os.path.join(d, "blocks.csv"), "id,volume,cx,cy,cz,material,pieces",
           [(i + 1, 5.0 * (1 + (i * 7919) % 97) ** 1.3, 0, 0, 0, "rock", 1) for i in range(200)])
     with open(os.path.join(d, "summary.json"), "w") as f:
-        json.dump({"weibull": {"shape": 0.9, "scale": 150.0}, "safety_factor": 3.5}, f)
+        # The overload's bracket and runs (at rest, not at rest, failing) for the curve.
+        json.dump({"weibull": {"shape": 0.9, "scale": 150.0}, "safety_factor": 3.5,
+                   "overload": {"last_stable": 3, "first_unstable": 4, "runs": [
+                       {"factor": k, "at_rest": k <= 3, "failing": k == 5}
+                       for k in (1, 2, 3, 4, 5)]}}, f)
     write(os.path.join(d, "history.csv"), "time,monitor,ux,uy,uz,vx,vy,vz,u",
           [(0.01 * s, m, 0.001 * s * (i + 1), 0, -0.0005 * s, 0.1, 0, -0.05, 0.001 * s)
            for s in range(50) for i, m in enumerate(("P1", "P2"))])
+    # A static run: velocities reset every step, all zero in the file (the figure then shows
+    # the rate of each step's displacement).
+    write(os.path.join(d, "history_static.csv"), "time,monitor,ux,uy,uz,vx,vy,vz,u",
+          [(0.002 * s, m, 1e-6 * (1 - 0.8 ** s) * (i + 1), 0, -2e-6 * (1 - 0.7 ** s), 0, 0, 0,
+            1e-6) for s in range(40) for i, m in enumerate(("P1", "D1"))])
     write(os.path.join(d, "overload.csv"), "factor,monitor,ux,uy,uz,u",
           [(k, m, 0.01 * k ** 2 * (i + 1), 0, -0.002 * k, 0.01 * k ** 2)
            for k in (1, 2, 3, 4, 5) for i, m in enumerate(("P1", "P2"))])
@@ -130,6 +139,14 @@ def main():
         print(done.stdout, done.stderr)
         assert done.returncode == 0, f"{name}.py exited with {done.returncode}"
         print(name, check_png(out))
+        if name == "histories":
+            out = os.path.join(d, "histories_static.png")
+            done = subprocess.run([sys.executable, os.path.join(scripts, "histories.py"),
+                                   "history_static.csv", "-o", out], capture_output=True,
+                                  text=True, cwd=d)
+            print(done.stdout, done.stderr)
+            assert done.returncode == 0, f"histories.py (static) exited with {done.returncode}"
+            print("histories (static)", check_png(out))
 
 
 if __name__ == "__main__":
