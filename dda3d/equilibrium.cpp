@@ -53,6 +53,11 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   while (result.steps < settings.max_steps) {
     const StepReport report = sim.step();
     ++result.steps;
+    result.min_time_step =
+        result.steps == 1 ? report.time_step : std::min(result.min_time_step, report.time_step);
+    result.redone_open_close += report.redo_iterations;
+    result.redone_displacement += report.redo_displacement;
+    result.redone_penetration += report.redo_penetration;
     const double free_fall = 0.5 * g * report.time_step * report.time_step;
     const double all_increment =
         report.displacement_ratio * sim.settings().max_displacement_ratio * sim.halfDomainSize();

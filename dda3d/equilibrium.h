@@ -49,6 +49,13 @@ struct EquilibriumResult {
   /// The unbalanced ratio of the last step over every block (equal to unbalanced_ratio when
   /// every block is watched).
   double all_blocks_ratio = 0.0;
+  /// The step control over the run: the smallest accepted time step (s; the scene's step when
+  /// none was cut) and the attempts redone, by reason (StepReport::redo_*). A block that
+  /// moves too far or sinks too deep anywhere cuts dt for the whole model.
+  double min_time_step = 0.0;
+  int redone_open_close = 0;
+  int redone_displacement = 0;
+  int redone_penetration = 0;
   bool failing = false;  ///< stopped early by the failure rule (not at rest)
   /// The block that moved most in the last step, of all blocks (-1: none), its volume (m3)
   /// and centroid (m): where all_blocks_ratio comes from.

@@ -59,6 +59,11 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
                     {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
                     {"failing", r.equilibrium.failing},
                     {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
+                    {"min_time_step", r.equilibrium.min_time_step},
+                    {"redone",
+                     {{"open_close", r.equilibrium.redone_open_close},
+                      {"displacement", r.equilibrium.redone_displacement},
+                      {"penetration", r.equilibrium.redone_penetration}}},
                     {"fastest_block", fastestJson(r.equilibrium)},
                     {"fastest_watched_block", watchedJson(r.equilibrium)}});
   }

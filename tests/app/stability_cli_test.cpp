@@ -210,6 +210,11 @@ TEST_F(StabilityCli, WatchingTheMonitorsIgnoresALooseBlockAndFindsTheDamsFactor)
   EXPECT_LT(first["unbalanced_ratio"].get<double>(), 1e-3);
   EXPECT_EQ(first["fastest_watched_block"]["block"], 0);  // the dam
   EXPECT_NEAR(first["fastest_block"]["volume"].get<double>(), 1.0, 1e-9);
+  // The step control's account: dt never cut below the scene's 1 ms, nothing redone.
+  EXPECT_EQ(first["min_time_step"].get<double>(), 0.001);
+  EXPECT_EQ(first["redone"]["open_close"], 0);
+  EXPECT_EQ(first["redone"]["displacement"], 0);
+  EXPECT_EQ(first["redone"]["penetration"], 0);
 }
 
 TEST_F(StabilityCli, WatchingMonitorsThatAreAllInHeldBlocksIsAnError) {

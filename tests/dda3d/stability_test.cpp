@@ -237,6 +237,9 @@ TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   EXPECT_EQ(rest.fastest_block, 2);
   EXPECT_EQ(rest.watched_block, 1);
   EXPECT_NEAR(rest.watched_volume, 1.0, 1e-12);
+  // Neither cube moves far or sinks deep in a step: the step control never cut dt.
+  EXPECT_EQ(rest.min_time_step, settings.time_step);
+  EXPECT_EQ(rest.redone_open_close + rest.redone_displacement + rest.redone_penetration, 0);
   // The same run of the held cube alone (no loose block) ends after as many steps: the loose
   // block does not change what the monitored one does.
   DdaModel single = blockOnSlope(20.0, 25.0);
