@@ -448,7 +448,7 @@ int runAll(const RunOptions& options) {
   // region (ddaScene): the blocks stage above keeps the whole domain.
   std::optional<blocks::BlockModel> dda_blocks;
   std::optional<blocks::MergeReport> glued;
-  const io::Scene dda_scene = ddaScene(scene);
+  io::Scene dda_scene = ddaScene(scene);
   if (plan.dda || plan.overload || plan.strength_reduction) {
     if (scene.analysis.dda && scene.analysis.dda->region) {
       const auto start = Clock::now();
@@ -461,6 +461,24 @@ int runAll(const RunOptions& options) {
     } else {
       dda_blocks = ddaBlocks(scene, cut->model, glued);
     }
+  }
+  // The stability analyses' model, built before the DDA stage so that its input checks (the
+  // monitors that analysis.equilibrium.watch: monitors watches) come before minutes of work.
+  std::optional<dda3d::DdaModel> stability_model;
+  if (plan.overload || plan.strength_reduction) {
+    stability_model = io::buildDdaModel(dda_scene, *dda_blocks);
+    io::EquilibriumAnalysis* equilibrium =
+        dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
+    if (options.quick && equilibrium && equilibrium->watch_monitors &&
+        !monitorsWatchable(*stability_model)) {
+      // The quick box moved the monitors into blocks its supports hold: watch every block.
+      equilibrium->watch_monitors = false;
+      report.warnings.push_back(
+          "quick: analysis.equilibrium.watch: monitors changed to all: every monitor lies in "
+          "a held block of the quick box");
+      std::fprintf(stderr, "run: warning: %s\n", report.warnings.back().c_str());
+    }
+    checkWatchedMonitors(dda_scene, *stability_model);
   }
   if (plan.dda) {
     const auto start = Clock::now();
@@ -477,8 +495,7 @@ int runAll(const RunOptions& options) {
   // ===== Overload and strength reduction: the one place where they are wired. =====
   if (plan.overload || plan.strength_reduction) {
     const auto start_state = Clock::now();
-    const StabilityStart begin =
-        stabilityStart(dda_scene, io::buildDdaModel(dda_scene, *dda_blocks));
+    const StabilityStart begin = stabilityStart(dda_scene, *stability_model);
     const dda3d::DdaModel& model = begin.model;
     if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start_state));
     std::optional<dda3d::FactorSearchResult> overload;

@@ -71,20 +71,25 @@ dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                      progress("strength"));
 }
 
-StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
-  if (scene.analysis.equilibrium && scene.analysis.equilibrium->watch_monitors) {
-    bool movable = false;
-    for (const dda3d::DdaMonitor& m : model.monitors) {
-      movable = movable || !model.blocks.at(static_cast<std::size_t>(m.block)).fixed;
-    }
-    if (!movable) {
-      throw io::InputError(io::locate(
-          scene.file, scene.analysis.equilibrium->watch_line, 0,
-          "analysis.equilibrium.watch: monitors, but every monitor lies in a held block (a "
-          "support), so no block would decide equilibrium; move a monitor into a free block or "
-          "use watch: all"));
-    }
+bool monitorsWatchable(const dda3d::DdaModel& model) {
+  for (const dda3d::DdaMonitor& m : model.monitors) {
+    if (!model.blocks.at(static_cast<std::size_t>(m.block)).fixed) return true;
   }
+  return false;
+}
+
+void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) {
+  if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->watch_monitors) return;
+  if (monitorsWatchable(model)) return;
+  throw io::InputError(io::locate(
+      scene.file, scene.analysis.equilibrium->watch_line, 0,
+      "analysis.equilibrium.watch: monitors, but every monitor lies in a held block (a "
+      "support), so no block would decide equilibrium; move a monitor into a free block or "
+      "use watch: all"));
+}
+
+StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
+  checkWatchedMonitors(scene, model);
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
     return {model, {}, std::nullopt};
   }

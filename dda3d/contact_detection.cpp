@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -449,6 +451,15 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
     const Contact& c = contacts[k];
     keys[k] = {c.block_i, c.block_j, c.point.x(), c.point.y(), c.point.z(), k};
   });
+  // A NaN coordinate would break the sort's strict order (undefined behaviour): a step whose
+  // geometry went non-finite fails here, by name.
+  for (const Key& k : keys) {
+    if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
+      throw std::runtime_error("contact detection: a contact point of blocks " +
+                               std::to_string(k.block_i) + " and " + std::to_string(k.block_j) +
+                               " is not finite");
+    }
+  }
   tbb::parallel_sort(keys.begin(), keys.end());
   std::vector<std::size_t> order(keys.size());
   for (std::size_t k = 0; k < keys.size(); ++k) order[k] = keys[k].index;

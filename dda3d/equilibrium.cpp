@@ -89,14 +89,20 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     const EnergyAccount energy = sim.energy();
     const double work = std::abs(energy.work_of_loads);
     double kinetic = energy.kinetic;
+    double of_loads = work;
     if (!every_block) {
+      // The watched blocks' kinetic energy over the work done on them: over the work done on
+      // every block, a loose block falling elsewhere would dilute the ratio.
       kinetic = 0.0;
+      double watched_work = 0.0;
       for (const int b : watched) {
         const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
         kinetic += 0.5 * block.velocity.dot(massMatrix(block) * block.velocity);
+        watched_work += sim.workOfLoadsOn(static_cast<std::size_t>(b));
       }
+      of_loads = std::abs(watched_work);
     }
-    result.kinetic_ratio = kinetic > 0.0 ? kinetic / std::max(work, 1e-300) : 0.0;
+    result.kinetic_ratio = kinetic > 0.0 ? kinetic / std::max(of_loads, 1e-300) : 0.0;
     const bool still = !report.forced && result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;

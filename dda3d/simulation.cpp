@@ -888,10 +888,14 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
   move(fixed_points_);
   move(bolt_a_);
   move(bolt_b_);
-  for (BlockState& block : blocks_) {
+  block_work_.resize(blocks_.size(), 0.0);
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    BlockState& block = blocks_[b];
     if (block.fixed) continue;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
-    work_of_loads_ += load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
+    const double work = load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
+    work_of_loads_ += work;
+    block_work_[b] += work;
     for (geometry::Polyhedron& piece : block.pieces) {
       for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
     }

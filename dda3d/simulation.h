@@ -204,9 +204,14 @@ class Simulation {
   /// Steps until time() >= end_time (s); returns the last report.
   StepReport runUntil(double end_time);
 
-  double time() const { return time_; }                   ///< s
-  double timeStep() const { return dt_; }                 ///< s, proposed for the next step
-  double penalty() const { return penalty_; }             ///< N/m, current normal penalty
+  double time() const { return time_; }        ///< s
+  double timeStep() const { return dt_; }      ///< s, proposed for the next step
+  double penalty() const { return penalty_; }  ///< N/m, current normal penalty
+  /// The work the loads have done on block `b` so far (J; its share of
+  /// EnergyAccount::work_of_loads).
+  double workOfLoadsOn(std::size_t b) const {
+    return b < block_work_.size() ? block_work_[b] : 0.0;
+  }
   double halfDomainSize() const { return half_domain_; }  ///< l0 (m)
   int dofsPerBlock() const { return dofs_; }              ///< 12 or 6
   const DdaModel& model() const { return model_; }
@@ -304,6 +309,7 @@ class Simulation {
   double dt_ = 0.0;
   double time_ = 0.0;
   double work_of_loads_ = 0.0;
+  std::vector<double> block_work_;  ///< work_of_loads_ by block (J), empty before a step
   double friction_work_ = 0.0;
   double numerical_dissipation_ = 0.0;
   double contact_changes_ = 0.0;

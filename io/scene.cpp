@@ -1059,6 +1059,13 @@ class SceneReader {
   /// that only cuts blocks or measures RQD, where joints do not act.
   void claimRockJoint(const Cursor& entry, int material, int joint, const std::string& owner) {
     if (material < 0 || joint < 0) return;
+    // The rock itself meets the rock through default_joint: a slab or structure of
+    // rock_material with another joint would give it to every rock-rock contact (a slab),
+    // or never use it (a structure, whose joint is not set against its own material).
+    if (rock_joints_.empty() && scene_.rock_material >= 0 && scene_.default_joint >= 0) {
+      rock_joints_.try_emplace(scene_.rock_material, scene_.default_joint,
+                               "the rock (rock_material, default_joint)");
+    }
     const auto strength = [&](int j) {
       const Joint& found = scene_.joints.at(static_cast<std::size_t>(j));
       return std::tie(found.friction, found.cohesion, found.tensile_strength);

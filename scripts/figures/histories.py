@@ -31,7 +31,7 @@ def main(argv=None):
             [number(row, k, args.csv, line) for k in keys])
     data = {monitor: np.array(points) for monitor, points in series.items()}
     # Static runs: no velocities in the file; the rate of the step displacements instead.
-    rates = all(not np.any(d[:, 3:5]) for d in data.values())
+    rates = bool(data) and all(not np.any(d[:, 3:5]) for d in data.values())
     if rates:
         for d in data.values():
             dt = np.diff(d[:, 0])

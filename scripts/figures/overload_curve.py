@@ -7,7 +7,8 @@ Usage: /usr/bin/python3 scripts/figures/overload_curve.py overload.csv
 overload.csv (factor,monitor,ux,uy,uz,u[,at_rest,steps]): horizontal (ux) and vertical (uz)
 displacement of every monitor against K, in cm, mm or um (whichever suits the largest value).
 Each point shows how its run ended: a filled circle at rest, an open circle not at rest
-within the step limit, a cross stopped early as failing (summary.json's runs[].failing).
+within the step limit, a cross stopped early as failing (summary.json's runs[].failing, or
+the at_rest column), a dot when neither says.
 Displacements of runs that did not come to rest are where the run stopped, so they are not
 comparable from one factor to the next. When summary.json has the overload's bracket
 [last_stable, first_unstable] it is shaded, and a finite `safety_factor` is marked with a
@@ -66,9 +67,11 @@ def main(argv=None):
             data = np.array(sorted(series[monitor]))
             ax.plot(data[:, 0], scale * data[:, column], "-", color=colour, lw=1, label=monitor)
             for factor, value in zip(data[:, 0], scale * data[:, column]):
-                how = ended.get(factor, "rest")
+                how = ended.get(factor)
                 if how == "failing":
                     ax.plot(factor, value, "x", color=colour, ms=6)
+                elif how is None:  # no summary and no at_rest column: outcome unknown
+                    ax.plot(factor, value, ".", color=colour, ms=5)
                 else:
                     ax.plot(factor, value, "o", ms=5, color=colour,
                             mfc=colour if how == "rest" else "white")

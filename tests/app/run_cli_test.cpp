@@ -205,6 +205,29 @@ analysis:
   EXPECT_NE(log.find("--section"), std::string::npos) << log;
 }
 
+// analysis.equilibrium.watch: monitors with its only monitor in the held bottom block: `run`
+// stops with the error at the line of `watch` before the DDA stage (no history.csv), not after
+// it, when the stability stage would have started.
+TEST(RunCli, WatchingOnlyHeldMonitorsStopsBeforeTheDda) {
+  test::TempDir dir("run_cli_watch_held");
+  std::string head = kSceneHead;
+  head.replace(head.find("[1, 1, -0.5]"), 12, "[1, 1, -2.5]");
+  const std::string text = head + kFullAnalysis + "  equilibrium: {watch: monitors}\n";
+  const fs::path scene = writeScene(dir, text);
+  const fs::path out = dir.path() / "out";
+  std::string log;
+  EXPECT_EQ(
+      test::runRockmass("run " + scene.string() + " -o " + out.string() + " --no-figures", &log), 2)
+      << log;
+  const auto line = std::count(text.begin(), text.begin() + text.find("watch: monitors"), '\n') + 1;
+  EXPECT_NE(log.find("scene.yaml:" + std::to_string(line) +
+                     ": analysis.equilibrium.watch: monitors, but every monitor lies in a held "
+                     "block"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(fs::exists(out / "history.csv"));
+}
+
 // The Xiangjiaba example, --quick (the structure footprint, the top sixth of the depth, 10
 // DDA steps, 200 ball directions, at most 4 factors and 20 steps per stability run), with the
 // fast cutter (the same 2140 blocks as the scene's exact cutter, in a fifth of the time).

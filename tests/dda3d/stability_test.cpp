@@ -237,6 +237,16 @@ TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   EXPECT_EQ(rest.fastest_block, 2);
   EXPECT_EQ(rest.watched_block, 1);
   EXPECT_NEAR(rest.watched_volume, 1.0, 1e-12);
+  // The work of the loads, by block (the watched kinetic ratio's denominator): the two cubes'
+  // shares add up to the total, and the sliding cube's is its weight times its centroid's
+  // drop, m g . dc (gravity does no work in a rotation about the centroid).
+  const double total = watched.energy().work_of_loads;
+  EXPECT_NEAR(watched.workOfLoadsOn(1) + watched.workOfLoadsOn(2), total, 1e-12 * total);
+  const BlockState& slider = watched.blocks()[2];
+  const double drop = slider.mass * model.gravity.dot(slider.centroid - Vec3(2.0, 0.0, 0.5));
+  EXPECT_GT(drop, 0.0);
+  EXPECT_NEAR(watched.workOfLoadsOn(2), drop, 1e-9 * drop);
+  EXPECT_EQ(watched.workOfLoadsOn(0), 0.0);  // the fixed slab
   // Neither cube moves far or sinks deep in a step: the step control never cut dt.
   EXPECT_EQ(rest.min_time_step, settings.time_step);
   EXPECT_EQ(rest.redone_open_close + rest.redone_displacement + rest.redone_penetration, 0);

@@ -493,6 +493,21 @@ TEST(SceneErrors, TwoOwnersOfOneMaterialWithDifferentJointsToTheRock) {
             "this one a material of its own");
   EXPECT_NO_THROW(
       parseScene(slabs.substr(0, slabs.size() - 2) + ", joint: soft}\n" + dda, "ok.yaml"));
+  // A slab of the rock's own material with another joint would give it to every rock-rock
+  // contact.
+  EXPECT_EQ(errorOf(valid_head +
+                    "materials: {rock: {density: 2600, young: 1e10, poisson: 0.25}}\n"
+                    "rock_material: rock\n"
+                    "joints: {rj: {friction: 0.6}, soft: {friction: 0.3}}\n"
+                    "default_joint: rj\n"
+                    "faults:\n"
+                    "  - {name: F1, center: [5, 5, -5], dip_direction: 0, dip: 60, "
+                    "thickness: 0.2, material: rock, joint: soft}\n" +
+                    dda),
+            "bad.yaml:8:102: faults[0].joint: fault F1 is of material rock like the rock "
+            "(rock_material, default_joint) but has a different joint to the rock; joints "
+            "between blocks are chosen by their materials, so one would silently replace the "
+            "other: give both the same joint, or this one a material of its own");
   // Without a DDA the joints do not act: the scene reads, and keeps the message for a DDA
   // model built from it (io::buildDdaModel throws it).
   const Scene cut_only = parseScene(slabs, "bad.yaml");
