@@ -125,6 +125,15 @@ class DdaCli : public ::testing::Test {
  protected:
   test::TempDir dir{"dda_cli"};
   fs::path scene = test::writeFile(dir.path() / "stack.yaml", kScene);
+  /// Runs `rockmass dda` on `text` (written as <name>.yaml, output in <name>/); returns the
+  /// exit code, output in `output`.
+  int runDda(const std::string& text, const std::string& name, std::string& output) {
+    return test::runOnScene("dda", dir.path(), name, text, &output);
+  }
+  /// summary.json of the run named `name`.
+  nlohmann::json summaryOf(const std::string& name) {
+    return nlohmann::json::parse(test::readFile(dir.path() / name / "summary.json"));
+  }
 };
 
 TEST_F(DdaCli, StackSettlesOnItsContactSprings) {
@@ -135,8 +144,7 @@ TEST_F(DdaCli, StackSettlesOnItsContactSprings) {
             0)
       << output;
   EXPECT_NE(output.find("dda: 100%"), std::string::npos) << "progress on stderr: " << output;
-  const nlohmann::json summary =
-      nlohmann::json::parse(test::readFile(dir.path() / "a" / "summary.json"));
+  const nlohmann::json summary = summaryOf("a");
   ASSERT_EQ(summary["blocks"], 3);
   ASSERT_EQ(summary["fixed_blocks"], 1);
   EXPECT_EQ(summary["unknowns"], 24);
@@ -185,14 +193,9 @@ TEST_F(DdaCli, WaterOnTheTopPressesTheStackDown) {
   std::string wet = kScene;
   wet.replace(wet.find("  gravity: 9.81\n"), 15,
               "  gravity: 9.81\n  water: [{level: 1.0, on: {domain_top: true}}]\n");
-  const fs::path wet_scene = test::writeFile(dir.path() / "wet.yaml", wet);
   std::string output;
-  ASSERT_EQ(test::runRockmass("dda " + wet_scene.string() + " -o " + (dir.path() / "w").string(),
-                              &output),
-            0)
-      << output;
-  const nlohmann::json summary =
-      nlohmann::json::parse(test::readFile(dir.path() / "w" / "summary.json"));
+  ASSERT_EQ(runDda(wet, "wet", output), 0) << output;
+  const nlohmann::json summary = summaryOf("wet");
   const std::vector<std::string> effects = summary["effects"];
   EXPECT_NE(std::find(effects.begin(), effects.end(), "surface_pressure"), effects.end());
   const auto [top, middle] =
@@ -229,8 +232,8 @@ TEST_F(DdaCli, FramesDebugDumpAndTheSameBytesTwice) {
     EXPECT_EQ(test::readFile(dir.path() / "a" / file), test::readFile(dir.path() / "b" / file))
         << file;
   }
-  nlohmann::json a = nlohmann::json::parse(test::readFile(dir.path() / "a" / "summary.json"));
-  nlohmann::json b = nlohmann::json::parse(test::readFile(dir.path() / "b" / "summary.json"));
+  nlohmann::json a = summaryOf("a");
+  nlohmann::json b = summaryOf("b");
   a.erase("timings");
   b.erase("timings");
   EXPECT_EQ(a.dump(), b.dump());
@@ -239,14 +242,9 @@ TEST_F(DdaCli, FramesDebugDumpAndTheSameBytesTwice) {
 TEST_F(DdaCli, TimeIntegrationFromTheScene) {
   std::string shi = kScene;
   shi.insert(shi.find("    penalty: 1.0e8\n"), "    time_integration: {scheme: shi}\n");
-  const fs::path shi_scene = test::writeFile(dir.path() / "shi.yaml", shi);
   std::string output;
-  ASSERT_EQ(test::runRockmass("dda " + shi_scene.string() + " -o " + (dir.path() / "s").string(),
-                              &output),
-            0)
-      << output;
-  const nlohmann::json summary =
-      nlohmann::json::parse(test::readFile(dir.path() / "s" / "summary.json"));
+  ASSERT_EQ(runDda(shi, "shi", output), 0) << output;
+  const nlohmann::json summary = summaryOf("shi");
   // The engine ran Shi's scheme (the summary reads it back from the engine's settings).
   EXPECT_EQ(summary["time_integration"], nlohmann::json({{"scheme", "shi"}}));
   // A static analysis converges to the same equilibrium with either scheme (tolerance as in
@@ -257,9 +255,7 @@ TEST_F(DdaCli, TimeIntegrationFromTheScene) {
 
   std::string bad = kScene;
   bad.insert(bad.find("    penalty: 1.0e8\n"), "    time_integration: {spectral_radius: 2}\n");
-  const fs::path bad_scene = test::writeFile(dir.path() / "bad_rho.yaml", bad);
-  EXPECT_EQ(test::runRockmass("dda " + bad_scene.string() + " -o " + dir.path().string(), &output),
-            2);
+  EXPECT_EQ(runDda(bad, "bad_rho", output), 2);
   EXPECT_NE(output.find("bad_rho.yaml:28:41: analysis.dda.time_integration.spectral_radius: "
                         "expected a number in [0, 1], got 2"),
             std::string::npos)
@@ -275,15 +271,10 @@ TEST_F(DdaCli, RegionCutsTheSameNetworkInItsBoxWithSupportsOnItsFaces) {
   std::string regional = kScene;
   regional.insert(regional.find("    mode: static\n"),
                   "    region: {min: [0, 0, -2], max: [2, 2, 0]}\n");
-  const fs::path region_scene = test::writeFile(dir.path() / "region.yaml", regional);
   std::string output;
-  ASSERT_EQ(test::runRockmass("dda " + region_scene.string() + " -o " + (dir.path() / "r").string(),
-                              &output),
-            0)
-      << output;
+  ASSERT_EQ(runDda(regional, "region", output), 0) << output;
   EXPECT_NE(output.find("in analysis.dda.region"), std::string::npos) << output;
-  const nlohmann::json summary =
-      nlohmann::json::parse(test::readFile(dir.path() / "r" / "summary.json"));
+  const nlohmann::json summary = summaryOf("region");
   EXPECT_EQ(summary["blocks"], 2);  // the bottom block lies outside the region
   EXPECT_EQ(summary["fixed_blocks"], 1);
   const double weight = kDensity * kGravity * 4.0;
@@ -297,10 +288,7 @@ TEST_F(DdaCli, RegionCutsTheSameNetworkInItsBoxWithSupportsOnItsFaces) {
   std::string outside = kScene;
   outside.insert(outside.find("    mode: static\n"),
                  "    region: {min: [0, 0, -2], max: [2, 2, 1]}\n");
-  const fs::path outside_scene = test::writeFile(dir.path() / "outside.yaml", outside);
-  EXPECT_EQ(
-      test::runRockmass("dda " + outside_scene.string() + " -o " + dir.path().string(), &output),
-      2);
+  EXPECT_EQ(runDda(outside, "outside", output), 2);
   EXPECT_NE(output.find("outside.yaml:25:13: analysis.dda.region: expected a box inside the "
                         "domain box; in z the region spans -2 .. 1, the domain -3 .. 0"),
             std::string::npos)
@@ -311,15 +299,11 @@ TEST_F(DdaCli, BadInputExitsWithTwo) {
   std::string output;
   std::string lost = kScene;
   lost.replace(lost.find("[1, 1, -1.5]"), 12, "[1, 1, 5]");
-  const fs::path lost_scene = test::writeFile(dir.path() / "lost.yaml", lost);
-  EXPECT_EQ(test::runRockmass("dda " + lost_scene.string() + " -o " + dir.path().string(), &output),
-            2);
+  EXPECT_EQ(runDda(lost, "lost", output), 2);
   EXPECT_NE(output.find("monitors: middle at (1, 1, 5) lies in no block"), std::string::npos)
       << output;
   std::string no_dda = kScene.substr(0, kScene.find("  dda:"));
-  const fs::path no_dda_scene = test::writeFile(dir.path() / "no_dda.yaml", no_dda);
-  EXPECT_EQ(
-      test::runRockmass("dda " + no_dda_scene.string() + " -o " + dir.path().string(), &output), 2);
+  EXPECT_EQ(runDda(no_dda, "no_dda", output), 2);
   EXPECT_NE(output.find("analysis.dda: required by `rockmass dda`"), std::string::npos) << output;
   EXPECT_EQ(
       test::runRockmass("dda " + scene.string() + " -o " + dir.path().string() + " --solver magic"),

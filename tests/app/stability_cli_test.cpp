@@ -98,9 +98,7 @@ class StabilityCli : public ::testing::Test {
   /// Runs `rockmass <command>` on `scene_text`; returns the exit code, output in `output`.
   int run(const std::string& command, const std::string& scene_text, const std::string& name,
           std::string& output) {
-    const fs::path scene = test::writeFile(dir.path() / (name + ".yaml"), scene_text);
-    return test::runRockmass(command + " " + scene.string() + " -o " + (dir.path() / name).string(),
-                             &output);
+    return test::runOnScene(command, dir.path(), name, scene_text, &output);
   }
 };
 

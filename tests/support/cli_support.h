@@ -4,7 +4,10 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
+
+#include "tests/support/test_support.h"
 
 namespace rockmass::test {
 
@@ -20,6 +23,15 @@ inline int runRockmass(const std::string& arguments, std::string* output = nullp
   const int status = pclose(pipe);
   if (output) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Writes `scene_text` as `<dir>/<name>.yaml` and runs `rockmass <command>` on it with the
+/// output folder `<dir>/<name>`; returns the exit code, stdout and stderr in `output`.
+inline int runOnScene(const std::string& command, const std::filesystem::path& dir,
+                      const std::string& name, const std::string& scene_text,
+                      std::string* output = nullptr) {
+  const std::filesystem::path scene = writeFile(dir / (name + ".yaml"), scene_text);
+  return runRockmass(command + " " + scene.string() + " -o " + (dir / name).string(), output);
 }
 
 /// The exit code and the output of one run of the binary.
