@@ -470,7 +470,7 @@ int runAll(const RunOptions& options) {
     io::EquilibriumAnalysis* equilibrium =
         dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
     if (options.quick && equilibrium && equilibrium->watch_monitors &&
-        !monitorsWatchable(*stability_model)) {
+        dda3d::monitoredMovableBlocks(*stability_model).empty()) {
       // The quick box moved the monitors into blocks its supports hold: watch every block.
       equilibrium->watch_monitors = false;
       report.warnings.push_back(

@@ -14,25 +14,21 @@ namespace rockmass::app {
 
 namespace {
 
+/// "; <what> N, V m3 at (x, y, z)", or "" when no block moved.
+std::string movedText(const char* what, const dda3d::MovedBlock& moved) {
+  if (moved.block < 0) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "; %s %d, %.3g m3 at (%.1f, %.1f, %.1f)", what, moved.block,
+                moved.volume, moved.centroid.x(), moved.centroid.y(), moved.centroid.z());
+  return text;
+}
+
 /// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps".
 dda3d::FactorRunCallback progress(const char* label) {
   return [label](const dda3d::FactorRun& run) {
     const dda3d::EquilibriumResult& e = run.equilibrium;
-    std::string fastest;
-    if (e.fastest_block >= 0) {
-      char text[160];
-      std::snprintf(text, sizeof text, "; fastest block %d, %.3g m3 at (%.1f, %.1f, %.1f)",
-                    e.fastest_block, e.fastest_volume, e.fastest_centroid.x(),
-                    e.fastest_centroid.y(), e.fastest_centroid.z());
-      fastest = text;
-    }
-    if (e.watched_block >= 0) {
-      char text[160];
-      std::snprintf(text, sizeof text, "; fastest watched block %d, %.3g m3 at (%.1f, %.1f, %.1f)",
-                    e.watched_block, e.watched_volume, e.watched_centroid.x(),
-                    e.watched_centroid.y(), e.watched_centroid.z());
-      fastest += text;
-    }
+    const std::string fastest =
+        movedText("fastest block", e.fastest) + movedText("fastest watched block", e.watched);
     std::fprintf(stderr,
                  "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g, all blocks "
                  "%.3g; dt down to %.3g s, %d attempts redone%s)\n",
@@ -71,16 +67,9 @@ dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                      progress("strength"));
 }
 
-bool monitorsWatchable(const dda3d::DdaModel& model) {
-  for (const dda3d::DdaMonitor& m : model.monitors) {
-    if (!model.blocks.at(static_cast<std::size_t>(m.block)).fixed) return true;
-  }
-  return false;
-}
-
 void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) {
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->watch_monitors) return;
-  if (monitorsWatchable(model)) return;
+  if (!dda3d::monitoredMovableBlocks(model).empty()) return;
   throw io::InputError(io::locate(
       scene.file, scene.analysis.equilibrium->watch_line, 0,
       "analysis.equilibrium.watch: monitors, but every monitor lies in a held block (a "

@@ -29,10 +29,6 @@ struct StabilityStart {
 /// (dda3d::settledModel). Prints one line on stderr.
 StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model);
 
-/// True when some monitor of `model` lies in a block that is not held (one that
-/// analysis.equilibrium.watch: monitors can watch).
-bool monitorsWatchable(const dda3d::DdaModel& model);
-
 /// With analysis.equilibrium.watch: monitors, throws io::InputError (at the line of `watch`)
 /// unless some monitor lies in a free block. stabilityStart calls it; `run` calls it before
 /// the DDA stage, so that the error comes before minutes of work.

@@ -17,7 +17,24 @@ double referenceAcceleration(const DdaModel& model) {
   return g > 0.0 ? g : 9.81;
 }
 
+/// Block `b` of `sim` as the block that moved most.
+MovedBlock movedBlock(const Simulation& sim, int b) {
+  const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
+  return {b, block.volume, block.centroid};
+}
+
 }  // namespace
+
+std::vector<int> monitoredMovableBlocks(const DdaModel& model) {
+  std::vector<int> blocks;
+  for (const DdaMonitor& monitor : model.monitors) {
+    const auto b = static_cast<std::size_t>(monitor.block);
+    if (b < model.blocks.size() && !model.blocks[b].fixed) blocks.push_back(monitor.block);
+  }
+  std::sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+  return blocks;
+}
 
 std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch) {
   std::vector<int> watched;
@@ -27,12 +44,7 @@ std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch) {
     }
     return watched;
   }
-  for (const DdaMonitor& monitor : sim.model().monitors) {
-    const auto b = static_cast<std::size_t>(monitor.block);
-    if (b < sim.blocks().size() && !sim.blocks()[b].fixed) watched.push_back(monitor.block);
-  }
-  std::sort(watched.begin(), watched.end());
-  watched.erase(std::unique(watched.begin(), watched.end()), watched.end());
+  watched = monitoredMovableBlocks(sim.model());
   if (watched.empty()) {
     throw std::invalid_argument(
         "the equilibrium watches the monitored blocks, but no monitor is in a movable block");
@@ -67,25 +79,19 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
       // The step's displacement field of each watched block, at its vertices (the blocks have
       // moved; the field is affine, so its largest value is at a vertex).
       result.increment = 0.0;
-      result.watched_block = -1;
+      result.watched = {};
       for (const int b : watched) {
         const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
         const double moved = largestVertexDisplacement(block, block.last_displacement);
         if (moved > result.increment) {
           result.increment = moved;
-          result.watched_block = b;
-          result.watched_volume = block.volume;
-          result.watched_centroid = block.centroid;
+          result.watched = movedBlock(sim, b);
         }
       }
     }
     result.unbalanced_ratio = result.increment / free_fall;
-    result.fastest_block = report.fastest_block;
-    if (report.fastest_block >= 0) {
-      const BlockState& fastest = sim.blocks()[static_cast<std::size_t>(report.fastest_block)];
-      result.fastest_volume = fastest.volume;
-      result.fastest_centroid = fastest.centroid;
-    }
+    result.fastest =
+        report.fastest_block >= 0 ? movedBlock(sim, report.fastest_block) : MovedBlock{};
     const EnergyAccount energy = sim.energy();
     const double work = std::abs(energy.work_of_loads);
     double kinetic = energy.kinetic;

@@ -34,8 +34,15 @@ struct EquilibriumSettings {
   /// The blocks whose unbalanced ratio, kinetic energy and failure decide the run. With
   /// Monitors, a block elsewhere that keeps moving (a loose block under a free face) does not
   /// keep the run from being at rest, nor stop it early; it is still reported
-  /// (EquilibriumResult::all_blocks_ratio and fastest_block).
+  /// (EquilibriumResult::all_blocks_ratio and fastest).
   EquilibriumWatch watch = EquilibriumWatch::All;
+};
+
+/// A block that moved most in a step: its index (-1: none), volume (m3) and centroid (m).
+struct MovedBlock {
+  int block = -1;
+  double volume = 0.0;
+  geometry::Vec3 centroid = geometry::Vec3::Zero();
 };
 
 /// How a run to equilibrium ended.
@@ -57,17 +64,17 @@ struct EquilibriumResult {
   int redone_displacement = 0;
   int redone_penetration = 0;
   bool failing = false;  ///< stopped early by the failure rule (not at rest)
-  /// The block that moved most in the last step, of all blocks (-1: none), its volume (m3)
-  /// and centroid (m): where all_blocks_ratio comes from.
-  int fastest_block = -1;
-  double fastest_volume = 0.0;
-  geometry::Vec3 fastest_centroid = geometry::Vec3::Zero();
-  /// With EquilibriumWatch::Monitors, the watched block that moved most in the last step
-  /// (where unbalanced_ratio comes from; -1: none moved, or every block is watched).
-  int watched_block = -1;
-  double watched_volume = 0.0;                               ///< m3
-  geometry::Vec3 watched_centroid = geometry::Vec3::Zero();  ///< m
+  /// The block that moved most in the last step, of all blocks: where all_blocks_ratio
+  /// comes from.
+  MovedBlock fastest;
+  /// With EquilibriumWatch::Monitors, the watched block that moved most in the last step,
+  /// where unbalanced_ratio comes from (none when nothing moved, or every block is watched).
+  MovedBlock watched;
 };
+
+/// The blocks of `model` that carry a monitor and are not held, in increasing order (what
+/// EquilibriumWatch::Monitors watches).
+std::vector<int> monitoredMovableBlocks(const DdaModel& model);
 
 /// The movable blocks `watch` selects in `sim`'s model, in increasing order. Throws
 /// std::invalid_argument when Monitors selects none (no monitor, or all in held blocks).

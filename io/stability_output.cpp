@@ -29,21 +29,12 @@ Json optionalJson(const std::optional<double>& value) {
   return value ? Json(*value) : Json(nullptr);
 }
 
-/// The block that moved most in a run's last step, or null.
-Json fastestJson(const dda3d::EquilibriumResult& e) {
-  if (e.fastest_block < 0) return Json(nullptr);
-  return {{"block", e.fastest_block},
-          {"volume", e.fastest_volume},
-          {"centroid", {e.fastest_centroid.x(), e.fastest_centroid.y(), e.fastest_centroid.z()}}};
-}
-
-/// The watched block that moved most in a run's last step (equilibrium.watch: monitors), or
-/// null.
-Json watchedJson(const dda3d::EquilibriumResult& e) {
-  if (e.watched_block < 0) return Json(nullptr);
-  return {{"block", e.watched_block},
-          {"volume", e.watched_volume},
-          {"centroid", {e.watched_centroid.x(), e.watched_centroid.y(), e.watched_centroid.z()}}};
+/// A block that moved most in a run's last step, or null.
+Json movedBlockJson(const dda3d::MovedBlock& moved) {
+  if (moved.block < 0) return Json(nullptr);
+  return {{"block", moved.block},
+          {"volume", moved.volume},
+          {"centroid", {moved.centroid.x(), moved.centroid.y(), moved.centroid.z()}}};
 }
 
 /// One entry per run, in the order they ran.
@@ -64,8 +55,8 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
                      {{"open_close", r.equilibrium.redone_open_close},
                       {"displacement", r.equilibrium.redone_displacement},
                       {"penetration", r.equilibrium.redone_penetration}}},
-                    {"fastest_block", fastestJson(r.equilibrium)},
-                    {"fastest_watched_block", watchedJson(r.equilibrium)}});
+                    {"fastest_block", movedBlockJson(r.equilibrium.fastest)},
+                    {"fastest_watched_block", movedBlockJson(r.equilibrium.watched)}});
   }
   return runs;
 }

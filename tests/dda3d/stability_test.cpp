@@ -180,8 +180,8 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   EXPECT_FALSE(failing.reached);
   EXPECT_TRUE(failing.failing);
   EXPECT_EQ(failing.steps, 10);
-  EXPECT_EQ(failing.fastest_block, 1);  // the sliding block, not the fixed base
-  EXPECT_NEAR(failing.fastest_volume, 1.0, 1e-12);
+  EXPECT_EQ(failing.fastest.block, 1);  // the sliding block, not the fixed base
+  EXPECT_NEAR(failing.fastest.volume, 1.0, 1e-12);
   const double a = std::sin(radians(60.0)) - std::cos(radians(60.0)) * std::tan(radians(10.0));
   // The step's displacement is a dt^2 / 2 less what the contact springs take up (1e-2).
   EXPECT_NEAR(failing.unbalanced_ratio, a, 1e-2 * a);
@@ -204,7 +204,7 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
 // on a joint of phi = 10 degrees (sliding at a = g (sin 20 - cos 20 tan 10) = 0.18 g, static
 // run: unbalanced ratio 0.18 at every step). Watching every block, the run is not at rest and,
 // with failure_ratio 0.1, stops early as failing; watching the monitored cube, it is at rest,
-// while all_blocks_ratio still reports the sliding cube's 0.18 and fastest_block names it.
+// while all_blocks_ratio still reports the sliding cube's 0.18 and fastest names it.
 TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   DdaModel model = blockOnSlope(20.0, 25.0);
   model.materials.push_back(model.materials[0]);
@@ -220,11 +220,11 @@ TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   const EquilibriumResult all = runToEquilibrium(every, equilibrium);
   EXPECT_FALSE(all.reached);
   EXPECT_TRUE(all.failing);
-  EXPECT_EQ(all.fastest_block, 2);
+  EXPECT_EQ(all.fastest.block, 2);
   const double a = std::sin(radians(20.0)) - std::cos(radians(20.0)) * std::tan(radians(10.0));
   EXPECT_NEAR(all.unbalanced_ratio, a, 1e-2 * a);  // less what the springs take up (1e-2)
   EXPECT_EQ(all.all_blocks_ratio, all.unbalanced_ratio);
-  EXPECT_EQ(all.watched_block, -1);  // every block watched: no separate report
+  EXPECT_EQ(all.watched.block, -1);  // every block watched: no separate report
 
   equilibrium.watch = EquilibriumWatch::Monitors;
   Simulation watched(model, settings);
@@ -234,9 +234,9 @@ TEST(Equilibrium, WatchingTheMonitoredBlocksIgnoresALooseBlockElsewhere) {
   EXPECT_FALSE(rest.failing);
   EXPECT_LE(rest.unbalanced_ratio, equilibrium.unbalanced_ratio);
   EXPECT_NEAR(rest.all_blocks_ratio, a, 1e-2 * a);
-  EXPECT_EQ(rest.fastest_block, 2);
-  EXPECT_EQ(rest.watched_block, 1);
-  EXPECT_NEAR(rest.watched_volume, 1.0, 1e-12);
+  EXPECT_EQ(rest.fastest.block, 2);
+  EXPECT_EQ(rest.watched.block, 1);
+  EXPECT_NEAR(rest.watched.volume, 1.0, 1e-12);
   // The work of the loads, by block (the watched kinetic ratio's denominator): the two cubes'
   // shares add up to the total, and the sliding cube's is its weight times its centroid's
   // drop, m g . dc (gravity does no work in a rotation about the centroid).
