@@ -489,14 +489,18 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
 
 }  // namespace
 
+std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks) {
+  std::vector<std::size_t> first(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b) first[b + 1] = first[b] + blocks[b].pieces.size();
+  return first;
+}
+
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face) {
   const std::vector<PiecePair> pairs = broadPhase(blocks, reach);
   // Per-piece data, built once for the pieces that take part in some pair.
-  std::vector<std::size_t> first_piece(blocks.size() + 1, 0);
-  for (std::size_t b = 0; b < blocks.size(); ++b)
-    first_piece[b + 1] = first_piece[b] + blocks[b].pieces.size();
+  const std::vector<std::size_t> first_piece = firstPieces(blocks);
   // Views of the pieces in some pair, built first so that the narrow phase only reads them.
   std::vector<PieceView> views(first_piece.back());
   std::vector<std::pair<int, int>> needed(first_piece.back(), {-1, -1});

@@ -40,6 +40,10 @@ double stepReach(const BlockState& block, double dt, double last_dt, const Reach
 std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach);
 
+/// Index of each block's first piece when the pieces of all blocks are numbered in order,
+/// then the total count (blocks.size() + 1 entries).
+std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks);
+
 /// The face a vertex used last step against a piece: (face index, or -1 when none).
 using PreviousFace =
     std::function<int(int block_i, int piece_i, int vertex, int block_j, int piece_j)>;

@@ -54,10 +54,7 @@ class PreviousContacts {
  public:
   PreviousContacts(const std::vector<BlockState>& blocks, const std::vector<Contact>& contacts)
       : contacts_(contacts) {
-    piece_start_.resize(blocks.size() + 1, 0);
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-      piece_start_[b + 1] = piece_start_[b] + blocks[b].pieces.size();
-    }
+    piece_start_ = firstPieces(blocks);
     vertex_start_.assign(piece_start_.back() + 1, 0);
     std::size_t piece = 0;
     for (const BlockState& block : blocks) {
