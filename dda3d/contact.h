@@ -38,6 +38,9 @@ struct Contact {
   geometry::Vec3 normal = geometry::Vec3::UnitZ();  ///< unit, pointing out of block j
   double gap0 = 0.0;  ///< d0 = n . (P - P0) at the start of the step (m), < 0: penetration
   double area = 0.0;  ///< tributary area for cohesion and tension (m2)
+  /// Joint of the contact (index into DdaModel::joints), from the faces it lies on; -1: the
+  /// model's default joint.
+  int joint = -1;
 
   ContactState state = ContactState::Open;
   bool bonded = true;  ///< cohesion and tensile strength intact (lost once slid or opened)

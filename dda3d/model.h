@@ -3,6 +3,7 @@
 // directly by tests (boxes, prisms, wedges).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,23 @@ struct DdaMaterial {
   double poisson = 0.25;    ///< -
 };
 
+/// What a contact keeps of its cohesion and tensile strength once it has failed
+/// (docs/stability.md, "Joint models").
+enum class JointModel : std::uint8_t {
+  /// Cohesion kept while the contact slides (the rigid-plastic Mohr-Coulomb law of limit
+  /// equilibrium); cohesion and tensile strength lost once it opens.
+  Plastic,
+  /// Shi's DDA rule: cohesion and tensile strength lost for good once the contact slides or
+  /// opens.
+  Brittle,
+};
+
 /// Mohr-Coulomb strength of a contact (SI units).
 struct DdaJoint {
   double friction = 0.0;          ///< tan(phi)
   double cohesion = 0.0;          ///< Pa
   double tensile_strength = 0.0;  ///< Pa
+  JointModel model = JointModel::Plastic;
 };
 
 /// One DDA block.
@@ -30,6 +43,10 @@ struct DdaBlock {
   std::vector<geometry::Polyhedron> pieces;  ///< convex pieces sharing one displacement field
   int material = 0;                          ///< index into DdaModel::materials
   bool fixed = false;                        ///< held in place (a fixed block)
+  /// Joint of each face of each piece (index into DdaModel::joints), -1 where the face is no
+  /// discontinuity (an internal face between pieces, the domain boundary). Empty: every face
+  /// -1. A contact takes the joint of the faces it lies on (dda3d/contact_joint.h).
+  std::vector<std::vector<int>> face_joints;
   /// Initial stress (Pa) in Voigt order (sx, sy, sz, tyz, tzx, txy), compression negative.
   Eigen::Matrix<double, 6, 1> initial_stress = Eigen::Matrix<double, 6, 1>::Zero();
   /// Initial velocity (m/s) of the centroid and angular velocity (rad/s) about it.

@@ -437,6 +437,7 @@ std::string Simulation::solverName() const {
 }
 
 const DdaJoint& Simulation::jointOf(const Contact& c) const {
+  if (c.joint >= 0) return model_.joints.at(static_cast<std::size_t>(c.joint));
   return model_.jointBetween(blocks_[static_cast<std::size_t>(c.block_i)].material,
                              blocks_[static_cast<std::size_t>(c.block_j)].material);
 }
