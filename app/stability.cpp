@@ -33,9 +33,10 @@ dda3d::FactorRunCallback progress(const char* label) {
                  "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g, all blocks "
                  "%.3g; dt down to %.3g s, %d attempts redone%s)\n",
                  label, run.factor, run.bisection ? " (bisection)" : "",
-                 e.reached   ? "at rest"
-                 : e.failing ? "NOT at rest (failing: stopped early)"
-                             : "NOT at rest",
+                 e.reached            ? "at rest"
+                 : !e.stalled.empty() ? "NOT at rest (failing: cannot progress)"
+                 : e.failing          ? "NOT at rest (failing: stopped early)"
+                                      : "NOT at rest",
                  e.steps, e.unbalanced_ratio, e.all_blocks_ratio, e.min_time_step,
                  e.redone_open_close + e.redone_displacement + e.redone_penetration,
                  fastest.c_str());

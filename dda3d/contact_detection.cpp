@@ -25,8 +25,8 @@ namespace {
 constexpr double kParallelSine = 0.087;
 /// Edge parameters this close to an end are vertex contacts, handled as vertex-to-face.
 constexpr double kEdgeEndMargin = 1e-6;
-/// A face of piece i counts for a vertex's tributary area when its normal is within 10 deg
-/// of the opposite of the contact normal.
+/// Two faces of different blocks share contact area when their outward normals are opposite
+/// within 10 deg (blocks that rotate in a step tilt their faces by a fraction of that).
 constexpr double kAreaCosine = 0.985;
 /// A vertex may touch face f when none of its edges dives into f's plane steeper than this
 /// (cosine of the angle with the inward normal; 0.3 ~ 17 deg below the plane).
@@ -74,19 +74,6 @@ bool insideFace(const Polyhedron& piece, const std::vector<int>& face, const Vec
     if ((edge.cross(q - a)).dot(normal) < -tolerance * edge.norm()) return false;
   }
   return true;
-}
-
-/// Share of the areas of piece i's faces around `vertex` that face the contact normal.
-double tributaryArea(const Polyhedron& piece, const PieceTopology& topology,
-                     const std::vector<Plane>& planes, int vertex, const Vec3& normal) {
-  double area = 0.0;
-  for (int f : topology.vertex_faces[static_cast<std::size_t>(vertex)]) {
-    const Plane& plane = planes[static_cast<std::size_t>(f)];
-    if (plane.normal.dot(normal) < -kAreaCosine) {
-      area += plane.area / static_cast<double>(piece.faces[static_cast<std::size_t>(f)].size());
-    }
-  }
-  return area;
 }
 
 /// World-space data of one piece for the narrow phase, built once per detection.
@@ -172,14 +159,18 @@ std::vector<int> edgeFaces(const PieceTopology& topology, const std::array<int, 
 }
 
 /// True when edge `ea` of a and edge `eb` of b lie in faces that touch face to face (opposite
-/// normals, planes within `distance` m) and their crossing `pc` lies within `distance` of an
-/// end of either edge. The face-to-face contact there is carried by the vertex-to-face
+/// normals, planes within `distance` m) and their crossing `pc` lies within `end_margin` of an
+/// end of either edge: the corners of stacked faces that coincide but for the blocks' strain
+/// (offsets of ~1e-5 m). The face-to-face contact there is carried by the vertex-to-face
 /// entries of those corners (formulation doc, "Point-to-face contact": face-face contact is
 /// its vertex entries); an edge-to-edge entry would count the same support twice, and as the
 /// blocks strain its crossing slides in and out of the edge ends, so it appears already
 /// penetrating by the faces' spring compression (the deformable column, docs/dda3d.md).
+/// A crossing farther from the ends is a corner of the faces' overlap polygon that no vertex
+/// carries (staggered blocks in a pile): it stays, or the upper block rocks on a diagonal.
 bool crossingCarriedByFaceContact(const PieceView& a, const PieceView& b, std::size_t ea,
-                                  std::size_t eb, const Vec3& pc, double distance) {
+                                  std::size_t eb, const Vec3& pc, double distance,
+                                  double end_margin) {
   const std::array<int, 2>& edge_a = a.topology->edges[ea];
   const std::array<int, 2>& edge_b = b.topology->edges[eb];
   bool touching = false;
@@ -197,7 +188,7 @@ bool crossingCarriedByFaceContact(const PieceView& a, const PieceView& b, std::s
   for (const Polyhedron* shape : {a.shape, b.shape}) {
     const std::array<int, 2>& edge = shape == a.shape ? edge_a : edge_b;
     for (int v : edge) {
-      if ((shape->vertices[static_cast<std::size_t>(v)] - pc).norm() <= distance) return true;
+      if ((shape->vertices[static_cast<std::size_t>(v)] - pc).norm() <= end_margin) return true;
     }
   }
   return false;
@@ -220,6 +211,17 @@ struct Range {
   /// How far outside its face a persisting vertex contact's foot may be (m).
   double keep_margin;
   double larger() const { return std::max(gap, depth); }
+};
+
+/// A share of the contact area between two blocks, at a corner of the overlap of two faces
+/// that face each other; given to the nearest entry of the two blocks on that plane.
+struct AreaSample {
+  int block_a = -1;       ///< block of the first face
+  int block_b = -1;       ///< block of the face whose plane holds `point`
+  Vec3 point;             ///< corner of the overlap polygon, in b's face plane (m)
+  Vec3 normal;            ///< of b's face, out of b
+  double weight = 0.0;    ///< m2
+  double distance = 0.0;  ///< farthest an entry may lie from b's plane to take it (m)
 };
 
 /// Vertices of `a` against faces of `b`.
@@ -297,7 +299,6 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     c.normal = plane.normal;
     c.gap0 = plane.normal.dot(p) - plane.offset;
     c.foot = p - c.gap0 * plane.normal;
-    c.area = tributaryArea(*a.shape, *a.topology, a.planes, static_cast<int>(v), plane.normal);
     out.push_back(c);
   }
 }
@@ -334,7 +335,9 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
       if ((pc - qc).norm() > range.larger()) continue;
-      if (crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger())) continue;
+      if (crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger(), range.keep_margin)) {
+        continue;
+      }
       // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
       // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
       // edges penetrate.
@@ -379,6 +382,105 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
         if (*overlap + tolerance < 0.5 * -c.gap0) continue;
       }
       out.push_back(c);
+    }
+  }
+}
+
+/// A point of the plane with 2D coordinates in a face's basis.
+using Point2 = Eigen::Vector2d;
+
+/// The part of the convex polygon `polygon` where the affine function value(x) <= 0
+/// (Sutherland-Hodgman against one half-plane).
+template <class Value>
+std::vector<Point2> clipped(const std::vector<Point2>& polygon, const Value& value) {
+  std::vector<Point2> out;
+  out.reserve(polygon.size() + 1);
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Point2& p = polygon[k];
+    const Point2& q = polygon[(k + 1) % polygon.size()];
+    const double vp = value(p), vq = value(q);
+    if (vp <= 0.0) out.push_back(p);
+    if ((vp < 0.0 && vq > 0.0) || (vp > 0.0 && vq < 0.0))
+      out.push_back(p + (vp / (vp - vq)) * (q - p));
+  }
+  return out;
+}
+
+double cross2(const Point2& a, const Point2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Area of the counter-clockwise polygon (m2).
+double polygonArea(const std::vector<Point2>& polygon) {
+  double twice = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    twice += cross2(polygon[k], polygon[(k + 1) % polygon.size()]);
+  }
+  return 0.5 * twice;
+}
+
+/// The contact area between pieces a and b, as weighted points: for every face of a and face
+/// of b that face each other (opposite normals within kAreaCosine, each piece on the other's
+/// outer side), their overlap polygon in b's face plane, clipped to where a's face lies within
+/// the gap and depth range of b's, split among its corners with the weights that integrate
+/// any linear field over it exactly (a fan of triangles, a third of each to its corners).
+void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
+                  std::vector<AreaSample>& out) {
+  for (std::size_t fb = 0; fb < b.planes.size(); ++fb) {
+    const Plane& pb = b.planes[fb];
+    if (pb.area <= 0.0 || pb.normal.dot(a.centroid) - pb.offset <= -tolerance) continue;
+    for (std::size_t fa = 0; fa < a.planes.size(); ++fa) {
+      const Plane& pa = a.planes[fa];
+      const double facing = pa.normal.dot(pb.normal);
+      if (facing > -kAreaCosine || pa.area <= 0.0) continue;
+      if (pa.normal.dot(b.centroid) - pa.offset <= -tolerance) continue;
+      // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
+      // b) stays counter-clockwise; a's face, seen from the other side, is reversed.
+      const Vec3& n = pb.normal;
+      const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+      const Vec3 t1 = n.cross(helper).normalized();
+      const Vec3 t2 = n.cross(t1);
+      const std::vector<int>& face_b = b.shape->faces[fb];
+      const Vec3 origin = b.shape->vertices[static_cast<std::size_t>(face_b[0])];
+      const auto flat = [&](const Vec3& x) {
+        return Point2((x - origin).dot(t1), (x - origin).dot(t2));
+      };
+      std::vector<Point2> polygon;
+      const std::vector<int>& face_a = a.shape->faces[fa];
+      for (auto v = face_a.rbegin(); v != face_a.rend(); ++v) {
+        polygon.push_back(flat(a.shape->vertices[static_cast<std::size_t>(*v)]));
+      }
+      for (std::size_t k = 0; k < face_b.size() && polygon.size() >= 3; ++k) {
+        const Point2 p = flat(b.shape->vertices[static_cast<std::size_t>(face_b[k])]);
+        const Point2 q =
+            flat(b.shape->vertices[static_cast<std::size_t>(face_b[(k + 1) % face_b.size()])]);
+        const Point2 edge = q - p;
+        polygon = clipped(polygon, [&](const Point2& x) { return -cross2(edge, x - p); });
+      }
+      if (polygon.size() < 3) continue;
+      // Height of a's face plane over b's along n at a point of b's plane: affine in x.
+      const auto height = [&](const Point2& x) {
+        const Vec3 at = origin + x.x() * t1 + x.y() * t2;
+        return (pa.offset - pa.normal.dot(at)) / -facing;
+      };
+      polygon = clipped(polygon, [&](const Point2& x) { return height(x) - range.gap; });
+      if (polygon.size() < 3) continue;
+      polygon = clipped(polygon, [&](const Point2& x) { return -range.depth - height(x); });
+      if (polygon.size() < 3) continue;
+      const double area = polygonArea(polygon);
+      if (!(area > tolerance * tolerance)) continue;
+      std::vector<double> weight(polygon.size(), 0.0);
+      for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+        const double third = cross2(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]) / 6.0;
+        weight[0] += third;
+        weight[k] += third;
+        weight[k + 1] += third;
+      }
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        if (weight[k] == 0.0) continue;
+        out.push_back({a.block, b.block, origin + polygon[k].x() * t1 + polygon[k].y() * t2, n,
+                       weight[k], range.larger() + tolerance});
+      }
     }
   }
 }
@@ -487,6 +589,71 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
   return kept;
 }
 
+/// Gives every entry its share of the contact area (Contact::area): each area sample goes to
+/// the nearest entry between the same two blocks whose normal faces the same way (within
+/// kAreaCosine) and whose point lies within the sample's distance of its plane. Entries
+/// that take no sample (point contacts between faces that do not face each other) have no
+/// area. Samples are taken in their found order within each pair of blocks, so the sums are
+/// the same run to run.
+void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& samples) {
+  using PairKey = std::pair<int, int>;
+  const auto keyOf = [](int a, int b) { return PairKey{std::min(a, b), std::max(a, b)}; };
+  std::vector<std::size_t> by_pair(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    by_pair[k] = k;
+    contacts[k].area = 0.0;
+  }
+  std::sort(by_pair.begin(), by_pair.end(), [&](std::size_t x, std::size_t y) {
+    return std::pair{keyOf(contacts[x].block_i, contacts[x].block_j), x} <
+           std::pair{keyOf(contacts[y].block_i, contacts[y].block_j), y};
+  });
+  std::vector<std::size_t> order(samples.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return std::pair{keyOf(samples[x].block_a, samples[x].block_b), x} <
+           std::pair{keyOf(samples[y].block_a, samples[y].block_b), y};
+  });
+  // Groups of samples of one pair of blocks, in parallel: each touches its own entries only.
+  std::vector<std::size_t> group_start;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const AreaSample& s = samples[order[k]];
+    if (k == 0 || keyOf(s.block_a, s.block_b) !=
+                      keyOf(samples[order[k - 1]].block_a, samples[order[k - 1]].block_b)) {
+      group_start.push_back(k);
+    }
+  }
+  group_start.push_back(order.size());
+  tbb::parallel_for(std::size_t{0}, group_start.size() - 1, [&](std::size_t g) {
+    const AreaSample& first = samples[order[group_start[g]]];
+    const PairKey key = keyOf(first.block_a, first.block_b);
+    const auto begin = std::lower_bound(
+        by_pair.begin(), by_pair.end(), key, [&](std::size_t k, const PairKey& value) {
+          return keyOf(contacts[k].block_i, contacts[k].block_j) < value;
+        });
+    auto end = begin;
+    while (end != by_pair.end() && keyOf(contacts[*end].block_i, contacts[*end].block_j) == key) {
+      ++end;
+    }
+    for (std::size_t k = group_start[g]; k < group_start[g + 1]; ++k) {
+      const AreaSample& sample = samples[order[k]];
+      Contact* nearest = nullptr;
+      double nearest_distance = std::numeric_limits<double>::infinity();
+      for (auto it = begin; it != end; ++it) {
+        Contact& c = contacts[*it];
+        const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
+        if (normal.dot(sample.normal) < kAreaCosine) continue;
+        if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) continue;
+        const double distance = (c.point - sample.point).squaredNorm();
+        if (distance < nearest_distance) {
+          nearest_distance = distance;
+          nearest = &c;
+        }
+      }
+      if (nearest) nearest->area += sample.weight;
+    }
+  });
+}
+
 }  // namespace
 
 std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks) {
@@ -518,6 +685,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   // order, so the result is the same as a serial loop's (deterministic).
   constexpr std::size_t kChunk = 128;
   std::vector<std::vector<Contact>> found((pairs.size() + kChunk - 1) / kChunk);
+  std::vector<std::vector<AreaSample>> areas(found.size());
   tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
     const std::size_t end = std::min(pairs.size(), (chunk + 1) * kChunk);
     for (std::size_t k = chunk * kChunk; k < end; ++k) {
@@ -539,6 +707,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
       vertexToFace(a, b, range, tolerance, previous_face, out);
       vertexToFace(b, a, range, tolerance, previous_face, out);
       edgeToEdge(a, b, range, tolerance, out);
+      overlapAreas(a, b, range, tolerance, areas[chunk]);
     }
   });
   std::vector<Contact> out;
@@ -548,7 +717,14 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   for (std::vector<Contact>& f : found) {
     out.insert(out.end(), std::make_move_iterator(f.begin()), std::make_move_iterator(f.end()));
   }
-  return withoutDuplicates(std::move(out));
+  std::vector<Contact> contacts = withoutDuplicates(std::move(out));
+  std::vector<AreaSample> samples;
+  for (std::vector<AreaSample>& a : areas) {
+    samples.insert(samples.end(), std::make_move_iterator(a.begin()),
+                   std::make_move_iterator(a.end()));
+  }
+  assignAreas(contacts, samples);
+  return contacts;
 }
 
 }  // namespace rockmass::dda3d

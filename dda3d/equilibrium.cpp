@@ -63,7 +63,16 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
                         settings.failure_ratio > 0.0 && settings.failure_steps > 0;
   while (result.steps < settings.max_steps) {
-    const StepReport report = sim.step();
+    StepReport report;
+    try {
+      report = sim.step();
+    } catch (const StepFailure& e) {
+      // A step that cannot be completed at the smallest time step: the model is not at rest
+      // and cannot be followed further (some block is flung or crushed).
+      result.failing = true;
+      result.stalled = e.what();
+      break;
+    }
     ++result.steps;
     result.min_time_step =
         result.steps == 1 ? report.time_step : std::min(result.min_time_step, report.time_step);

@@ -2,6 +2,8 @@
 // strength-reduction analyses (docs/stability.md).
 #pragma once
 
+#include <string>
+
 #include "dda3d/simulation.h"
 
 namespace rockmass::dda3d {
@@ -64,6 +66,9 @@ struct EquilibriumResult {
   int redone_displacement = 0;
   int redone_penetration = 0;
   bool failing = false;  ///< stopped early by the failure rule (not at rest)
+  /// Why the run could not go on (StepFailure's message), empty when it could: such a run is
+  /// failing and not at rest (a step that fails its checks at the smallest time step).
+  std::string stalled;
   /// The block that moved most in the last step, of all blocks: where all_blocks_ratio
   /// comes from.
   MovedBlock fastest;

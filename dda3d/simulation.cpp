@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -243,6 +244,9 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
     }
   }
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time_step must be > 0 s");
+  if (!(settings_.min_time_step > 0.0 && settings_.min_time_step <= settings_.time_step)) {
+    throw std::invalid_argument("min_time_step must be > 0 s and at most time_step");
+  }
   if (!(settings_.dynamic_ratio >= 0.0 && settings_.dynamic_ratio <= 1.0)) {
     throw std::invalid_argument("dynamic_ratio must be in [0, 1]");
   }
@@ -488,6 +492,24 @@ void Simulation::detectContacts() {
     if (i >= 0 && j >= 0 && i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
   contacts_ = std::move(detected);
+  // A contact that crept in the last step (its slip no longer than the shear spring's stretch
+  // at the shear strength) starts this one stuck, its spring carrying the shear strength along
+  // the last slip (an elastic predictor). Where the loads still need more, the first iteration
+  // finds it over the limit and it slides again; where they need less (the block came to rest,
+  // the load moved to other contacts), it stays stuck. Carried over as sliding, such a contact
+  // kept its friction f N until its slip reversed: a block whose heel slid on its way to rest
+  // under an eccentric load kept creeping on a diagonal pattern of stuck and sliding corners,
+  // and was never at rest below the limit load (K 12 % below f W / H on a block on a plane).
+  // A contact that slid farther is sliding: stuck for a trial, a moving block would pivot on
+  // its base springs.
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  for (Contact& c : contacts_) {
+    if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) continue;
+    const double stretch = shearStrength(c, jointOf(c)) / ks;
+    if (!(c.slip_length <= stretch)) continue;
+    c.state = ContactState::Locked;
+    c.shear = stretch * c.slide_direction;
+  }
   if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
 }
 
@@ -574,7 +596,9 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
     active_.contact_shear = true;
     return {};
   }
-  const double friction = jointOf(c).friction * std::max(0.0, c.normal_force);
+  // The shear strength resists the slip: f N, plus c A while a plastic joint's contact keeps
+  // its cohesion (a brittle one lost it when it started to slide).
+  const double friction = shearStrength(c, jointOf(c));
   system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
   system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
   active_.friction = true;
@@ -628,7 +652,8 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // the iteration never settled at any time step.
   const double reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
   StateChanges changes;
-  for (Contact& c : contacts_) {
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    Contact& c = contacts_[k];
     const Vec3 relative = relativeDisplacement(c, solution);
     const double d = c.gap0 + c.normal.dot(relative);
     const Vec3 slip = tangential(relative, c.normal);
@@ -649,23 +674,27 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
       c.normal_force = -penalty_ * d;
       if (d > tension / penalty_ + open_tolerance) {
+        // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
         c.state = ContactState::Open;
         c.bonded = false;
         c.normal_force = 0.0;
         c.shear.setZero();
       } else {
-        const double limit = joint.friction * std::max(0.0, c.normal_force) +
-                             (c.bonded ? joint.cohesion * c.area : 0.0);
+        const double limit = shearStrength(c, joint);
         // A contact at its friction limit with no slip velocity can flip between locked
         // and sliding forever; after two flips in a step it stays sliding (the friction
         // force then holds it at the limit, which is what both states mean there).
         const bool frozen = c.flips >= 2;
         if (c.state == ContactState::Locked) {
+          // Over the limit by more than a round-off slip: a contact whose spring the
+          // predictor set at the limit must not slide on the round-off of a resting block.
           const Vec3 shear = tangential(c.shear, c.normal) + slip;
-          if (ks * shear.norm() > limit) {
+          if (ks * (shear.norm() - reverse_tolerance) > limit) {
             ++c.flips;
             c.state = ContactState::Sliding;
-            c.bonded = false;
+            // Shi's brittle joint loses its cohesion and tension as it starts to slide; the
+            // plastic joint keeps them while it slides (docs/stability.md, "Joint models").
+            if (joint.model == JointModel::Brittle) c.bonded = false;
             c.slide_direction = shear.normalized();
             c.slip_length = 0.0;  // not known yet: no transverse tangent
           }
@@ -673,19 +702,41 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
           // Friction alone would drive it back: it sticks, its spring carrying the friction.
           ++c.flips;
           c.state = ContactState::Locked;
-          c.shear = (joint.friction * std::max(0.0, c.normal_force) / ks) * c.slide_direction;
-        } else if (rigid_slip.norm() > 0.0) {
-          c.slide_direction = rigid_slip.normalized();
-          c.slip_length = rigid_slip.norm();
+          c.shear = (shearStrength(c, joint) / ks) * c.slide_direction;
+        } else {
+          // While the contact creeps (its slip in the step shorter than its shear spring's
+          // stretch at the start of the step, the predictor's), the friction opposes the
+          // trial shear, that stretch plus the slip (a return mapping). Along the slip alone,
+          // a contact that creeps by 1e-7 m a step took its direction from the round-off of
+          // that slip: its sideways part rolled a block on a plane, and the corners slid in
+          // turn on either side. A contact that slides farther follows its slip.
+          const Vec3 stretch = tangential(c.shear, c.normal);
+          const Vec3 trial =
+              rigid_slip.norm() < stretch.norm() ? Vec3(stretch + rigid_slip) : rigid_slip;
+          if (trial.norm() > 0.0) {
+            c.slide_direction = trial.normalized();
+            c.slip_length = trial.norm();
+          }
         }
       }
     }
     if (c.state != before) {
       ++changes.changed;
-      if (before == ContactState::Open) ++changes.closed;
+      const bool closed = before == ContactState::Open;
+      changes.closed += closed;
+      // The example names a contact that closed when any did (those always take another
+      // iteration), else the first that changed.
+      if (changes.example < 0 || (closed && changes.closed == 1)) {
+        changes.example = static_cast<int>(k);
+      }
     }
   }
   return changes;
+}
+
+double Simulation::shearStrength(const Contact& c, const DdaJoint& joint) const {
+  return joint.friction * std::max(0.0, c.normal_force) +
+         (c.bonded ? joint.cohesion * c.area : 0.0);
 }
 
 int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled) {
@@ -759,6 +810,7 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     start = Clock::now();
     const bool finite = solution.allFinite();
     const StateChanges changes = finite ? updateContactStates(solution) : StateChanges{};
+    last_changes_ = changes;
     timings_.update_states += secondsSince(start);
     if (!finite) return iteration;
     // The allowance covers contacts that opened or changed between locked and sliding (they
@@ -942,6 +994,66 @@ std::string singularBlockHint(const std::vector<BlockState>& blocks, const Block
 
 }  // namespace
 
+namespace {
+
+std::string pointText(const Vec3& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
+  return text;
+}
+
+std::string numberText(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+}  // namespace
+
+std::string Simulation::blockText(int b) const {
+  if (b < 0 || b >= static_cast<int>(blocks_.size())) return "no block";
+  const BlockState& block = blocks_[static_cast<std::size_t>(b)];
+  return "block " + std::to_string(b) + " (centroid " + pointText(block.centroid) + ", " +
+         numberText(block.volume) + " m3)";
+}
+
+std::string Simulation::contactText(const Contact& c) const {
+  return (c.kind == ContactKind::VertexFace ? "the vertex-face contact of "
+                                            : "the edge-edge contact of ") +
+         blockText(c.block_i) + " on " + blockText(c.block_j) + " at " + pointText(c.point) +
+         " (gap " + numberText(c.gap) + " m)";
+}
+
+std::string Simulation::stepFailureMessage(double dt, int attempts, bool settled,
+                                           const StepReport& report, double allowed) const {
+  std::string why;
+  if (!settled) {
+    why = "its open-close iteration did not settle in " +
+          std::to_string(settings_.max_open_close_iterations) + " iterations (" +
+          std::to_string(last_changes_.changed) + " contacts changed state in the last one, " +
+          std::to_string(last_changes_.closed) + " of them closing";
+    if (last_changes_.example >= 0 && last_changes_.example < static_cast<int>(contacts_.size())) {
+      why += "; e.g. " + contactText(contacts_[static_cast<std::size_t>(last_changes_.example)]);
+    }
+    why += ")";
+  } else if (report.max_penetration > allowed) {
+    const Contact* deepest = nullptr;
+    for (const Contact& c : contacts_) {
+      if (c.state != ContactState::Open && (!deepest || c.gap < deepest->gap)) deepest = &c;
+    }
+    why = "a contact penetrates " + numberText(report.max_penetration) + " m, over the allowed " +
+          numberText(allowed) + " m, with the penalty at its cap " + numberText(penalty_) + " N/m" +
+          (deepest ? ": " + contactText(*deepest) : std::string());
+  } else {
+    why = "a vertex moves " +
+          numberText(report.displacement_ratio * settings_.max_displacement_ratio * half_domain_) +
+          " m in the step, over the step control's limit, in " + blockText(report.fastest_block);
+  }
+  return "DDA step cannot progress at t = " + numberText(time_) + " s: at dt = " + numberText(dt) +
+         " s (min_time_step " + numberText(settings_.min_time_step) + " s) after " +
+         std::to_string(attempts) + " attempts, " + why;
+}
+
 StepReport Simulation::step() {
   StepReport report;
   Clock::time_point start = Clock::now();
@@ -966,9 +1078,9 @@ StepReport Simulation::step() {
     timings_.assemble_block_terms += secondsSince(start);
     bool settled = false;
     report.iterations = openCloseIterate(dt, solution, settled);
-    const bool can_shrink = dt * settings_.iteration_time_step_factor >= settings_.min_time_step;
+    const bool can_shrink = dt > settings_.min_time_step;
     if (!settled && can_shrink && !last_chance) {
-      dt *= settings_.iteration_time_step_factor;
+      dt = std::max(settings_.min_time_step, dt * settings_.iteration_time_step_factor);
       ++report.redo_iterations;
       continue;
     }
@@ -991,10 +1103,11 @@ StepReport Simulation::step() {
     timings_.update_states += secondsSince(start);
     const bool too_far =
         report.displacement_ratio > kAcceptedDisplacementRatio || reach_ratio > 1.0;
-    if (too_far && !last_chance && dt * 0.5 >= settings_.min_time_step) {
+    if (too_far && !last_chance && dt > settings_.min_time_step) {
       const double over_limit =
           report.displacement_ratio > kAcceptedDisplacementRatio ? report.displacement_ratio : 0.0;
-      dt *= std::max(0.1, 0.9 / std::max(over_limit, reach_ratio));
+      dt = std::max(settings_.min_time_step,
+                    dt * std::max(0.1, 0.9 / std::max(over_limit, reach_ratio)));
       ++report.redo_displacement;
       continue;
     }
@@ -1005,6 +1118,13 @@ StepReport Simulation::step() {
       continue;
     }
     report.forced = !settled || too_far || report.max_penetration > allowed;
+    if (report.forced) {
+      // Nothing left to try: dt is at its minimum (or the attempts are used up) and the step
+      // still fails a check. Accepting it would go on with a step that broke the method's
+      // assumptions, and runs left to do so shrank dt without end (docs/dda3d.md, "Step
+      // control").
+      throw StepFailure(stepFailureMessage(dt, attempt, settled, report, allowed));
+    }
     break;
   }
   start = Clock::now();
@@ -1015,9 +1135,19 @@ StepReport Simulation::step() {
   last_dt_ = dt;
   timings_.update_blocks += secondsSince(start);
   time_ += dt;
+  steps_at_min_ = dt <= settings_.min_time_step * (1.0 + 1e-12) ? steps_at_min_ + 1 : 0;
+  if (steps_at_min_ >= settings_.max_steps_at_min_time_step) {
+    throw StepFailure(
+        "DDA run cannot progress: " + std::to_string(steps_at_min_) +
+        " steps in a row at min_time_step " + numberText(settings_.min_time_step) +
+        " s, now at t = " + numberText(time_) + " s; the last step moved " +
+        blockText(report.fastest_block) + " " +
+        numberText(report.displacement_ratio * settings_.max_displacement_ratio * half_domain_) +
+        " m");
+  }
   const double grow =
       report.displacement_ratio > 0.0 ? 0.9 / std::sqrt(report.displacement_ratio) : 1.2;
-  dt_ = std::min(settings_.time_step, dt * std::clamp(grow, 0.5, 1.2));
+  dt_ = std::clamp(dt * std::clamp(grow, 0.5, 1.2), settings_.min_time_step, settings_.time_step);
   report.time = time_;
   report.time_step = dt;
   report.penalty = penalty_;

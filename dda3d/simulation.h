@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -44,8 +45,12 @@ struct DdaSettings {
   /// Bossak: spectral radius rho_inf of the scheme for modes much stiffer than M / dt^2 (the
   /// contact springs), in [0, 1]. 0 removes them within two steps; 1 keeps them undamped.
   double spectral_radius = 0.0;
-  double time_step = 1e-3;      ///< s, the largest step; shrunk and regrown automatically
-  double min_time_step = 1e-9;  ///< s, below this a step is accepted as it is (flagged)
+  double time_step = 1e-3;  ///< s, the largest step; shrunk and regrown automatically
+  /// s, the smallest step the step control may cut to. A step that fails its checks at this
+  /// dt stops the run (StepFailure), and so does a run whose accepted steps stay at it for
+  /// `max_steps_at_min_time_step` steps in a row (it cannot progress).
+  double min_time_step = 1e-9;
+  int max_steps_at_min_time_step = 1000;
   /// g2: largest displacement of any vertex in a step as a share of half the domain size.
   double max_displacement_ratio = 0.01;
   /// g3: allowed penetration as a share of half the domain size.
@@ -190,6 +195,14 @@ struct MonitorState {
   geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< m/s
 };
 
+/// A step that cannot be completed: the time step is at its minimum (or the attempts are used
+/// up) and the step still fails a check of the step control. what() names the time, the time
+/// step, the check, and the block or contact that failed it.
+class StepFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// A DDA run.
 class Simulation {
  public:
@@ -199,7 +212,8 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  /// Advances by one accepted step.
+  /// Advances by one accepted step. Throws StepFailure when the step cannot be completed
+  /// (every check of the step control met) even at DdaSettings::min_time_step.
   StepReport step();
   /// Steps until time() >= end_time (s); returns the last report.
   StepReport runUntil(double end_time);
@@ -283,9 +297,12 @@ class Simulation {
   double pointSpringEnergy() const;
   /// State changes of one open-close update.
   struct StateChanges {
-    int changed = 0;  ///< contacts whose state changed
-    int closed = 0;   ///< of them, contacts that were open
+    int changed = 0;   ///< contacts whose state changed
+    int closed = 0;    ///< of them, contacts that were open
+    int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
+  /// Shear strength of a closed contact now (N): f N, plus c A while it keeps its cohesion.
+  double shearStrength(const Contact& c, const DdaJoint& joint) const;
   /// Updates every contact's state from the iteration's solution.
   StateChanges updateContactStates(const Eigen::VectorXd& solution);
   /// Largest vertex displacement of `solution` over g2 l0; `fastest` (when given) gets the
@@ -296,6 +313,12 @@ class Simulation {
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;
   int movableIndex(int block) const { return blocks_[static_cast<std::size_t>(block)].dof_offset; }
   const DdaJoint& jointOf(const Contact& c) const;
+  /// "block b (centroid ..., volume ...)" and a contact's description, for messages.
+  std::string blockText(int b) const;
+  std::string contactText(const Contact& c) const;
+  /// Why step() cannot complete the step at `dt` (StepFailure).
+  std::string stepFailureMessage(double dt, int attempts, bool settled, const StepReport& report,
+                                 double allowed) const;
   /// u_i(P) - u_j(P') for the solution; with `rigid_part`, of the first 6 unknowns only.
   geometry::Vec3 relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
                                       bool rigid_part = false) const;
@@ -333,6 +356,8 @@ class Simulation {
   PhaseTimings timings_;
   int pattern_changes_ = 0;
   int solver_iterations_ = 0;  ///< PCG iterations of the current step
+  StateChanges last_changes_;  ///< of the last open-close update (for StepFailure's message)
+  int steps_at_min_ = 0;       ///< accepted steps in a row at min_time_step
   /// The last accepted step's solution and dt: scaled by dt / last_dt_, the first guess of
   /// an iterative solve (the dynamic predictor d ~ v dt).
   Eigen::VectorXd last_solution_;

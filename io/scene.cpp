@@ -815,9 +815,9 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
-  const Cursor m =
-      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
-             "time_integration", "min_block_volume", "open_close_tolerance", "region"});
+  const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
+                          "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
+                          "region", "min_time_step"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -827,6 +827,13 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   });
   dda.steps = m.integerOr("steps", dda.steps, above(0));
   dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
+  if (const auto min_step = m.get("min_time_step")) {
+    dda.min_time_step = min_step->number(kPositive);
+    if (dda.min_time_step > dda.time_step) {
+      min_step->fail("expected a time step no larger than time_step (" +
+                     formatDouble(dda.time_step) + " s)");
+    }
+  }
   dda.max_displacement_ratio =
       m.numberOr("max_displacement_ratio", dda.max_displacement_ratio,
                  {.low = 0, .high = 1, .low_open = true, .high_open = true});

@@ -124,10 +124,13 @@ struct RqdAnalysis {
 
 /// analysis.dda
 struct DdaAnalysis {
-  bool dynamic = true;                    ///< dynamic | static
-  bool deformable = true;                 ///< deformable (12 DOF) | rigid (6 DOF)
-  int steps = 1000;                       ///< number of steps of size time_step
-  double time_step = 0.002;               ///< s, the largest allowed
+  bool dynamic = true;       ///< dynamic | static
+  bool deformable = true;    ///< deformable (12 DOF) | rigid (6 DOF)
+  int steps = 1000;          ///< number of steps of size time_step
+  double time_step = 0.002;  ///< s, the largest allowed
+  /// s: the smallest the step control may cut it to; a step that still fails its checks there
+  /// stops the run (dda3d::StepFailure).
+  double min_time_step = 1e-9;
   double max_displacement_ratio = 0.001;  ///< of the domain size, per step
   std::optional<double> penalty;          ///< N/m; none means auto
   /// time_integration.scheme: true for bossak (the Bossak alpha scheme, the default), false

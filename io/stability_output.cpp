@@ -41,22 +41,24 @@ Json movedBlockJson(const dda3d::MovedBlock& moved) {
 Json runsJson(const dda3d::FactorSearchResult& result) {
   Json runs = Json::array();
   for (const dda3d::FactorRun& r : result.runs) {
-    runs.push_back({{"factor", r.factor},
-                    {"bisection", r.bisection},
-                    {"at_rest", r.equilibrium.reached},
-                    {"steps", r.equilibrium.steps},
-                    {"time", r.equilibrium.time},
-                    {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
-                    {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
-                    {"failing", r.equilibrium.failing},
-                    {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
-                    {"min_time_step", r.equilibrium.min_time_step},
-                    {"redone",
-                     {{"open_close", r.equilibrium.redone_open_close},
-                      {"displacement", r.equilibrium.redone_displacement},
-                      {"penetration", r.equilibrium.redone_penetration}}},
-                    {"fastest_block", movedBlockJson(r.equilibrium.fastest)},
-                    {"fastest_watched_block", movedBlockJson(r.equilibrium.watched)}});
+    runs.push_back(
+        {{"factor", r.factor},
+         {"bisection", r.bisection},
+         {"at_rest", r.equilibrium.reached},
+         {"steps", r.equilibrium.steps},
+         {"time", r.equilibrium.time},
+         {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
+         {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
+         {"failing", r.equilibrium.failing},
+         {"stalled", r.equilibrium.stalled.empty() ? Json(nullptr) : Json(r.equilibrium.stalled)},
+         {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
+         {"min_time_step", r.equilibrium.min_time_step},
+         {"redone",
+          {{"open_close", r.equilibrium.redone_open_close},
+           {"displacement", r.equilibrium.redone_displacement},
+           {"penetration", r.equilibrium.redone_penetration}}},
+         {"fastest_block", movedBlockJson(r.equilibrium.fastest)},
+         {"fastest_watched_block", movedBlockJson(r.equilibrium.watched)}});
   }
   return runs;
 }

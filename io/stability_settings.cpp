@@ -21,6 +21,7 @@ dda3d::DdaSettings ddaSettings(const DdaAnalysis& dda) {
   settings.mode = dda.dynamic ? dda3d::AnalysisMode::Dynamic : dda3d::AnalysisMode::Static;
   settings.kinematics = dda.deformable ? dda3d::Kinematics::Deformable : dda3d::Kinematics::Rigid;
   settings.time_step = dda.time_step;
+  settings.min_time_step = dda.min_time_step;
   settings.max_displacement_ratio = dda.max_displacement_ratio;
   settings.penalty = dda.penalty.value_or(0.0);
   settings.integration = dda.bossak ? dda3d::TimeIntegration::Bossak : dda3d::TimeIntegration::Shi;
