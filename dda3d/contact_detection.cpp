@@ -419,11 +419,47 @@ double polygonArea(const std::vector<Point2>& polygon) {
   return 0.5 * twice;
 }
 
+/// Weights of the corners of a convex polygon of area `area` that carry its area: each corner
+/// takes half of the two triangles it shares with the centroid (lumped, symmetric for
+/// symmetric polygons), corrected by the least change that makes the weights integrate every
+/// linear field over the polygon exactly (their sum is the area, their first moments the
+/// polygon's), unless that would make a weight negative. Equal for a rectangle.
+std::vector<double> cornerWeights(const std::vector<Point2>& polygon, double area) {
+  const std::size_t n = polygon.size();
+  Point2 centroid = Point2::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point2& p = polygon[k];
+    const Point2& q = polygon[(k + 1) % n];
+    centroid += cross2(p, q) * (p + q);
+  }
+  centroid /= 6.0 * area;
+  std::vector<double> weight(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double half = 0.25 * cross2(polygon[k] - centroid, polygon[(k + 1) % n] - centroid);
+    weight[k] += half;
+    weight[(k + 1) % n] += half;
+  }
+  // Constraints C w = (A, A cx, A cy); least change: w += C^T (C C^T)^-1 (b - C w).
+  Eigen::Matrix3d cct = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d residual(area, area * centroid.x(), area * centroid.y());
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3d row(1.0, polygon[k].x(), polygon[k].y());
+    cct += row * row.transpose();
+    residual -= weight[k] * row;
+  }
+  const Eigen::Vector3d lambda = cct.ldlt().solve(residual);
+  std::vector<double> exact(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    exact[k] = weight[k] + lambda.dot(Eigen::Vector3d(1.0, polygon[k].x(), polygon[k].y()));
+    if (!(exact[k] >= 0.0)) return weight;
+  }
+  return exact;
+}
+
 /// The contact area between pieces a and b, as weighted points: for every face of a and face
 /// of b that face each other (opposite normals within kAreaCosine, each piece on the other's
 /// outer side), their overlap polygon in b's face plane, clipped to where a's face lies within
-/// the gap and depth range of b's, split among its corners with the weights that integrate
-/// any linear field over it exactly (a fan of triangles, a third of each to its corners).
+/// the gap and depth range of b's, split among its corners (cornerWeights).
 void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                   std::vector<AreaSample>& out) {
   for (std::size_t fb = 0; fb < b.planes.size(); ++fb) {
@@ -469,13 +505,7 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       if (polygon.size() < 3) continue;
       const double area = polygonArea(polygon);
       if (!(area > tolerance * tolerance)) continue;
-      std::vector<double> weight(polygon.size(), 0.0);
-      for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
-        const double third = cross2(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]) / 6.0;
-        weight[0] += third;
-        weight[k] += third;
-        weight[k + 1] += third;
-      }
+      const std::vector<double> weight = cornerWeights(polygon, area);
       for (std::size_t k = 0; k < polygon.size(); ++k) {
         if (weight[k] == 0.0) continue;
         out.push_back({a.block, b.block, origin + polygon[k].x() * t1 + polygon[k].y() * t2, n,
