@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -336,7 +335,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
       if ((pc - qc).norm() > range.larger()) continue;
-      if (std::getenv("NOSKIP") == nullptr && crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger(), range.keep_margin)) {
+      if (crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger(), range.keep_margin)) {
         continue;
       }
       // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),

@@ -431,3 +431,73 @@ TEST(NarrowPhase, AVertexBeyondAFaceEdgeByRoundOffKeepsThatFace) {
 
 }  // namespace
 }  // namespace rockmass::dda3d
+
+namespace rockmass::dda3d {
+namespace {
+
+/// Sum of the contact areas (m2) of the entries between blocks a and b.
+double areaBetween(const std::vector<Contact>& contacts, int a, int b) {
+  double area = 0.0;
+  for (const Contact& c : contacts) {
+    if ((c.block_i == a && c.block_j == b) || (c.block_i == b && c.block_j == a)) area += c.area;
+  }
+  return area;
+}
+
+// Cohesion and tensile strength act on the contact area. Face-to-face, that is the overlap of
+// the two faces, whatever the blocks' corners: a block on a larger base (the base's corners
+// are outside), two equal boxes stacked (corners coincide: each corner's two entries, one
+// each way, must not both carry it), a box straddling two boxes (the overlap's corners are
+// edge crossings on one side, a vertex of either block on the other), and a block of two
+// pieces. Each total is exact up to round-off, and the areas' first moment puts their centre
+// at the overlap's centroid (what a moment of the cohesion needs).
+TEST(ContactArea, IsTheOverlapOfTheFacingFaces) {
+  const auto box = [](const Vec3& low, const Vec3& high) {
+    return geometry::boxPolyhedron({low, high});
+  };
+  const std::vector<double> reach(3, 0.01);
+  {
+    // 2 x 3 base of a block resting on a 10 x 10 slab.
+    const auto blocks = blocksOf({{box({0, 0, 1}, {2, 3, 2})}, {box({-4, -4, 0}, {6, 6, 1})}});
+    const auto contacts = findContacts(blocks, reach, 0.02, kNoPrevious);
+    EXPECT_NEAR(areaBetween(contacts, 0, 1), 6.0, 1e-9);
+    Vec3 moment = Vec3::Zero();
+    for (const Contact& c : contacts) moment += c.area * c.point;
+    EXPECT_NEAR(moment.x() / 6.0, 1.0, 1e-9);
+    EXPECT_NEAR(moment.y() / 6.0, 1.5, 1e-9);
+    // A rectangle's corners take a quarter each (symmetric: no yaw from uneven cohesion).
+    for (const Contact& c : contacts) {
+      if (c.area > 0.0) {
+        EXPECT_NEAR(c.area, 1.5, 1e-9);
+      }
+    }
+  }
+  {
+    // Two equal 1 x 1 boxes stacked: 1 m2, not 2.
+    const auto blocks = blocksOf({{box({0, 0, 1}, {1, 1, 2})}, {box({0, 0, 0}, {1, 1, 1})}});
+    EXPECT_NEAR(areaBetween(findContacts(blocks, reach, 0.02, kNoPrevious), 0, 1), 1.0, 1e-9);
+  }
+  {
+    // A 2 x 1 box straddling two 1.5 x 1 boxes 0.2 m apart: overlaps 0.9 and 0.9 m2.
+    const auto blocks = blocksOf({{box({0.2, 0, 1}, {2.2, 1, 2})},
+                                  {box({-0.6, 0, 0}, {1.1, 1, 1})},
+                                  {box({1.3, 0, 0}, {3.0, 1, 1})}});
+    const auto contacts = findContacts(blocks, reach, 0.02, kNoPrevious);
+    EXPECT_NEAR(areaBetween(contacts, 0, 1), 0.9, 1e-9);
+    EXPECT_NEAR(areaBetween(contacts, 0, 2), 0.9, 1e-9);
+  }
+  {
+    // A block of two pieces on a base: the pieces' faces tile its 1 x 1 bottom.
+    const auto blocks = blocksOf({{box({0, 0, 1}, {0.5, 1, 2}), box({0.5, 0, 1}, {1, 1, 2})},
+                                  {box({-1, -1, 0}, {2, 2, 1})}});
+    EXPECT_NEAR(areaBetween(findContacts(blocks, reach, 0.02, kNoPrevious), 0, 1), 1.0, 1e-9);
+  }
+  {
+    // Apart by more than the reach: no area (no contact).
+    const auto blocks = blocksOf({{box({0, 0, 1.5}, {1, 1, 2})}, {box({0, 0, 0}, {1, 1, 1})}});
+    EXPECT_EQ(areaBetween(findContacts(blocks, reach, 0.02, kNoPrevious), 0, 1), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
