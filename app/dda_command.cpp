@@ -136,12 +136,12 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
 }  // namespace
 
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& options, const fs::path& out,
-                     const std::optional<blocks::MergeReport>& glued) {
+                     const geometry::FractureNetwork& network, const DdaOverrides& options,
+                     const fs::path& out, const std::optional<blocks::MergeReport>& glued) {
   const io::DdaAnalysis& dda = *scene.analysis.dda;
   const int steps = options.steps.value_or(dda.steps);
   DdaStage stage;
-  dda3d::DdaModel model = io::buildDdaModel(scene, blocks);
+  dda3d::DdaModel model = io::buildDdaModel(scene, blocks, network);
   int fixed_blocks = 0, pieces = 0;
   for (const dda3d::DdaBlock& b : model.blocks) {
     fixed_blocks += b.fixed;
@@ -255,7 +255,8 @@ int runDda(const DdaOptions& options) {
   start = Clock::now();
   std::optional<blocks::MergeReport> glued;
   const blocks::BlockModel dda_blocks = ddaBlocks(dda_scene, cut.model, glued);
-  const DdaStage stage = runDdaStage(dda_scene, dda_blocks, options.overrides, out, glued);
+  const DdaStage stage =
+      runDdaStage(dda_scene, dda_blocks, dfn.network, options.overrides, out, glued);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();

@@ -118,11 +118,13 @@ struct DdaStage {
   std::vector<std::string> frame_files;    ///< dda.pvd's frames (dda_<step>.vtu)
 };
 
-/// Builds the DDA model of `blocks` from the scene (loads, supports, monitors) and runs
+/// Builds the DDA model of `blocks` (cut with the discs of `network`) from the scene (loads,
+/// supports, monitors, the joints of the piece faces) and runs
 /// analysis.dda (which must be present), writing dda.pvd and the frames into `out` as it
 /// goes (and the debug dump when asked). `glued`: what ddaBlocks glued, for the summary.
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& overrides, const std::filesystem::path& out,
+                     const geometry::FractureNetwork& network, const DdaOverrides& overrides,
+                     const std::filesystem::path& out,
                      const std::optional<blocks::MergeReport>& glued = std::nullopt);
 
 /// Writes history.csv into `out`.
