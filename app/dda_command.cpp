@@ -16,6 +16,7 @@
 #include "app/stages.h"
 #include "dda3d/simulation.h"
 #include "io/atomic_file.h"
+#include "io/block_output.h"
 #include "io/dda_output.h"
 #include "io/dda_summary.h"
 #include "io/input_error.h"
@@ -128,6 +129,7 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
     r.gap = c.gap;
     r.normal_force = c.normal_force;
     r.shear_displacement = c.shear.norm();
+    r.joint = c.joint >= 0 ? c.joint : sim.model().default_joint;
     out.push_back(r);
   }
   return out;
@@ -261,6 +263,8 @@ int runDda(const DdaOptions& options) {
 
   start = Clock::now();
   writeDdaFiles(out, stage);
+  io::writeFileAtomically(out / "faces.vtu",
+                          io::formatFacesVtu(dda_blocks, io::FaceJoints(dda_scene, dfn.network)));
   run.effects = stage.effects;
   run.timings.emplace_back("write", secondsSince(start));
   io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, stage.summary));

@@ -397,8 +397,8 @@ int runAll(const RunOptions& options) {
     run.stages.push_back("cut");
     run.timings.emplace_back("cut", cut_seconds);
     report.cutter = plan.cutter;
-    timedWrite([&] { writeBlocksFiles(out, scene, cut->model); });
-    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu"});
+    timedWrite([&] { writeBlocksFiles(out, scene, cut->model, dfn.network); });
+    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu", "faces.vtu"});
     parts.push_back(
         {"cut", io::formatBlocksSummary(stageRun(run, {{"cut_split", cut->split_seconds},
                                                        {"cut_assemble", cut->assemble_seconds}}),

@@ -45,9 +45,10 @@ void writeDfnFiles(const std::filesystem::path& out, const io::Scene& scene,
 /// What the blocks summary says about a cut made with `cutter`.
 io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter);
 
-/// Writes blocks.csv and blocks.vtu into `out`.
+/// Writes blocks.csv, blocks.vtu and faces.vtu (the joint of every piece face, from the
+/// discs of `network`) into `out`.
 void writeBlocksFiles(const std::filesystem::path& out, const io::Scene& scene,
-                      const blocks::BlockModel& model);
+                      const blocks::BlockModel& model, const geometry::FractureNetwork& network);
 
 // ---------------------------------------------------------------------------------------------
 // RQD (rqd_command.cpp)
