@@ -12,6 +12,7 @@
 #include "io/block_mesh.h"
 #include "io/block_output.h"
 #include "io/input_error.h"
+#include "io/scene_model.h"
 #include "io/summary.h"
 
 namespace rockmass::app {
@@ -27,10 +28,12 @@ io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter) {
   return info;
 }
 
-void writeBlocksFiles(const fs::path& out, const io::Scene& scene,
-                      const blocks::BlockModel& model) {
+void writeBlocksFiles(const fs::path& out, const io::Scene& scene, const blocks::BlockModel& model,
+                      const geometry::FractureNetwork& network) {
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
   io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
+  io::writeFileAtomically(out / "faces.vtu",
+                          io::formatFacesVtu(model, io::FaceJoints(scene, network)));
 }
 
 namespace {
@@ -55,7 +58,7 @@ int runBlocks(const BlocksOptions& options) {
                cut.model.blocks.size(), cut.pieces, cutter.c_str(), cut_seconds);
 
   start = Clock::now();
-  writeBlocksFiles(out, scene, cut.model);
+  writeBlocksFiles(out, scene, cut.model, dfn.network);
   if (const auto format = io::parseMeshFormat(options.mesh_format)) {
     io::writeFileAtomically(out / ("blocks." + io::meshExtension(*format)),
                             io::formatBlockMesh(cut.model, *format));

@@ -16,6 +16,7 @@
 #include "app/stages.h"
 #include "dda3d/simulation.h"
 #include "io/atomic_file.h"
+#include "io/block_output.h"
 #include "io/dda_output.h"
 #include "io/dda_summary.h"
 #include "io/input_error.h"
@@ -128,6 +129,7 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
     r.gap = c.gap;
     r.normal_force = c.normal_force;
     r.shear_displacement = c.shear.norm();
+    r.joint = c.joint >= 0 ? c.joint : sim.model().default_joint;
     out.push_back(r);
   }
   return out;
@@ -136,12 +138,12 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
 }  // namespace
 
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& options, const fs::path& out,
-                     const std::optional<blocks::MergeReport>& glued) {
+                     const geometry::FractureNetwork& network, const DdaOverrides& options,
+                     const fs::path& out, const std::optional<blocks::MergeReport>& glued) {
   const io::DdaAnalysis& dda = *scene.analysis.dda;
   const int steps = options.steps.value_or(dda.steps);
   DdaStage stage;
-  dda3d::DdaModel model = io::buildDdaModel(scene, blocks);
+  dda3d::DdaModel model = io::buildDdaModel(scene, blocks, network);
   int fixed_blocks = 0, pieces = 0;
   for (const dda3d::DdaBlock& b : model.blocks) {
     fixed_blocks += b.fixed;
@@ -255,11 +257,14 @@ int runDda(const DdaOptions& options) {
   start = Clock::now();
   std::optional<blocks::MergeReport> glued;
   const blocks::BlockModel dda_blocks = ddaBlocks(dda_scene, cut.model, glued);
-  const DdaStage stage = runDdaStage(dda_scene, dda_blocks, options.overrides, out, glued);
+  const DdaStage stage =
+      runDdaStage(dda_scene, dda_blocks, dfn.network, options.overrides, out, glued);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();
   writeDdaFiles(out, stage);
+  io::writeFileAtomically(out / "faces.vtu",
+                          io::formatFacesVtu(dda_blocks, io::FaceJoints(dda_scene, dfn.network)));
   run.effects = stage.effects;
   run.timings.emplace_back("write", secondsSince(start));
   io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, stage.summary));

@@ -397,8 +397,8 @@ int runAll(const RunOptions& options) {
     run.stages.push_back("cut");
     run.timings.emplace_back("cut", cut_seconds);
     report.cutter = plan.cutter;
-    timedWrite([&] { writeBlocksFiles(out, scene, cut->model); });
-    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu"});
+    timedWrite([&] { writeBlocksFiles(out, scene, cut->model, dfn.network); });
+    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu", "faces.vtu"});
     parts.push_back(
         {"cut", io::formatBlocksSummary(stageRun(run, {{"cut_split", cut->split_seconds},
                                                        {"cut_assemble", cut->assemble_seconds}}),
@@ -466,7 +466,7 @@ int runAll(const RunOptions& options) {
   // monitors that analysis.equilibrium.watch: monitors watches) come before minutes of work.
   std::optional<dda3d::DdaModel> stability_model;
   if (plan.overload || plan.strength_reduction) {
-    stability_model = io::buildDdaModel(dda_scene, *dda_blocks);
+    stability_model = io::buildDdaModel(dda_scene, *dda_blocks, dfn.network);
     io::EquilibriumAnalysis* equilibrium =
         dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
     if (options.quick && equilibrium && equilibrium->watch_monitors &&
@@ -482,7 +482,8 @@ int runAll(const RunOptions& options) {
   }
   if (plan.dda) {
     const auto start = Clock::now();
-    const DdaStage stage = runDdaStage(dda_scene, *dda_blocks, dda_overrides, out, glued);
+    const DdaStage stage =
+        runDdaStage(dda_scene, *dda_blocks, dfn.network, dda_overrides, out, glued);
     run.stages.push_back("dda");
     run.timings.emplace_back("dda", secondsSince(start));
     run.effects = stage.effects;

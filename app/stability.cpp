@@ -150,7 +150,7 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   std::optional<blocks::MergeReport> glued;
   start = Clock::now();
   const StabilityStart begin = stabilityStart(
-      dda_scene, io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued)));
+      dda_scene, io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued), network));
   const dda3d::DdaModel& model = begin.model;
   if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start));
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),

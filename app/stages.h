@@ -45,9 +45,10 @@ void writeDfnFiles(const std::filesystem::path& out, const io::Scene& scene,
 /// What the blocks summary says about a cut made with `cutter`.
 io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter);
 
-/// Writes blocks.csv and blocks.vtu into `out`.
+/// Writes blocks.csv, blocks.vtu and faces.vtu (the joint of every piece face, from the
+/// discs of `network`) into `out`.
 void writeBlocksFiles(const std::filesystem::path& out, const io::Scene& scene,
-                      const blocks::BlockModel& model);
+                      const blocks::BlockModel& model, const geometry::FractureNetwork& network);
 
 // ---------------------------------------------------------------------------------------------
 // RQD (rqd_command.cpp)
@@ -118,11 +119,13 @@ struct DdaStage {
   std::vector<std::string> frame_files;    ///< dda.pvd's frames (dda_<step>.vtu)
 };
 
-/// Builds the DDA model of `blocks` from the scene (loads, supports, monitors) and runs
+/// Builds the DDA model of `blocks` (cut with the discs of `network`) from the scene (loads,
+/// supports, monitors, the joints of the piece faces) and runs
 /// analysis.dda (which must be present), writing dda.pvd and the frames into `out` as it
 /// goes (and the debug dump when asked). `glued`: what ddaBlocks glued, for the summary.
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
-                     const DdaOverrides& overrides, const std::filesystem::path& out,
+                     const geometry::FractureNetwork& network, const DdaOverrides& overrides,
+                     const std::filesystem::path& out,
                      const std::optional<blocks::MergeReport>& glued = std::nullopt);
 
 /// Writes history.csv into `out`.

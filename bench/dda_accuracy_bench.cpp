@@ -84,17 +84,16 @@ Incline incline(Scene scene) {
   s.model.blocks.push_back(scenes::boxBlock({-3, -1.5, -1}, {3, 1.5, 0}, 0, true));
   s.model.blocks.push_back(scenes::boxBlock({-2.5, -0.5, 0}, {-1.5, 0.5, 1}, 0, false));
   if (scene != Scene::Block) {
-    // Material 1 (the same rock) marks the front block; its contacts with the slab and with
-    // the block behind it take joint 1 (pushed: phi = 25 deg), all others joint 0.
-    s.model.materials.push_back(s.model.materials[0]);
+    // The front block's faces are of joint 1 (pushed: phi = 25 deg) and no other face carries
+    // a joint: its contacts with the slab and with the block behind it take joint 1, all
+    // others the default joint 0 (dda3d/contact_joint.h).
     s.model.joints.push_back(s.model.joints[0]);
     if (scene == Scene::Pushed) s.model.joints[1].friction = std::tan(radians(kFrontPhi));
-    s.model.joint_table = {{0, 1}, {1, 0}};
     for (int k = 1; k < kTrain; ++k) {
       const double x = -2.5 + k;
-      s.model.blocks.push_back(
-          scenes::boxBlock({x, -0.5, 0}, {x + 1, 0.5, 1}, k + 1 == kTrain ? 1 : 0, false));
+      s.model.blocks.push_back(scenes::boxBlock({x, -0.5, 0}, {x + 1, 0.5, 1}, 0, false));
     }
+    s.model.blocks.back().face_joints = {std::vector<int>(6, 1)};
   }
   s.model.gravity = kG * Vec3(std::sin(radians(kTheta)), 0.0, -std::cos(radians(kTheta)));
   const Eigen::Matrix3d frame = scenes::obliqueFrame();

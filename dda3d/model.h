@@ -106,10 +106,10 @@ struct DdaMonitor {
 struct DdaModel {
   std::vector<DdaBlock> blocks;
   std::vector<DdaMaterial> materials;
-  /// Joint of the contact between blocks of materials i and j: joints[joint_of(i, j)]; a
-  /// single default joint is used when the table is empty.
+  /// Strengths of the contacts. A contact takes the joint of the piece faces it lies on
+  /// (DdaBlock::face_joints, dda3d/contact_joint.h), default_joint where they carry none; a
+  /// single default joint is used when the list is empty.
   std::vector<DdaJoint> joints;
-  std::vector<std::vector<int>> joint_table;  ///< [material i][material j] -> joint index
   int default_joint = 0;
   geometry::Vec3 gravity = geometry::Vec3::Zero();  ///< m/s2 (zero: no body force)
   std::vector<DdaMonitor> monitors;
@@ -117,16 +117,6 @@ struct DdaModel {
   std::vector<DdaFixedPoint> fixed_points;
   std::vector<DdaPressure> pressures;
   std::vector<DdaBolt> bolts;
-
-  /// Joint between two materials: joint_table when it has the pair, else default_joint.
-  const DdaJoint& jointBetween(int material_a, int material_b) const {
-    const auto in = [&](int m) { return m >= 0 && m < static_cast<int>(joint_table.size()); };
-    if (in(material_a) && material_b >= 0 &&
-        material_b < static_cast<int>(joint_table[material_a].size())) {
-      return joints.at(static_cast<std::size_t>(joint_table[material_a][material_b]));
-    }
-    return joints.at(static_cast<std::size_t>(default_joint));
-  }
 };
 
 }  // namespace rockmass::dda3d

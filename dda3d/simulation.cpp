@@ -10,6 +10,7 @@
 
 #include "dda3d/block_terms.h"
 #include "dda3d/contact_detection.h"
+#include "dda3d/contact_joint.h"
 
 namespace rockmass::dda3d {
 
@@ -235,14 +236,7 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
     throw std::invalid_argument("default_joint " + std::to_string(model_.default_joint) +
                                 " is not an index into the joints");
   }
-  for (const auto& row : model_.joint_table) {
-    for (int j : row) {
-      if (j < 0 || j >= static_cast<int>(model_.joints.size())) {
-        throw std::invalid_argument("joint_table entry " + std::to_string(j) +
-                                    " is not an index into the joints");
-      }
-    }
-  }
+  checkFaceJoints(model_);
   if (!(settings_.time_step > 0.0)) throw std::invalid_argument("time_step must be > 0 s");
   if (!(settings_.min_time_step > 0.0 && settings_.min_time_step <= settings_.time_step)) {
     throw std::invalid_argument("min_time_step must be > 0 s and at most time_step");
@@ -441,9 +435,7 @@ std::string Simulation::solverName() const {
 }
 
 const DdaJoint& Simulation::jointOf(const Contact& c) const {
-  if (c.joint >= 0) return model_.joints.at(static_cast<std::size_t>(c.joint));
-  return model_.jointBetween(blocks_[static_cast<std::size_t>(c.block_i)].material,
-                             blocks_[static_cast<std::size_t>(c.block_j)].material);
+  return model_.joints.at(static_cast<std::size_t>(c.joint >= 0 ? c.joint : model_.default_joint));
 }
 
 void Simulation::detectContacts() {
@@ -491,6 +483,7 @@ void Simulation::detectContacts() {
     const int j = bolt_b_[k].block >= 0 ? movableIndex(bolt_b_[k].block) : -1;
     if (i >= 0 && j >= 0 && i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
+  for (Contact& c : detected) c.joint = contactJoint(model_, blocks_, c);
   contacts_ = std::move(detected);
   // A contact that crept in the last step (its slip no longer than the shear spring's stretch
   // at the shear strength) starts this one stuck, its spring carrying the shear strength along

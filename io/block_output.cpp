@@ -68,6 +68,42 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
   return formatVtu(vtu);
 }
 
+std::string formatFacesVtu(const blocks::BlockModel& model, const FaceJoints& joints) {
+  VtuPiece vtu;
+  std::vector<std::int32_t> block, piece_index, kind, source, joint;
+  for (const blocks::Block& b : model.blocks) {
+    for (std::size_t p = 0; p < b.pieces.size(); ++p) {
+      const blocks::Piece& piece = b.pieces[p];
+      const std::vector<std::vector<int>>& faces = piece.shape.faces;
+      const std::int64_t base = static_cast<std::int64_t>(vtu.points.size() / 3);
+      for (const geometry::Vec3& x : piece.shape.vertices) {
+        vtu.points.insert(vtu.points.end(), {x.x(), x.y(), x.z()});
+      }
+      for (std::size_t f = 0; f < faces.size(); ++f) {
+        const blocks::FaceSource from =
+            f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
+        if (from.kind == blocks::FaceKind::Fictitious) continue;
+        for (int v : faces[f]) vtu.connectivity.push_back(base + v);
+        vtu.offsets.push_back(static_cast<std::int64_t>(vtu.connectivity.size()));
+        vtu.types.push_back(7);
+        block.push_back(b.id);
+        piece_index.push_back(static_cast<std::int32_t>(p));
+        kind.push_back(from.kind == blocks::FaceKind::Disc       ? 0
+                       : from.kind == blocks::FaceKind::Boundary ? 1
+                                                                 : 2);
+        source.push_back(from.id);
+        joint.push_back(joints.of(from));
+      }
+    }
+  }
+  vtu.cell_data.push_back(makeVtuArray("block", block));
+  vtu.cell_data.push_back(makeVtuArray("piece", piece_index));
+  vtu.cell_data.push_back(makeVtuArray("kind", kind));
+  vtu.cell_data.push_back(makeVtuArray("source", source));
+  vtu.cell_data.push_back(makeVtuArray("joint", joint));
+  return formatVtu(vtu);
+}
+
 namespace {
 
 /// Sets j["volume_stats"] {min, max, mean} and j["weibull"] {shape, scale} (maximum

@@ -6,6 +6,7 @@
 #include "blocks/block_model.h"
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
+#include "io/scene_model.h"
 #include "io/summary.h"
 
 namespace rockmass::io {
@@ -19,6 +20,13 @@ std::string formatBlocksCsv(const blocks::BlockModel& model,
 /// id), material (index), volume (the block's, m3) and piece_volume (m3). A block is the set
 /// of cells with its id (threshold on `id` in ParaView).
 std::string formatBlocksVtu(const blocks::BlockModel& model);
+
+/// faces.vtu: one VTK polygon cell (type 7) per piece face that is not fictitious (internal
+/// cuts between pieces of one block are left out), CCW seen from outside the piece, with
+/// Int32 cell data block (block id), piece (index in the block), kind (0 disc, 1 domain
+/// boundary, 2 structure), source (disc id, boundary face id, structure index) and joint
+/// (index into Scene::joints from `joints`, -1 none).
+std::string formatFacesVtu(const blocks::BlockModel& model, const FaceJoints& joints);
 
 /// What the blocks summary says about the cut itself.
 struct CutInfo {

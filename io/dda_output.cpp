@@ -164,14 +164,15 @@ std::string formatMatrixMarketVector(const Eigen::VectorXd& v) {
 std::string formatContactsCsv(const std::vector<DdaContactRecord>& contacts) {
   std::string out =
       "kind,state,block_i,piece_i,block_j,piece_j,face_j,x,y,z,nx,ny,nz,gap,normal_force,"
-      "shear_force,shear_displacement\n";
+      "shear_force,shear_displacement,joint\n";
   for (const DdaContactRecord& c : contacts) {
     out += std::string(contactKindName(c.kind)) + ',' + contactStateName(c.state) + ',' +
            std::to_string(c.block_i) + ',' + std::to_string(c.piece_i) + ',' +
            std::to_string(c.block_j) + ',' + std::to_string(c.piece_j) + ',' +
            std::to_string(c.face_j) + ',' + csvVector(c.point) + ',' + csvVector(c.normal) + ',' +
            formatDouble(c.gap) + ',' + formatDouble(c.normal_force) + ',' +
-           formatDouble(c.shear_force) + ',' + formatDouble(c.shear_displacement) + '\n';
+           formatDouble(c.shear_force) + ',' + formatDouble(c.shear_displacement) + ',' +
+           std::to_string(c.joint) + '\n';
   }
   return out;
 }

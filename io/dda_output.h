@@ -113,6 +113,9 @@ struct DdaContactRecord {
   double normal_force = 0.0;                       ///< N, compression positive
   double shear_force = 0.0;                        ///< N, magnitude
   double shear_displacement = 0.0;                 ///< accumulated shear offset (m)
+  /// Joint the contact acts with (index into the scene's joints): that of the faces it lies
+  /// on, or default_joint where they carry none (dda3d/contact_joint.h).
+  int joint = 0;
 };
 
 /// The system matrix in Matrix Market coordinate format (1-based): `symmetric` with the lower
@@ -123,7 +126,7 @@ std::string formatMatrixMarket(const dda3d::SparseMatrix& k);
 std::string formatMatrixMarketVector(const Eigen::VectorXd& v);
 
 /// contacts CSV: `kind,state,block_i,piece_i,block_j,piece_j,face_j,x,y,z,nx,ny,nz,gap,
-/// normal_force,shear_force,shear_displacement`, kind vertex-face | edge-edge, state
+/// normal_force,shear_force,shear_displacement,joint`, kind vertex-face | edge-edge, state
 /// open | sliding | locked.
 std::string formatContactsCsv(const std::vector<DdaContactRecord>& contacts);
 

@@ -654,7 +654,7 @@ geometry::ShapeSpec readShape(const Cursor& c) {
 
 /// The strength of a joint: `joints` entries and inline structure joints.
 Joint readJoint(const Cursor& c, std::string name) {
-  const Cursor m = c.map({"friction", "friction_angle", "cohesion", "tensile_strength"});
+  const Cursor m = c.map({"friction", "friction_angle", "cohesion", "tensile_strength", "model"});
   Joint joint;
   joint.name = std::move(name);
   if (m.oneOf("friction", "friction_angle") == 0) {
@@ -665,6 +665,9 @@ Joint readJoint(const Cursor& c, std::string name) {
   }
   joint.cohesion = m.numberOr("cohesion", 0.0, kNonNegative);
   joint.tensile_strength = m.numberOr("tensile_strength", 0.0, kNonNegative);
+  joint.brittle = m.valueOr("model", joint.brittle, [](const Cursor& v) {
+    return v.choice("joint model", {"plastic", "brittle"}) == 1;
+  });
   return joint;
 }
 
@@ -1005,7 +1008,6 @@ class SceneReader {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
                                      !scene_.domain_mesh.empty(), !scene_.monitors.empty());
     }
-    if (scene_.joint_conflict && scene_.analysis.dda) throw InputError(*scene_.joint_conflict);
     return std::move(scene_);
   }
 
@@ -1055,40 +1057,6 @@ class SceneReader {
   /// The entry's `joint`, or the default joint when it has none.
   int jointOf(const Cursor& entry) const {
     return entry.valueOr("joint", scene_.default_joint, [&](const Cursor& v) { return joint(v); });
-  }
-
-  /// Records that the blocks of `material` meet the rock through `joint`, for the fault,
-  /// interlayer or structure `owner` read from `entry`. The DDA picks the joint between two
-  /// blocks by their materials, so two owners of one material share one joint to the rock:
-  /// a joint of another strength on the second would silently replace the first's. The first
-  /// such conflict is kept (Scene::joint_conflict, located at the second's `joint`, or
-  /// `material` when it names none): an error for a scene that runs a DDA, nothing for one
-  /// that only cuts blocks or measures RQD, where joints do not act.
-  void claimRockJoint(const Cursor& entry, int material, int joint, const std::string& owner) {
-    if (material < 0 || joint < 0) return;
-    // The rock itself meets the rock through default_joint: a slab or structure of
-    // rock_material with another joint would give it to every rock-rock contact (a slab),
-    // or never use it (a structure, whose joint is not set against its own material).
-    if (rock_joints_.empty() && scene_.rock_material >= 0 && scene_.default_joint >= 0) {
-      rock_joints_.try_emplace(scene_.rock_material, scene_.default_joint,
-                               "the rock (rock_material, default_joint)");
-    }
-    const auto strength = [&](int j) {
-      const Joint& found = scene_.joints.at(static_cast<std::size_t>(j));
-      return std::tie(found.friction, found.cohesion, found.tensile_strength);
-    };
-    const auto [claim, fresh] = rock_joints_.try_emplace(material, joint, owner);
-    if (fresh || strength(claim->second.first) == strength(joint)) return;
-    if (scene_.joint_conflict) return;
-    const std::optional<Cursor> key = entry.get("joint");
-    scene_.joint_conflict =
-        (key ? *key : entry.at("material"))
-            .located(owner + " is of material " +
-                     scene_.materials[static_cast<std::size_t>(material)].name + " like " +
-                     claim->second.second +
-                     " but has a different joint to the rock; joints between blocks are chosen by "
-                     "their materials, so one would silently replace the other: give both the same "
-                     "joint, or this one a material of its own");
   }
 
   /// thickness (default 0) and material of a fault or interlayer; `what` is "a fault".
@@ -1158,7 +1126,6 @@ class SceneReader {
     }
     std::tie(fault.thickness, fault.material) = readSlab(m, "a fault");
     fault.joint = jointOf(m);
-    claimRockJoint(m, fault.material, fault.joint, "fault " + fault.name);
     return fault;
   }
 
@@ -1171,7 +1138,6 @@ class SceneReader {
     layer.sweep = readSweep(m.at("sweep"));
     std::tie(layer.thickness, layer.material) = readSlab(m, "an interlayer");
     layer.joint = jointOf(m);
-    claimRockJoint(m, layer.material, layer.joint, "interlayer " + layer.name);
     return layer;
   }
 
@@ -1198,7 +1164,6 @@ class SceneReader {
     } else {
       structure.joint = jointOf(m);
     }
-    claimRockJoint(m, structure.material, structure.joint, "structure " + structure.name);
     return structure;
   }
 
@@ -1256,8 +1221,6 @@ class SceneReader {
   std::vector<std::string> named_joints_;  ///< joints of the `joints` section (referable by name)
   UniqueNames dfn_names_;                  ///< joint sets, fractures files, faults, interlayers
   UniqueNames structure_names_;            ///< structures
-  /// The joint to the rock of each slab or structure material, and who claimed it first.
-  std::map<int, std::pair<int, std::string>> rock_joints_;
 };
 
 /// The single YAML document of `text`, or an InputError for invalid YAML.

@@ -31,6 +31,9 @@ struct Joint {
   double friction = 0.0;          ///< f = tan(phi) (from `friction` or `friction_angle`)
   double cohesion = 0.0;          ///< Pa
   double tensile_strength = 0.0;  ///< Pa
+  /// `model`: false for `plastic` (the default: cohesion kept while the contact slides),
+  /// true for `brittle` (cohesion and tensile strength lost once it slides or opens).
+  bool brittle = false;
 };
 
 /// A structure standing on or in the rock (the dam).
@@ -219,11 +222,6 @@ struct Scene {
   std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
   std::vector<Monitor> monitors;         ///< measure points
   Analysis analysis;                     ///< what to compute
-  /// Two faults, interlayers or structures of one material with joints of different
-  /// strength to the rock (the DDA picks joints by material pair, so it would use one for
-  /// both): the located message. Reading a scene with analysis.dda throws it, and so does
-  /// buildDdaModel.
-  std::optional<std::string> joint_conflict;
 };
 
 /// Reads and validates a scene. Relative paths inside it are resolved against its folder;

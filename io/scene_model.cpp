@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "geometry/disc.h"
 #include "geometry/point_in_polyhedron.h"
@@ -117,33 +118,6 @@ std::vector<geometry::Vec3> pointsOnDomainFace(const blocks::Block& block, const
 /// "(x, y, z)" for messages.
 std::string pointText(const geometry::Vec3& p) {
   return "(" + formatDouble(p.x()) + ", " + formatDouble(p.y()) + ", " + formatDouble(p.z()) + ")";
-}
-
-/// The joint index of every material pair (see buildDdaModel).
-std::vector<std::vector<int>> jointTable(const Scene& scene) {
-  const std::size_t count = scene.materials.size();
-  std::vector<std::vector<int>> table(count, std::vector<int>(count, scene.default_joint));
-  const auto set = [&](int a, int b, int joint) {
-    if (a < 0 || b < 0 || joint < 0) return;
-    table[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = joint;
-    table[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = joint;
-  };
-  for (const geometry::FaultSpec& fault : scene.dfn.faults) {
-    set(fault.material, scene.rock_material, fault.joint);
-  }
-  for (const geometry::InterlayerSpec& layer : scene.dfn.interlayers) {
-    set(layer.material, scene.rock_material, layer.joint);
-  }
-  std::vector<bool> structure_material(count, false);
-  for (const StructureSpec& s : scene.structures) {
-    structure_material[static_cast<std::size_t>(s.material)] = true;
-  }
-  for (const StructureSpec& s : scene.structures) {
-    for (std::size_t m = 0; m < count; ++m) {
-      if (!structure_material[m]) set(s.material, static_cast<int>(m), s.joint);
-    }
-  }
-  return table;
 }
 
 /// Mean of the face's vertices (m).
@@ -301,8 +275,49 @@ std::vector<bool> blocksOnDomainFaces(const blocks::BlockModel& blocks,
   return held;
 }
 
-dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks) {
-  if (scene.joint_conflict) throw InputError(*scene.joint_conflict);
+FaceJoints::FaceJoints(const Scene& scene, const geometry::FractureNetwork& network) {
+  for (const geometry::Disc& disc : network.discs) {
+    if (disc.id < 1) continue;
+    const std::size_t id = static_cast<std::size_t>(disc.id);
+    if (disc_joints_.size() <= id) disc_joints_.resize(id + 1, -1);
+    disc_joints_[id] = std::max(-1, disc.joint);
+  }
+  for (const StructureSpec& s : scene.structures) structure_joints_.push_back(s.joint);
+}
+
+int FaceJoints::of(const blocks::FaceSource& source) const {
+  const auto lookup = [&](const std::vector<int>& joints, const char* what) {
+    if (source.id < 0 || static_cast<std::size_t>(source.id) >= joints.size()) {
+      throw std::invalid_argument(std::string("a piece face comes from ") + what + " " +
+                                  std::to_string(source.id) + ", which does not exist");
+    }
+    return joints[static_cast<std::size_t>(source.id)];
+  };
+  switch (source.kind) {
+    case blocks::FaceKind::Disc:
+      return lookup(disc_joints_, "disc");
+    case blocks::FaceKind::Structure:
+      return lookup(structure_joints_, "structure");
+    case blocks::FaceKind::Boundary:
+    case blocks::FaceKind::Fictitious:
+      break;
+  }
+  return -1;
+}
+
+std::vector<std::vector<int>> FaceJoints::of(const blocks::Block& block) const {
+  std::vector<std::vector<int>> out;
+  for (const blocks::Piece& piece : block.pieces) {
+    std::vector<int>& row = out.emplace_back(piece.shape.faces.size(), -1);
+    for (std::size_t f = 0; f < row.size() && f < piece.face_sources.size(); ++f) {
+      row[f] = of(piece.face_sources[f]);
+    }
+  }
+  return out;
+}
+
+dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks,
+                              const geometry::FractureNetwork& network) {
   if (scene.default_joint < 0) {
     throw InputError(locate(scene.file, 0, 0,
                             "analysis.dda needs the strength of the contacts between blocks: "
@@ -313,10 +328,11 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
     model.materials.push_back({m.density, m.young, m.poisson});
   }
   for (const Joint& j : scene.joints) {
-    model.joints.push_back({j.friction, j.cohesion, j.tensile_strength});
+    model.joints.push_back({j.friction, j.cohesion, j.tensile_strength,
+                            j.brittle ? dda3d::JointModel::Brittle : dda3d::JointModel::Plastic});
   }
   model.default_joint = scene.default_joint;
-  model.joint_table = jointTable(scene);
+  const FaceJoints face_joints(scene, network);
   model.gravity = scene.loads.gravity.value_or(geometry::Vec3::Zero());
 
   const std::vector<bool> held =
@@ -333,6 +349,7 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
     out.material = block.material;
     out.fixed = held[b];
     for (const blocks::Piece& piece : block.pieces) out.pieces.push_back(piece.shape);
+    out.face_joints = face_joints.of(block);
     model.blocks.push_back(std::move(out));
   }
 

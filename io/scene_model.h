@@ -1,12 +1,13 @@
 #pragma once
-/// From a scene and its blocks to the DDA model: materials, the joint of every material
-/// pair, gravity, the blocks held by `supports.fixed`, and the block each monitor is attached
+/// From a scene and its blocks to the DDA model: materials, joints and the joint of every
+/// piece face, gravity, the blocks held by `supports.fixed`, and the block each monitor is attached
 /// to. Lives in io because it reads the scene; dda3d knows nothing of scenes.
 #include <string>
 #include <vector>
 
 #include "blocks/block_model.h"
 #include "dda3d/model.h"
+#include "geometry/fracture_network.h"
 #include "io/scene.h"
 
 namespace rockmass::io {
@@ -16,12 +17,35 @@ namespace rockmass::io {
 /// any block size that matters.
 constexpr double kSceneModelRelativeTolerance = 1e-6;
 
-/// The DDA model of `blocks` (cut from `scene`); block i of the model is blocks.blocks[i].
+/// The joint (index into Scene::joints) of the piece faces of a scene's blocks, by what made
+/// them (blocks::Piece::face_sources): a disc face takes its disc's joint
+/// (geometry::Disc::joint: its joint set's, fault's, interlayer's or FAB file's `joint`), a
+/// structure face its structure's `joint`; domain-boundary and fictitious (internal) faces
+/// carry none (-1), nor do discs or structures without a joint (no default_joint).
+class FaceJoints {
+ public:
+  /// `network`: the discs the blocks were cut with (ids 1..N).
+  FaceJoints(const Scene& scene, const geometry::FractureNetwork& network);
+
+  /// The joint of a face made by `source`, or -1. Throws std::invalid_argument for a disc id
+  /// or structure index that the network or scene does not have.
+  int of(const blocks::FaceSource& source) const;
+
+  /// One list per piece of `block`, one joint per face (a face without a source: -1).
+  std::vector<std::vector<int>> of(const blocks::Block& block) const;
+
+ private:
+  std::vector<int> disc_joints_;       ///< by disc id (entry 0 unused)
+  std::vector<int> structure_joints_;  ///< by structure index
+};
+
+/// The DDA model of `blocks` (cut from `scene` with the discs of `network`); block i of the
+/// model is blocks.blocks[i].
 /// - materials: density, Young's modulus, Poisson's ratio, in scene order;
-/// - joints: the scene's joints; the joint of a contact between materials a and b is
-///   default_joint, except between a fault/interlayer slab material and the rock material
-///   (the slab's joint) and between a structure's material and any non-structure material
-///   (the structure's joint, e.g. the dam-rock contact);
+/// - joints: the scene's joints (friction, cohesion, tensile strength, model), default_joint;
+///   every piece face gets the joint of what made it (FaceJoints, DdaBlock::face_joints),
+///   and the engine gives each contact the joint of the faces it lies on
+///   (dda3d/contact_joint.h);
 /// - gravity: loads.gravity, or none at all (no body force term) when absent;
 /// - fixed: the blocks touching a face named in supports.fixed (blocksOnDomainFaces);
 /// - monitors: each attached to the block that contains its point (findContainingBlock);
@@ -37,7 +61,8 @@ constexpr double kSceneModelRelativeTolerance = 1e-6;
 ///   internal and stay dry. The engine clips each face at the water line.
 /// Throws InputError naming the scene file (and the monitor's line) when a monitor or point
 /// load lies in no block, a block has no material, or the scene gives no default_joint.
-dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks);
+dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks,
+                              const geometry::FractureNetwork& network);
 
 /// Index into blocks.blocks of the block with a piece containing `point` (within
 /// kSceneModelRelativeTolerance of the domain diagonal); when several do (a point on a

@@ -13,6 +13,7 @@
 
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
+#include "tests/support/vtu_reading.h"
 
 namespace rockmass {
 namespace {
@@ -163,6 +164,71 @@ TEST(BlocksCli, MeshStructureIsExitTwoNamingTheSceneKey) {
     EXPECT_NE(r.output.find("structures[].prism"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.path() / cutter / "blocks.csv"));
   }
+}
+
+// faces.vtu: every piece face that is not an internal cut, with what made it and its joint.
+// The scene above with F1 on its own joint (weak, index 1) and the dam on an inline joint
+// (dam.joint, index 2): F1's faces (disc 1) carry joint 1, F2's (disc 2) the default joint 0,
+// the dam's faces joint 2, the domain's faces none.
+TEST(BlocksCli, FacesVtuCarriesTheJointOfEveryFace) {
+  test::TempDir dir("blocks_cli_faces");
+  std::string text = kScene;
+  text.replace(text.find("default_joint: rj\n"), 18,
+               "  weak: {friction: 0.3}\ndefault_joint: rj\n");
+  text.replace(text.find("dip: 90}\n"), 9, "dip: 90, joint: weak}\n");
+  text.replace(text.find("    material: concrete\n"), 23,
+               "    material: concrete\n    joint: {friction: 1.2, cohesion: 1.4e6}\n");
+  std::string output;
+  for (const char* name : {"a", "b"}) {
+    ASSERT_EQ(test::runOnScene("blocks --cutter fast", dir.path(), name, text, &output), 0)
+        << output;
+  }
+  const std::string vtu = test::readFile(dir.path() / "a" / "faces.vtu");
+  EXPECT_EQ(vtu, test::readFile(dir.path() / "b" / "faces.vtu"));  // same bytes
+  const std::vector<double> block = test::dataArray(vtu, "block");
+  const std::vector<double> piece = test::dataArray(vtu, "piece");
+  const std::vector<double> kind = test::dataArray(vtu, "kind");
+  const std::vector<double> source = test::dataArray(vtu, "source");
+  const std::vector<double> joint = test::dataArray(vtu, "joint");
+  const std::vector<double> types = test::dataArray(vtu, "types");
+  const std::vector<double> offsets = test::dataArray(vtu, "offsets");
+  ASSERT_FALSE(kind.empty());
+  for (const auto* array : {&block, &piece, &source, &joint, &types, &offsets}) {
+    ASSERT_EQ(array->size(), kind.size());
+  }
+  EXPECT_EQ(test::attribute(vtu, "NumberOfCells"), std::to_string(kind.size()));
+  // The dam's block id: its row in blocks.csv is the concrete one.
+  double dam_id = 0.0;
+  for (const CsvBlock& b : readBlocks(test::readFile(dir.path() / "a" / "blocks.csv"))) {
+    if (b.material == "concrete") dam_id = b.id;
+  }
+  ASSERT_GT(dam_id, 0.0);
+  int f1 = 0, f2 = 0, dam = 0;
+  for (std::size_t c = 0; c < kind.size(); ++c) {
+    EXPECT_EQ(types[c], 7.0) << "a polygon";
+    EXPECT_GE(offsets[c] - (c == 0 ? 0.0 : offsets[c - 1]), 3.0) << "at least 3 corners";
+    if (kind[c] == 0.0 && source[c] == 1.0) {
+      ++f1;
+      EXPECT_EQ(joint[c], 1.0);
+    } else if (kind[c] == 0.0 && source[c] == 2.0) {
+      ++f2;
+      EXPECT_EQ(joint[c], 0.0);
+    } else if (kind[c] == 2.0) {
+      ++dam;
+      EXPECT_EQ(source[c], 0.0);
+      EXPECT_EQ(joint[c], 2.0);
+      EXPECT_EQ(block[c], dam_id);
+    } else {
+      EXPECT_EQ(kind[c], 1.0) << "cell " << c;
+      EXPECT_GE(source[c], 0.0);
+      EXPECT_LE(source[c], 5.0);
+      EXPECT_EQ(joint[c], -1.0);
+    }
+  }
+  // Each fault plane is a face of the four blocks it bounds; the dam prism has 6 faces.
+  EXPECT_EQ(f1, 4);
+  EXPECT_EQ(f2, 4);
+  EXPECT_EQ(dam, 6);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,6 +19,7 @@
 
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
+#include "tests/support/vtu_reading.h"
 
 namespace rockmass {
 namespace {
@@ -293,6 +295,125 @@ TEST_F(DdaCli, RegionCutsTheSameNetworkInItsBoxWithSupportsOnItsFaces) {
                         "domain box; in z the region spans -2 .. 1, the domain -3 .. 0"),
             std::string::npos)
       << output;
+}
+
+// Every discontinuity carries its own strength (issue 15): a block on a fault whose joint is
+// weaker than the rock's default joint slides on the fault's joint. Box 7 x 2 x 5 m cut by a
+// single-surface fault dipping 30 degrees towards +x that crosses the top at x = 1 and the east
+// face at z = -6 tan 30 = -3.46 m: the wedge above it (one block, 20.8 m3) is free, its east
+// face open; the block below holds the bottom (supports.fixed) and is held. The fault's joint
+// has f = 0.3 < tan 30 = 0.577, default_joint f = 0.6 > tan 30: chosen by material pair (both
+// blocks are rock) the wedge would not move. On f = 0.3 it slides from rest with
+// a = g (sin 30 - 0.3 cos 30) = 2.356 m/s2, s = a t^2 / 2 = 1.178 m in 1 s.
+const std::string kFaultScene = R"(version: 1
+name: block-on-a-fault
+seed: 1
+domain:
+  box: {min: [0, 0, -5], max: [7, 2, 0]}
+materials:
+  rock: {density: 2500, young: 10.0e9, poisson: 0.25}
+rock_material: rock
+joints:
+  rj: {friction: 0.6}
+  fault_joint: {friction: 0.3}
+default_joint: rj
+faults:
+  - {name: F1, center: [4, 1, -1.7320508075688772], dip_direction: 90, dip: 30, joint: fault_joint}
+loads:
+  gravity: 9.81
+supports:
+  fixed: [bottom]
+monitors:
+  - {name: wedge, point: [5, 1, -1.1547005383792515]}
+analysis:
+  blocks: {cutter: fast}
+  dda:
+    mode: dynamic
+    kinematics: rigid
+    steps: 500
+    time_step: 0.002
+)";
+
+TEST_F(DdaCli, ABlockSlidesOnTheFaultsOwnJoint) {
+  std::string output;
+  ASSERT_EQ(test::runOnScene("dda", dir.path(), "fault", kFaultScene + "", &output), 0) << output;
+  const nlohmann::json summary = summaryOf("fault");
+  ASSERT_EQ(summary["blocks"], 2);
+  ASSERT_EQ(summary["fixed_blocks"], 1);
+  // The simulated time: 1 s, or a little more where the step control's last step overshoots.
+  const double t = summary["duration"].get<double>();
+  EXPECT_GE(t, 1.0 - 1e-9);
+  EXPECT_LT(t, 1.01);
+  const double pi = std::acos(-1.0);
+  const double theta = pi / 6.0;
+  const double a = kGravity * (std::sin(theta) - 0.3 * std::cos(theta));
+  const double expected = 0.5 * a * t * t;  // 1.178 m at t = 1 s
+  const nlohmann::json& wedge = summary["monitors"][0];
+  const double ux = wedge["ux"].get<double>(), uy = wedge["uy"].get<double>(),
+               uz = wedge["uz"].get<double>();
+  const double slid = std::sqrt(ux * ux + uy * uy + uz * uz);
+  // 2 %: the contact springs' compliance and the time integration of a 500-step dynamic
+  // run; measured: see the report. On rj (f = 0.6) the wedge would not move at all.
+  EXPECT_NEAR(slid, expected, 0.02 * expected) << "ux " << ux << " uz " << uz;
+  std::printf("block on a fault: t = %.6f s, slid %.6f m, a t^2 / 2 = %.6f m (%+.3f %%)\n", t, slid,
+              expected, 100.0 * (slid - expected) / expected);
+  // Down the dip (+x, -z at 30 degrees), not sideways.
+  EXPECT_NEAR(ux / slid, std::cos(theta), 1e-3);
+  EXPECT_NEAR(uz / slid, -std::sin(theta), 1e-3);
+  EXPECT_LT(std::abs(uy), 1e-6 * slid);
+
+  // faces.vtu of the DDA's blocks: the two fault faces (kind 0) carry the fault's joint (1),
+  // the domain faces (kind 1) none; every cell is a polygon.
+  const std::string vtu = test::readFile(dir.path() / "fault" / "faces.vtu");
+  const std::vector<double> kind = test::dataArray(vtu, "kind");
+  const std::vector<double> joint = test::dataArray(vtu, "joint");
+  const std::vector<double> block = test::dataArray(vtu, "block");
+  const std::vector<double> types = test::dataArray(vtu, "types");
+  ASSERT_EQ(joint.size(), kind.size());
+  ASSERT_EQ(block.size(), kind.size());
+  ASSERT_EQ(types.size(), kind.size());
+  int fault_faces = 0;
+  for (std::size_t c = 0; c < kind.size(); ++c) {
+    EXPECT_EQ(types[c], 7.0);
+    if (kind[c] == 0.0) {
+      ++fault_faces;
+      EXPECT_EQ(joint[c], 1.0) << "cell " << c;
+    } else {
+      EXPECT_EQ(kind[c], 1.0) << "cell " << c;
+      EXPECT_EQ(joint[c], -1.0) << "cell " << c;
+    }
+  }
+  EXPECT_EQ(fault_faces, 2);  // one on each side of the fault
+  // wedge: top, east, south, north, fault = 5 faces; lower block: 6 box faces less the part
+  // of the top above the wedge... it keeps top (x < 1), west, bottom, east, south, north and
+  // the fault = 7 faces.
+  EXPECT_EQ(kind.size(), 12u);
+
+  // The debug dump names each contact's joint: every contact between the wedge and the
+  // block below lies on the fault, so all of them act with joint 1.
+  ASSERT_EQ(test::runRockmass("dda " + (dir.path() / "fault.yaml").string() +
+                                  " --debug-step 2 -o " + (dir.path() / "dump").string(),
+                              &output),
+            0)
+      << output;
+  std::istringstream contacts(test::readFile(dir.path() / "dump" / "debug_step2_contacts.csv"));
+  std::string line;
+  std::getline(contacts, line);
+  ASSERT_TRUE(line.ends_with(",shear_displacement,joint")) << line;
+  int rows = 0;
+  while (std::getline(contacts, line)) {
+    ++rows;
+    EXPECT_TRUE(line.ends_with(",1")) << line;
+  }
+  EXPECT_GT(rows, 0);
+
+  // The same scene with the fault's joint as strong as the rock's: the wedge stays (f = 0.6 >
+  // tan 30), moving by no more than the contact springs take up.
+  std::string strong = kFaultScene;
+  strong.replace(strong.find("fault_joint: {friction: 0.3}"), 28, "fault_joint: {friction: 0.6}");
+  ASSERT_EQ(test::runOnScene("dda", dir.path(), "strong", strong, &output), 0) << output;
+  const nlohmann::json held = summaryOf("strong")["monitors"][0];
+  EXPECT_LT(std::hypot(held["ux"].get<double>(), held["uz"].get<double>()), 1e-3 * expected);
 }
 
 TEST_F(DdaCli, BadInputExitsWithTwo) {

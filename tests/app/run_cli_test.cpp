@@ -116,7 +116,7 @@ TEST(RunCli, RunsTheStagesTheSceneNamesAndListsThem) {
     EXPECT_TRUE(fs::exists(out / f.get<std::string>())) << f;
   }
   for (const char* f :
-       {"fractures.fab", "fractures.csv", "fractures.vtu", "blocks.csv", "blocks.vtu",
+       {"fractures.fab", "fractures.csv", "fractures.vtu", "blocks.csv", "blocks.vtu", "faces.vtu",
         "section.csv", "section.svg", "rqd_balls.csv", "rqd_ball_c_t0.1.ply", "history.csv",
         "dda.pvd", "dda_000010.vtu", "overload.csv", "summary.json"}) {
     EXPECT_TRUE(files.count(f)) << f;

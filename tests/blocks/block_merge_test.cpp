@@ -58,6 +58,31 @@ TEST(MergeSmallBlocks, GluesEachSmallBlockToItsNeighbourAndKeepsTheVolume) {
   EXPECT_DOUBLE_EQ(model.adjacency[0].area, 1.0);
 }
 
+TEST(MergeSmallBlocks, KeepsEveryFacesSource) {
+  // Each face remembers what made it (the DDA takes a contact's joint from it): after gluing,
+  // every piece of a glued block has the face sources it had, face by face, including the
+  // faces now inside the glued block.
+  BlockModel model = row({0.1, 2.0, 0.3}, {0, 0, 0});
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    std::vector<FaceSource>& sources = model.blocks[b].pieces[0].face_sources;
+    for (std::size_t f = 0; f < sources.size(); ++f) {
+      sources[f] = {
+          f % 3 == 0 ? FaceKind::Disc : (f % 3 == 1 ? FaceKind::Boundary : FaceKind::Structure),
+          static_cast<int>(10 * b + f)};
+    }
+  }
+  const BlockModel before = model;
+  mergeSmallBlocks(model, 1.0);
+  ASSERT_EQ(model.blocks.size(), 1u);
+  ASSERT_EQ(model.blocks[0].pieces.size(), 3u);
+  // The pieces in the order of their original blocks (ids 1, 2, 3).
+  for (std::size_t p = 0; p < 3; ++p) {
+    EXPECT_EQ(model.blocks[0].pieces[p].face_sources, before.blocks[p].pieces[0].face_sources)
+        << "piece " << p;
+    EXPECT_EQ(model.blocks[0].pieces[p].shape.vertices, before.blocks[p].pieces[0].shape.vertices);
+  }
+}
+
 TEST(MergeSmallBlocks, NeverGluesAcrossMaterials) {
   // The small block 0.5 of material 1 touches only material-0 blocks: it stays, reported.
   BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 0});

@@ -55,6 +55,7 @@ TEST(DdaContactsCsv, ExactContents) {
   vertex.normal_force = 2500.0;
   vertex.shear_force = 12.5;
   vertex.shear_displacement = 1e-6;
+  vertex.joint = 2;
   DdaContactRecord edge = vertex;
   edge.kind = ContactKind::EdgeEdge;
   edge.state = ContactState::Sliding;
@@ -64,12 +65,13 @@ TEST(DdaContactsCsv, ExactContents) {
   open.gap = 0.001;
   open.normal_force = 0.0;
   open.shear_force = 0.0;
+  open.joint = 0;
   EXPECT_EQ(formatContactsCsv({vertex, edge, open}),
             "kind,state,block_i,piece_i,block_j,piece_j,face_j,x,y,z,nx,ny,nz,gap,normal_force,"
-            "shear_force,shear_displacement\n"
-            "vertex-face,locked,2,0,1,1,5,0.5,0.25,1,0,0,1,-2.5e-05,2500,12.5,1e-06\n"
-            "edge-edge,sliding,2,0,1,1,-1,0.5,0.25,1,0,0,1,-2.5e-05,2500,12.5,1e-06\n"
-            "vertex-face,open,2,0,1,1,5,0.5,0.25,1,0,0,1,0.001,0,0,1e-06\n");
+            "shear_force,shear_displacement,joint\n"
+            "vertex-face,locked,2,0,1,1,5,0.5,0.25,1,0,0,1,-2.5e-05,2500,12.5,1e-06,2\n"
+            "edge-edge,sliding,2,0,1,1,-1,0.5,0.25,1,0,0,1,-2.5e-05,2500,12.5,1e-06,2\n"
+            "vertex-face,open,2,0,1,1,5,0.5,0.25,1,0,0,1,0.001,0,0,1e-06,0\n");
 }
 
 /// Reads a Matrix Market coordinate file back into a dense matrix (mirroring the lower

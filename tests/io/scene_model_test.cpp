@@ -1,5 +1,5 @@
-// Scene + blocks -> DDA model: materials and joints by material pair, gravity present or
-// absent, supports.fixed by face provenance or by geometry, monitors located by
+// Scene + blocks -> DDA model: materials, joints and the joint of every piece face, gravity present
+// or absent, supports.fixed by face provenance or by geometry, monitors located by
 // point-in-convex-polyhedron, and the errors a user can cause. Blocks are hand-built boxes.
 #include "io/scene_model.h"
 
@@ -50,6 +50,17 @@ blocks::BlockModel fourBlocks() {
   return model;
 }
 
+/// The network the blocks above were cut with: disc 1 (their inner faces), of joint 1
+/// (`weak` in scene() below).
+geometry::FractureNetwork discOne() {
+  geometry::FractureNetwork network;
+  geometry::Disc disc;
+  disc.id = 1;
+  disc.joint = 1;
+  network.discs.push_back(disc);
+  return network;
+}
+
 /// A scene over that domain; `extra` adds top-level keys.
 Scene scene(const std::string& extra) {
   return parseScene(
@@ -77,7 +88,7 @@ TEST(SceneModel, MaterialsJointsAndGravity) {
             "    prism: {profile: [[0, 2], [1, 2], [0, 3]], sweep: y, from: 0, to: 1}\n"
             "    material: concrete\n"
             "    joint: {friction: 1.2, cohesion: 1.4e6}\n"),
-      fourBlocks());
+      fourBlocks(), discOne());
   ASSERT_EQ(model.materials.size(), 3u);
   EXPECT_EQ(model.materials[0].density, 2600.0);
   EXPECT_EQ(model.materials[1].young, 0.75e9);
@@ -86,14 +97,12 @@ TEST(SceneModel, MaterialsJointsAndGravity) {
   EXPECT_DOUBLE_EQ(model.materials[1].density, 20.0e3 / 9.81);
   ASSERT_EQ(model.joints.size(), 3u);  // rock_joint, weak, then the dam's inline joint
   EXPECT_EQ(model.joints[model.default_joint].friction, 0.86);
-  // rock-rock: default; soft-rock: the interlayer's joint; soft-soft: default;
-  // concrete against rock or soft: the dam's joint; the table is symmetric.
-  EXPECT_EQ(model.joint_table[0][0], 0);
-  EXPECT_EQ(model.joint_table[1][0], 1);
-  EXPECT_EQ(model.joint_table[0][1], 1);
-  EXPECT_EQ(model.joint_table[1][1], 0);
-  EXPECT_EQ(model.joint_table[2][0], 2);
-  EXPECT_EQ(model.joint_table[1][2], 2);
+  // Each piece face carries the joint of what made it: the inner faces (disc 1) the disc's
+  // joint, the faces on the domain boundary none.
+  const std::vector<std::vector<int>> block1 = {{-1, 1, -1, -1, -1, 1}};  // x max, z max inner
+  EXPECT_EQ(model.blocks[0].face_joints, block1);
+  const std::vector<std::vector<int>> block4 = {{1, -1, -1, -1, 1, -1}};  // x min, z min inner
+  EXPECT_EQ(model.blocks[3].face_joints, block4);
   EXPECT_EQ(model.joints[2].cohesion, 1.4e6);
   EXPECT_EQ(model.gravity, Vec3(0, 0, -9.81));
   ASSERT_EQ(model.blocks.size(), 4u);
@@ -101,11 +110,30 @@ TEST(SceneModel, MaterialsJointsAndGravity) {
   EXPECT_EQ(model.blocks[2].pieces[0].vertices.size(), 8u);
 }
 
+TEST(SceneModel, JointModelIsPassedOn) {
+  // `model` of a joint reaches the engine's DdaJoint; plastic is the default.
+  const Scene brittle = parseScene(
+      "version: 1\n"
+      "domain: {box: {min: [0, 0, 0], max: [2, 1, 2]}}\n"
+      "materials: {rock: {density: 2600, young: 10.0e9, poisson: 0.25},"
+      " soft: {density: 2000, young: 1.0e9, poisson: 0.4}}\n"
+      "rock_material: rock\n"
+      "joints: {rj: {friction: 0.86}, weak: {friction: 0.35, cohesion: 1e5, model: brittle}}\n"
+      "default_joint: rj\n",
+      "tiny.yaml");
+  const dda3d::DdaModel model = buildDdaModel(brittle, fourBlocks(), discOne());
+  ASSERT_EQ(model.joints.size(), 2u);
+  EXPECT_EQ(model.joints[0].model, dda3d::JointModel::Plastic);
+  EXPECT_EQ(model.joints[1].model, dda3d::JointModel::Brittle);
+  EXPECT_EQ(model.joints[1].cohesion, 1e5);
+}
+
 TEST(SceneModel, NoGravityMeansNoBodyForce) {
   // Absent loads.gravity: zero vector, which the engine reads as "no body force term".
-  EXPECT_EQ(buildDdaModel(scene(""), fourBlocks()).gravity, Vec3::Zero());
-  EXPECT_EQ(buildDdaModel(scene("loads: {gravity: [0.5, 0, -9.8]}\n"), fourBlocks()).gravity,
-            Vec3(0.5, 0, -9.8));
+  EXPECT_EQ(buildDdaModel(scene(""), fourBlocks(), discOne()).gravity, Vec3::Zero());
+  EXPECT_EQ(
+      buildDdaModel(scene("loads: {gravity: [0.5, 0, -9.8]}\n"), fourBlocks(), discOne()).gravity,
+      Vec3(0.5, 0, -9.8));
 }
 
 TEST(SceneModel, FixedFacesHoldTheBlocksTouchingThem) {
@@ -119,7 +147,8 @@ TEST(SceneModel, FixedFacesHoldTheBlocksTouchingThem) {
   // Every block touches south and north (the domain is one block deep).
   EXPECT_EQ(blocksOnDomainFaces(blocks, {"south"}, true), std::vector<bool>(4, true));
   EXPECT_EQ(blocksOnDomainFaces(blocks, {}, true), std::vector<bool>(4, false));
-  const dda3d::DdaModel model = buildDdaModel(scene("supports: {fixed: [bottom]}\n"), blocks);
+  const dda3d::DdaModel model =
+      buildDdaModel(scene("supports: {fixed: [bottom]}\n"), blocks, discOne());
   EXPECT_TRUE(model.blocks[0].fixed && model.blocks[1].fixed);
   EXPECT_FALSE(model.blocks[2].fixed || model.blocks[3].fixed);
 }
@@ -130,7 +159,7 @@ TEST(SceneModel, RollerFacesHoldTheirBlocksNormalToTheFaceAtItsVertices) {
   // corners), all along the face's outward normal -x.
   const blocks::BlockModel blocks = fourBlocks();
   const dda3d::DdaModel model =
-      buildDdaModel(scene("supports: {fixed: [bottom], rollers: [west]}\n"), blocks);
+      buildDdaModel(scene("supports: {fixed: [bottom], rollers: [west]}\n"), blocks, discOne());
   ASSERT_EQ(model.fixed_points.size(), 4u);
   for (const dda3d::DdaFixedPoint& p : model.fixed_points) {
     EXPECT_EQ(p.block, 2);
@@ -207,7 +236,7 @@ TEST(SceneModel, MonitorsAttachToTheBlockThatContainsThem) {
   const dda3d::DdaModel model =
       buildDdaModel(scene("monitors:\n  - {name: P4, point: [1.5, 0.5, 1.5]}\n"
                           "  - {name: toe, point: [0.1, 0.1, 0.1]}\n"),
-                    blocks);
+                    blocks, discOne());
   ASSERT_EQ(model.monitors.size(), 2u);
   EXPECT_EQ(model.monitors[0].name, "P4");
   EXPECT_EQ(model.monitors[0].block, 3);
@@ -219,7 +248,7 @@ TEST(SceneModel, PointLoadsActOnTheBlockThatContainsThem) {
   const dda3d::DdaModel model = buildDdaModel(
       scene("loads:\n  point_loads:\n    - {point: [1.5, 0.5, 2], force: [0, 0, -1.0e6]}\n"
             "    - {point: [0.5, 0.5, 0.5], force: [10, 0, 0]}\n"),
-      fourBlocks());
+      fourBlocks(), discOne());
   ASSERT_EQ(model.point_loads.size(), 2u);
   EXPECT_EQ(model.point_loads[0].block, 3);  // on the top face of block 4
   EXPECT_EQ(model.point_loads[0].force, Vec3(0, 0, -1.0e6));
@@ -234,20 +263,20 @@ TEST(SceneModel, WaterWetsTheDomainTopInItsRegion) {
   const dda3d::DdaModel wet =
       buildDdaModel(scene("loads: {water: [{level: 3, unit_weight: 10000, on: {domain_top: true,"
                           " region: {x_max: 1}}}]}\n"),
-                    fourBlocks());
+                    fourBlocks(), discOne());
   ASSERT_EQ(wet.pressures.size(), 1u);
   EXPECT_EQ(wet.pressures[0].block, 2);
   EXPECT_EQ(wet.pressures[0].piece, 0);
   EXPECT_EQ(wet.pressures[0].face, 5);
   EXPECT_EQ(wet.pressures[0].level, 3.0);
   EXPECT_EQ(wet.pressures[0].unit_weight, 10000.0);
-  EXPECT_EQ(
-      buildDdaModel(scene("loads: {water: [{level: 3, on: {domain_top: true}}]}\n"), fourBlocks())
-          .pressures.size(),
-      2u);
-  EXPECT_TRUE(
-      buildDdaModel(scene("loads: {water: [{level: 2, on: {domain_top: true}}]}\n"), fourBlocks())
-          .pressures.empty());
+  EXPECT_EQ(buildDdaModel(scene("loads: {water: [{level: 3, on: {domain_top: true}}]}\n"),
+                          fourBlocks(), discOne())
+                .pressures.size(),
+            2u);
+  EXPECT_TRUE(buildDdaModel(scene("loads: {water: [{level: 2, on: {domain_top: true}}]}\n"),
+                            fourBlocks(), discOne())
+                  .pressures.empty());
 }
 
 TEST(SceneModel, WaterWetsTheStructureFacesThatFaceIt) {
@@ -268,7 +297,7 @@ TEST(SceneModel, WaterWetsTheStructureFacesThatFaceIt) {
   const dda3d::DdaModel model = buildDdaModel(
       scene(dam_scene +
             "loads: {water: [{level: 2.5, on: {structure: dam, facing: [1, 0, 0]}}]}\n"),
-      blocks);
+      blocks, discOne());
   ASSERT_EQ(model.pressures.size(), 1u);
   EXPECT_EQ(model.pressures[0].block, 4);
   EXPECT_EQ(model.pressures[0].piece, 1);
@@ -276,7 +305,7 @@ TEST(SceneModel, WaterWetsTheStructureFacesThatFaceIt) {
   // Facing -z: the bottom faces (n = -z) of both pieces, which reach below 2.5 m.
   EXPECT_EQ(buildDdaModel(scene(dam_scene + "loads: {water: [{level: 2.5, on: {structure: dam,"
                                             " facing: [0, 0, -1]}}]}\n"),
-                          blocks)
+                          blocks, discOne())
                 .pressures.size(),
             2u);
 }
@@ -301,7 +330,7 @@ TEST(SceneModel, UpliftWetsBothSidesOfTheStructureRockInterface) {
   const dda3d::DdaModel model = buildDdaModel(
       scene(dam_scene + "loads: {water: [{level: 2.5, uplift: true, on: {structure: dam, "
                         "facing: [-1, 0, 0]}}, {level: 2.5, on: {domain_top: true}}]}\n"),
-      blocks);
+      blocks, discOne());
   int upstream = 0, dam_base = 0, rock_top = 0;
   for (const dda3d::DdaPressure& p : model.pressures) {
     const Vec3 n = geometry::faceNormal(blocks.blocks[static_cast<std::size_t>(p.block)]
@@ -325,7 +354,7 @@ TEST(SceneModel, UpliftWetsBothSidesOfTheStructureRockInterface) {
 /// The message of the InputError that buildDdaModel throws ("no error" otherwise).
 std::string errorOf(const Scene& s, const blocks::BlockModel& blocks) {
   try {
-    buildDdaModel(s, blocks);
+    buildDdaModel(s, blocks, discOne());
   } catch (const InputError& e) {
     return e.what();
   }

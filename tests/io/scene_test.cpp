@@ -441,78 +441,86 @@ TEST(SceneErrors, ZeroFacingVector) {
             "bad.yaml:9:51: loads.water[0].on.facing: expected a nonzero vector");
 }
 
-// Joints between blocks are chosen by material pair: a second structure of the dam's material
-// with another joint to the rock would silently replace the dam's joint (seen in a test scene:
-// a loose concrete cube without a joint gave the dam the default, cohesionless joint). The
-// same joint twice is fine.
-TEST(SceneErrors, TwoOwnersOfOneMaterialWithDifferentJointsToTheRock) {
-  const std::string head =
-      valid_head +
-      "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
-      "joints: {rj: {friction: 0.6}}\n"
-      "default_joint: rj\n"
-      "structures:\n"
-      "  - name: dam\n"
-      "    prism: {profile: [[0, 0], [1, 0], [0, 1]], sweep: x, from: 0, to: 1}\n"
-      "    material: c\n"
-      "    joint: {friction: 1.2, cohesion: 1.4e6}\n"
-      "  - name: cube\n"
-      "    prism: {profile: [[5, 0], [6, 0], [6, 1], [5, 1]], sweep: x, from: 0, "
-      "to: 1}\n"
-      "    material: c\n";
+// Every discontinuity carries its own joint (the DDA takes a contact's joint from the faces
+// it lies on, not from the materials of its blocks): two structures of one material with
+// different joints to the rock, a fault zone and an interlayer of one material with different
+// joints, and a slab of the rock's own material with another joint than default_joint all
+// read, with analysis.dda, and each keeps its joint. (These were "joint_conflict" errors while
+// joints were chosen by material pair.)
+TEST(SceneJoints, EachDiscontinuityKeepsItsJoint) {
   const std::string dda = "analysis:\n  dda: {steps: 1}\n";
-  EXPECT_EQ(errorOf(head + dda),
-            "bad.yaml:13:15: structures[1].material: structure cube is of material c like "
-            "structure dam but has a different joint to the rock; joints between blocks are "
-            "chosen by their materials, so one would silently replace the other: give both the "
-            "same joint, or this one a material of its own");
-  EXPECT_EQ(errorOf(head + "    joint: {friction: 0.9}\n" + dda),
-            "bad.yaml:14:12: structures[1].joint: structure cube is of material c like "
-            "structure dam but has a different joint to the rock; joints between blocks are "
-            "chosen by their materials, so one would silently replace the other: give both the "
-            "same joint, or this one a material of its own");
-  const Scene same =
-      parseScene(head + "    joint: {friction: 1.2, cohesion: 1.4e6}\n" + dda, "ok.yaml");
-  EXPECT_EQ(same.structures.size(), 2u);
-  // The same for slabs: a fault zone and an interlayer of one material.
-  const std::string slabs =
-      valid_head +
-      "materials: {clay: {density: 2000, young: 1e9, poisson: 0.4}}\n"
-      "joints: {rj: {friction: 0.6}, soft: {friction: 0.3}}\n"
-      "default_joint: rj\n"
-      "faults:\n"
-      "  - {name: F1, center: [5, 5, -5], dip_direction: 0, dip: 60, "
-      "size: [4, 2], thickness: 0.2, material: clay, joint: soft}\n"
-      "interlayers:\n"
-      "  - {name: P1, profile: [[0, -3], [10, -4]], sweep: y, thickness: 0.3, "
-      "material: clay}\n";
-  EXPECT_EQ(errorOf(slabs + dda),
-            "bad.yaml:9:82: interlayers[0].material: interlayer P1 is of material clay like fault "
-            "F1 but has a different joint to the rock; joints between blocks are chosen by their "
-            "materials, so one would silently replace the other: give both the same joint, or "
-            "this one a material of its own");
-  EXPECT_NO_THROW(
-      parseScene(slabs.substr(0, slabs.size() - 2) + ", joint: soft}\n" + dda, "ok.yaml"));
-  // A slab of the rock's own material with another joint would give it to every rock-rock
-  // contact.
-  EXPECT_EQ(errorOf(valid_head +
-                    "materials: {rock: {density: 2600, young: 1e10, poisson: 0.25}}\n"
-                    "rock_material: rock\n"
-                    "joints: {rj: {friction: 0.6}, soft: {friction: 0.3}}\n"
-                    "default_joint: rj\n"
-                    "faults:\n"
-                    "  - {name: F1, center: [5, 5, -5], dip_direction: 0, dip: 60, "
-                    "thickness: 0.2, material: rock, joint: soft}\n" +
-                    dda),
-            "bad.yaml:8:102: faults[0].joint: fault F1 is of material rock like the rock "
-            "(rock_material, default_joint) but has a different joint to the rock; joints "
-            "between blocks are chosen by their materials, so one would silently replace the "
-            "other: give both the same joint, or this one a material of its own");
-  // Without a DDA the joints do not act: the scene reads, and keeps the message for a DDA
-  // model built from it (io::buildDdaModel throws it).
-  const Scene cut_only = parseScene(slabs, "bad.yaml");
-  ASSERT_TRUE(cut_only.joint_conflict.has_value());
-  EXPECT_EQ(cut_only.joint_conflict->substr(0, 41), "bad.yaml:9:82: interlayers[0].material: i");
+  const Scene structures =
+      parseScene(valid_head +
+                     "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
+                     "joints: {rj: {friction: 0.6}}\n"
+                     "default_joint: rj\n"
+                     "structures:\n"
+                     "  - name: dam\n"
+                     "    prism: {profile: [[0, 0], [1, 0], [0, 1]], sweep: x, from: 0, to: 1}\n"
+                     "    material: c\n"
+                     "    joint: {friction: 1.2, cohesion: 1.4e6}\n"
+                     "  - name: cube\n"
+                     "    prism: {profile: [[5, 0], [6, 0], [6, 1], [5, 1]], sweep: x, from: 0, "
+                     "to: 1}\n"
+                     "    material: c\n"
+                     "    joint: {friction: 0.9}\n" +
+                     dda,
+                 "ok.yaml");
+  ASSERT_EQ(structures.structures.size(), 2u);
+  ASSERT_EQ(structures.joints.size(), 3u);  // rj, dam.joint, cube.joint
+  EXPECT_EQ(structures.structures[0].joint, 1);
+  EXPECT_EQ(structures.structures[1].joint, 2);
+  EXPECT_EQ(structures.joints[1].friction, 1.2);
+  EXPECT_EQ(structures.joints[2].friction, 0.9);
+  const Scene slabs =
+      parseScene(valid_head +
+                     "materials: {rock: {density: 2600, young: 1e10, poisson: 0.25},"
+                     " clay: {density: 2000, young: 1e9, poisson: 0.4}}\n"
+                     "rock_material: rock\n"
+                     "joints: {rj: {friction: 0.6}, soft: {friction: 0.3}, weak: {friction: 0.2}}\n"
+                     "default_joint: rj\n"
+                     "faults:\n"
+                     "  - {name: F1, center: [5, 5, -5], dip_direction: 0, dip: 60, "
+                     "size: [4, 2], thickness: 0.2, material: clay, joint: soft}\n"
+                     "  - {name: F2, center: [5, 5, -5], dip_direction: 90, dip: 30, "
+                     "thickness: 0.2, material: rock, joint: weak}\n"
+                     "interlayers:\n"
+                     "  - {name: P1, profile: [[0, -3], [10, -4]], sweep: y, thickness: 0.3, "
+                     "material: clay}\n" +
+                     dda,
+                 "ok.yaml");
+  ASSERT_EQ(slabs.dfn.faults.size(), 2u);
+  EXPECT_EQ(slabs.dfn.faults[0].joint, 1);       // soft
+  EXPECT_EQ(slabs.dfn.faults[1].joint, 2);       // weak, in a slab of the rock's material
+  EXPECT_EQ(slabs.dfn.interlayers[0].joint, 0);  // default_joint, same material as F1
+  EXPECT_EQ(slabs.dfn.interlayers[0].material, 1);
+}
+
+// `model` of a joint: plastic (the default) or brittle, in named and inline joints; any other
+// value is an error at its line.
+TEST(SceneJoints, JointModelIsPlasticOrBrittle) {
+  const Scene scene =
+      parseScene(valid_head +
+                     "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
+                     "joints: {a: {friction: 0.5}, b: {friction: 0.5, model: brittle},"
+                     " p: {friction: 0.5, model: plastic}}\n"
+                     "structures:\n"
+                     "  - {name: dam, prism: {profile: [[0, 0], [1, 0], [0, 1]], sweep: x, from: 0,"
+                     " to: 1}, material: c, joint: {friction: 1, model: brittle}}\n",
+                 "ok.yaml");
+  ASSERT_EQ(scene.joints.size(), 4u);
+  EXPECT_FALSE(scene.joints[0].brittle);
+  EXPECT_TRUE(scene.joints[1].brittle);
+  EXPECT_FALSE(scene.joints[2].brittle);
+  EXPECT_TRUE(scene.joints[3].brittle);  // dam.joint
+  EXPECT_EQ(errorOf(valid_head + "joints:\n  a: {friction: 0.5, model: elastic}\n"),
+            "bad.yaml:4:29: joints.a.model: unknown joint model 'elastic'; expected one of: "
+            "plastic, brittle (did you mean 'plastic'?)");
+  EXPECT_EQ(errorOf(valid_head + "joints:\n  a: {friction: 0.5, model: [brittle]}\n"),
+            "bad.yaml:4:29: joints.a.model: expected one of: plastic, brittle");
+  EXPECT_EQ(errorOf(valid_head + "joints:\n  a: {friction: 0.5, model: britle}\n"),
+            "bad.yaml:4:29: joints.a.model: unknown joint model 'britle'; expected one of: "
+            "plastic, brittle (did you mean 'brittle'?)");
 }
 
 // ----- valid scenes -----
