@@ -162,6 +162,13 @@ TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
   const nlohmann::json dry = summaryOf("strength", "frictional", wedgeScene("0"));
   ASSERT_TRUE(dry["safety_factor"].is_number()) << dry.dump(2);
   EXPECT_NEAR(dry["safety_factor"].get<double>(), frictional, 0.03 * frictional);
+  // Brittle joints (Shi's rule) lose a contact's cohesion as soon as it slides: the corner
+  // carrying the most shear slides first and the others follow, so the wedge goes at the
+  // cohesionless factor, not at the rigid-plastic one (docs/stability.md, "Joint models").
+  const nlohmann::json brittle =
+      summaryOf("strength", "brittle", wedgeScene("10.0e3", ", model: brittle"));
+  ASSERT_TRUE(brittle["safety_factor"].is_number()) << brittle.dump(2);
+  EXPECT_NEAR(brittle["safety_factor"].get<double>(), frictional, 0.03 * frictional);
 }
 
 /// A gravity dam of section (0,0) (8,0) (crest,6) (0,6), 4 m wide, 2400 kg/m3, on a fixed
@@ -259,6 +266,24 @@ INSTANTIATE_TEST_SUITE_P(Cases, EccentricDam,
                                            DamCase{1.0, 30.0e3, true, -0.111},
                                            DamCase{1.0, 0.0, true, -0.475},
                                            DamCase{2.0, 30.0e3, true, -0.045}));
+
+TEST_F(LimitEquilibriumCli, BrittleJointsUnderAnOffCentreDamFailBelowTheShearFrictionFactor) {
+  // The crest-1 dam with uplift and brittle joints: its base resultant lies 0.11 L upstream,
+  // so the corners carry uneven normal forces; the least loaded slide first and lose their
+  // cohesion for good, and the dam goes below the rigid-plastic factor (1.92) but above the
+  // factor of friction alone (0.56). Plastic joints give 1.92 (EccentricDam above).
+  const DamCase c{1.0, 30.0e3, true, -0.111};
+  const double plastic = damFactor(c).first;
+  const double frictional = damFactor({1.0, 0.0, true, 0.0}).first;
+  std::string scene = damScene(c.crest, "30.0e3", c.uplift);
+  const std::string joint = "cohesion: 30.0e3}";
+  scene.replace(scene.find(joint), joint.size(), "cohesion: 30.0e3, model: brittle}");
+  const nlohmann::json s = summaryOf("overload", "brittle-dam", scene);
+  ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
+  const double k = s["safety_factor"].get<double>();
+  EXPECT_LT(k, 0.97 * plastic) << "brittle cohesion should be lost corner by corner";
+  EXPECT_GT(k, frictional);
+}
 
 TEST_F(LimitEquilibriumCli, ARunThatCannotProgressStopsWithTheTimeAndTheBlock) {
   // A cube dropped 2 m onto a slab with min_time_step = time_step: at landing the step moves
