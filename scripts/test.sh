@@ -1,8 +1,17 @@
 #!/usr/bin/env bash
-# Builds everything (library, program, tests, benchmarks) and runs all tests with CTest.
+# Builds everything (library, program, tests, benchmarks), runs all tests with CTest, and
+# checks the verification manual: the tests record every comparison with a hand value into
+# build/verification (tests/support/verification.h), and docs/verification.md must be what
+# scripts/verification.py writes from those records (the script fails with a diff otherwise;
+# regenerate it with `python3 scripts/verification.py` and commit it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-debian.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
+# Absolute: CTest runs each test in its own working directory.
+export ROCKMASS_VERIFICATION_DIR="$PWD/build/verification"
+rm -rf "$ROCKMASS_VERIFICATION_DIR"
+mkdir -p "$ROCKMASS_VERIFICATION_DIR"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+/usr/bin/python3 scripts/verification.py --records "$ROCKMASS_VERIFICATION_DIR" --check

@@ -21,6 +21,7 @@
 
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
+#include "tests/support/verification.h"
 
 namespace rockmass {
 namespace {
@@ -92,6 +93,10 @@ double slidingFactor(double cohesion = kCohesion) {
   return (kFriction * (weight - uplift) + cohesion * area) / thrust;
 }
 
+/// The dam's hand formula and its source, for the verification manual.
+const std::string kDamSource =
+    "shear friction K = (f (W - U) + c A) / H (USBR, Design of Gravity Dams, 1976, ch. 4)";
+
 class StabilityCli : public ::testing::Test {
  protected:
   test::TempDir dir{"stability_cli"};
@@ -111,6 +116,15 @@ TEST_F(StabilityCli, DamSlidesAtTheShearFrictionOverloadFactor) {
   ASSERT_TRUE(summary["safety_factor"].is_number()) << summary.dump(2);
   // Issue 6: within 3% (the bisection bracket is 0.02 wide, 0.4% of K).
   EXPECT_NEAR(summary["safety_factor"].get<double>(), expected, 0.03 * expected);
+  test::recordVerification({.group = "Dams",
+                            .name = "dam 8/3/6 m, f = 0.6, c = 30 kPa, water to the crest, full "
+                                    "uplift, static: overload factor K_s",
+                            .source = kDamSource,
+                            .expected = expected,
+                            .measured = summary["safety_factor"].get<double>(),
+                            .tolerance = 0.03,
+                            .relative = true,
+                            .unit = "-"});
   EXPECT_EQ(summary["overload"]["K_s"], summary["safety_factor"]);
   EXPECT_LE(summary["overload"]["first_unstable"].get<double>() -
                 summary["overload"]["last_stable"].get<double>(),
@@ -155,6 +169,16 @@ TEST_F(StabilityCli, StrengthReductionOfAFrictionalDamMatchesTheHandCalculation)
   ASSERT_TRUE(summary["safety_factor"].is_number()) << summary.dump(2);
   // Issue 6 tolerance, 3% (the bisection bracket is 0.02 wide).
   EXPECT_NEAR(summary["safety_factor"].get<double>(), expected, 0.03 * expected);
+  test::recordVerification({.group = "Dams",
+                            .name = "dam 8/3/6 m, f = 0.6, no cohesion, water to the crest, full "
+                                    "uplift, static: strength-reduction factor",
+                            .source = "SRF = f (W - U) / H (USBR, Design of Gravity Dams, 1976, "
+                                      "ch. 4)",
+                            .expected = expected,
+                            .measured = summary["safety_factor"].get<double>(),
+                            .tolerance = 0.03,
+                            .relative = true,
+                            .unit = "-"});
   EXPECT_EQ(summary["strength_reduction"]["critical_srf"], summary["safety_factor"]);
   EXPECT_TRUE(summary["timings"].contains("strength_reduction"));
   EXPECT_FALSE(fs::exists(dir.path() / "strength" / "overload.csv"));
@@ -201,6 +225,15 @@ TEST_F(StabilityCli, WatchingTheMonitorsIgnoresALooseBlockAndFindsTheDamsFactor)
   const double expected = slidingFactor();  // 2.40
   ASSERT_TRUE(watched["safety_factor"].is_number()) << watched["overload"].dump(2);
   EXPECT_NEAR(watched["safety_factor"].get<double>(), expected, 0.03 * expected);
+  test::recordVerification({.group = "Dams",
+                            .name = "the same dam with a loose cube falling beside it, watch: "
+                                    "monitors: overload factor K_s",
+                            .source = kDamSource,
+                            .expected = expected,
+                            .measured = watched["safety_factor"].get<double>(),
+                            .tolerance = 0.03,
+                            .relative = true,
+                            .unit = "-"});
   const nlohmann::json& first = watched["overload"]["runs"][0];
   EXPECT_TRUE(first["at_rest"].get<bool>());
   // The cube falls freely: its step is g dt^2 / 2 less nothing, a ratio of 1 (round-off).

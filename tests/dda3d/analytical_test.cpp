@@ -13,6 +13,7 @@
 
 #include "dda3d/simulation.h"
 #include "dda_scenes.h"
+#include "tests/support/verification.h"
 
 namespace rockmass::dda3d {
 namespace {
@@ -47,6 +48,17 @@ TEST_P(FreeFall, MatchesHalfGTSquared) {
   // round-off remains: about one ulp of the position per step (~600 steps of ~1 m).
   const double expected = 2.0 * t - 0.5 * kG * t * t;
   EXPECT_NEAR(sim.centroidDisplacement(0).z(), expected, 1e-12 * 600);
+  test::recordVerification(
+      {.group = "Free fall",
+       .name = "free fall from 2 m/s upwards, " +
+               std::string(GetParam() == Kinematics::Rigid ? "rigid" : "deformable") +
+               ": height gained at 0.6 s",
+       .source = "z = v0 t - g t^2 / 2 (the scheme is exact for a constant "
+                 "acceleration)",
+       .expected = expected,
+       .measured = sim.centroidDisplacement(0).z(),
+       .tolerance = 1e-12 * 600,
+       .unit = "m"});
   EXPECT_NEAR(sim.blocks()[0].velocity[2], 2.0 - kG * t, 1e-12 * 600);
   EXPECT_NEAR(sim.centroidDisplacement(0).head<2>().norm(), 0.0, 1e-12);
   EXPECT_EQ(sim.contactCounts().total, 0);
@@ -131,6 +143,21 @@ TEST_P(InclineSliding, FollowsTheFrictionalAcceleration) {
     // Issue 5: within 1% after the first 0.1 s.
     EXPECT_NEAR(along, expected, 0.01 * expected) << "t = " << sim.time();
     EXPECT_GT(sim.contactCounts().sliding, 0);
+    if (t == 0.3) {
+      // The acceleration 2 d / t^2 that the displacement at 0.3 s gives (same relative error).
+      test::recordVerification(
+          {.group = "Incline: sliding and toppling",
+           .name = "block sliding, theta " + std::to_string(static_cast<int>(c.theta)) +
+                   " deg, phi " + std::to_string(static_cast<int>(c.phi)) + " deg, " +
+                   (c.kinematics == Kinematics::Rigid ? "rigid" : "deformable") +
+                   ", oblique frame: acceleration over 0.3 s",
+           .source = "Coulomb: a = g (sin theta - cos theta tan phi) (Goodman & Shi 1985, ch. 1)",
+           .expected = a,
+           .measured = 2.0 * along / (sim.time() * sim.time()),
+           .tolerance = 0.01,
+           .relative = true,
+           .unit = "m/s2"});
+    }
   }
   EXPECT_TRUE(sim.activeTerms().friction);
 }
@@ -157,6 +184,18 @@ TEST_P(InclineStable, DoesNotCreep) {
   // Issue 5: < 1e-6 of its size (1 m) over the next 10^4 steps.
   EXPECT_LT((sim.centroidDisplacement(1) - settled).norm(), 1e-6);
   EXPECT_EQ(sim.contactCounts().sliding, 0);
+  test::recordVerification(
+      {.group = "Incline: sliding and toppling",
+       .name = "block at rest, theta " + std::to_string(static_cast<int>(c.theta)) + " deg, phi " +
+               std::to_string(static_cast<int>(c.phi)) + " deg, " +
+               (c.kinematics == Kinematics::Rigid ? "rigid" : "deformable") +
+               (c.dynamic_ratio < 1.0 ? ", dynamic ratio 0.95" : ", fully dynamic") +
+               ": motion over 10^4 steps",
+       .source = "Coulomb: no motion when phi >= theta (Goodman & Shi 1985, ch. 1)",
+       .expected = 0.0,
+       .measured = (sim.centroidDisplacement(1) - settled).norm(),
+       .tolerance = 1e-6,
+       .unit = "m"});
 }
 INSTANTIATE_TEST_SUITE_P(Cases, InclineStable,
                          // Fully dynamic, and phi = theta + 1 deg for a deformable block with
@@ -185,6 +224,16 @@ TEST(ElasticColumn, MeanStrainIsRhoGHOverTwoE) {
   const double expected = -kDensity * kG * kHeight / (2.0 * kYoung);
   // Issue 5: within 1%.
   EXPECT_NEAR(sim.blocks()[1].strain[2], expected, 0.01 * std::abs(expected));
+  // The same as the settlement of the column's top by its strain: rho g H^2 / (2 E).
+  test::recordVerification({.group = "Deformable column",
+                            .name = "one block 10 m high, nu = 0, static: elastic settlement",
+                            .source = "uniaxial stress under own weight: rho g H^2 / (2 E) "
+                                      "(Timoshenko & Goodier, Theory of Elasticity)",
+                            .expected = -expected * kHeight,
+                            .measured = -sim.blocks()[1].strain[2] * kHeight,
+                            .tolerance = 0.01,
+                            .relative = true,
+                            .unit = "m"});
   EXPECT_NEAR(sim.blocks()[1].stress[2], kYoung * expected, 0.01 * kYoung * std::abs(expected));
   EXPECT_TRUE(sim.activeTerms().elastic);
   EXPECT_TRUE(sim.activeTerms().initial_stress);

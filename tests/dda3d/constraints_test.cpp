@@ -7,9 +7,11 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "dda3d/simulation.h"
 #include "dda_scenes.h"
+#include "tests/support/verification.h"
 
 namespace rockmass::dda3d {
 namespace {
@@ -43,6 +45,14 @@ TEST(Bolt, StaticExtensionIsMgOverK) {
   // Static steps converge geometrically to the equilibrium; the bolt stays vertical, so its
   // linearisation along the axis is exact: 1e-6 relative.
   EXPECT_NEAR(-sim.centroidDisplacement(0).z(), expected, 1e-6 * expected);
+  test::recordVerification({.group = "Bolts and fixed points",
+                            .name = "1 m cube on a vertical bolt, k = 1e6 N/m, static: extension",
+                            .source = "linear spring: m g / k",
+                            .expected = expected,
+                            .measured = -sim.centroidDisplacement(0).z(),
+                            .tolerance = 1e-6,
+                            .relative = true,
+                            .unit = "m"});
   EXPECT_NEAR(sim.centroidDisplacement(0).head<2>().norm(), 0.0, 1e-12);
   EXPECT_TRUE(sim.activeTerms().bolts);
   // The bolt's spring holds m g * extension / 2 at equilibrium.
@@ -84,6 +94,25 @@ TEST(Bolt, OscillatesWithPeriodTwoPiSqrtMOverK) {
   EXPECT_NEAR(minima[0], 0.5 * period, 5e-3 * period);
   EXPECT_NEAR(minima[1] - minima[0], period, 5e-3 * period);
   EXPECT_NEAR(lowest_depth, 2.0 * static_extension, 5e-3 * static_extension);
+  const std::string source =
+      "free oscillation of a mass on a spring (Timoshenko, Vibration "
+      "Problems in Engineering, ch. 1)";
+  test::recordVerification({.group = "Bolts and fixed points",
+                            .name = "1 m cube released on a bolt, k = 1e6 N/m: period",
+                            .source = "T = 2 pi sqrt(m / k); " + source,
+                            .expected = period,
+                            .measured = minima[1] - minima[0],
+                            .tolerance = 5e-3,
+                            .relative = true,
+                            .unit = "s"});
+  test::recordVerification({.group = "Bolts and fixed points",
+                            .name = "1 m cube released on a bolt, k = 1e6 N/m: lowest point",
+                            .source = "2 m g / k; " + source,
+                            .expected = 2.0 * static_extension,
+                            .measured = lowest_depth,
+                            .tolerance = 5e-3 / 2.0,
+                            .relative = true,
+                            .unit = "m"});
 }
 
 TEST(FixedPoint, HoldsABlockWithinThePenaltyCompliance) {

@@ -12,10 +12,12 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "dda3d/block_terms.h"
 #include "dda_scenes.h"
+#include "tests/support/verification.h"
 
 namespace rockmass::dda3d {
 namespace {
@@ -39,6 +41,15 @@ TEST(WaterLoad, SubmergedVerticalFaceForceAndMomentAboutTheBase) {
   const double force = 0.5 * kGammaW * h * h * width;
   // The edge-midpoint rule is exact for the quadratic integrand: only round-off remains.
   EXPECT_NEAR(f[0], force, 1e-9 * force);
+  const std::string statics = "fluid statics (White, Fluid Mechanics, 7th ed., sec. 2.5)";
+  test::recordVerification({.group = "Water loads",
+                            .name = "vertical face 3 m wide, water 2.5 m deep: force",
+                            .source = "F = gw h^2 w / 2; " + statics,
+                            .expected = force,
+                            .measured = f[0],
+                            .tolerance = 1e-9,
+                            .relative = true,
+                            .unit = "N"});
   EXPECT_NEAR(f[1], 0.0, 1e-9 * force);
   EXPECT_NEAR(f[2], 0.0, 1e-9 * force);
   // f[3:6] is the moment about the centroid; move it to the base line (x = 0.5, z = 1):
@@ -48,6 +59,15 @@ TEST(WaterLoad, SubmergedVerticalFaceForceAndMomentAboutTheBase) {
   const Vec3 moment_base = moment_c + arm.cross(Vec3(f[0], f[1], f[2]));
   const double expected = kGammaW * h * h * h * width / 6.0;
   EXPECT_NEAR(moment_base.y(), expected, 1e-9 * expected);
+  test::recordVerification(
+      {.group = "Water loads",
+       .name = "vertical face 3 m wide, water 2.5 m deep: moment about the base",
+       .source = "M = gw h^3 w / 6; " + statics,
+       .expected = expected,
+       .measured = moment_base.y(),
+       .tolerance = 1e-9,
+       .relative = true,
+       .unit = "N m"});
   EXPECT_NEAR(moment_base.x(), 0.0, 1e-9 * expected);
   EXPECT_NEAR(moment_base.z(), 0.0, 1e-9 * expected);
   // Fully submerged (level 1 m above the top, face height a = 4 m): F = gw w (d a - a^2/2)
@@ -55,6 +75,15 @@ TEST(WaterLoad, SubmergedVerticalFaceForceAndMomentAboutTheBase) {
   const BlockVector deep = pressureLoad(block, block.pieces[0], 0, base + 5.0, kGammaW);
   const double deep_force = kGammaW * width * (5.0 * 4.0 - 0.5 * 16.0);
   EXPECT_NEAR(deep[0], deep_force, 1e-9 * deep_force);
+  test::recordVerification({.group = "Water loads",
+                            .name = "vertical face 4 m high, fully submerged (1 m of water above): "
+                                    "force",
+                            .source = "F = gw w (d a - a^2 / 2); " + statics,
+                            .expected = deep_force,
+                            .measured = deep[0],
+                            .tolerance = 1e-9,
+                            .relative = true,
+                            .unit = "N"});
 }
 
 TEST(WaterLoad, OverloadScalesOnlyTheNamedLoads) {
@@ -185,6 +214,15 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   const double a = std::sin(radians(60.0)) - std::cos(radians(60.0)) * std::tan(radians(10.0));
   // The step's displacement is a dt^2 / 2 less what the contact springs take up (1e-2).
   EXPECT_NEAR(failing.unbalanced_ratio, a, 1e-2 * a);
+  test::recordVerification(
+      {.group = "Incline: sliding and toppling",
+       .name = "block sliding, theta 60 deg, phi 10 deg, static run: unbalanced ratio",
+       .source = "a / g = sin theta - cos theta tan phi (Coulomb), the static unbalanced ratio",
+       .expected = a,
+       .measured = failing.unbalanced_ratio,
+       .tolerance = 1e-2,
+       .relative = true,
+       .unit = "-"});
   Simulation held(blockOnSlope(20.0, 25.0), settings);
   const EquilibriumResult rest = runToEquilibrium(held, equilibrium);
   EXPECT_TRUE(rest.reached);
@@ -299,6 +337,16 @@ TEST(StrengthReduction, WedgeRecoversTheBlockTheoryFactorOfSafety) {
   ASSERT_TRUE(result.critical.has_value());
   // Issue 6: within 3% of block theory (the bracket is 0.02 wide, 1.3% of FS).
   EXPECT_NEAR(*result.critical, fs, 0.03 * fs);
+  test::recordVerification(
+      {.group = "Wedges",
+       .name = "wedge 50/35 deg flanks, 35 deg plunge, dry: strength-reduction factor",
+       .source = "block theory: FS = (N_A + N_B) tan phi / |w.s| (Hoek & Bray, ch. 7; Goodman & "
+                 "Shi 1985, ch. 9)",
+       .expected = fs,
+       .measured = *result.critical,
+       .tolerance = 0.03,
+       .relative = true,
+       .unit = "-"});
   EXPECT_LE(*result.first_unstable - *result.last_stable, 0.02 + 1e-12);
   // The sweep stopped at 1.6 (the first not at rest); bisection ran after it.
   EXPECT_EQ(result.runs[3].factor, 1.6);

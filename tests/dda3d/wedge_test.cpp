@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "dda3d/simulation.h"
 #include "dda_scenes.h"
+#include "tests/support/verification.h"
 
 namespace rockmass::dda3d {
 namespace {
@@ -61,6 +63,16 @@ TEST(Wedge, SlidesAlongTheIntersectionWithTheBlockTheoryAcceleration) {
   const Vec3 moved = sim.centroidDisplacement(2);
   // Issue 5: the predicted acceleration within 2%.
   EXPECT_NEAR(moved.dot(t.s), expected, 0.02 * expected);
+  test::recordVerification(
+      {.group = "Wedges",
+       .name = "wedge 50/35 deg flanks, 35 deg plunge, phi = critical - 10 deg: acceleration",
+       .source = "block theory: a = (|w.s| - (N_A + N_B) tan phi) / m (Hoek & Bray, Rock Slope "
+                 "Engineering, ch. 7; Goodman & Shi 1985, ch. 9)",
+       .expected = a,
+       .measured = 2.0 * moved.dot(t.s) / (sim.time() * sim.time()),
+       .tolerance = 0.02,
+       .relative = true,
+       .unit = "m/s2"});
   // Along the line of intersection: no motion off it beyond the springs' compression.
   EXPECT_LT((moved - moved.dot(t.s) * t.s).norm(), 1e-3 * expected);
 }
@@ -82,6 +94,14 @@ TEST(Wedge, CriticalFrictionAngleWithinHalfADegree) {
   const Vec3 rest = held.centroidDisplacement(2);
   held.runUntil(0.3);
   EXPECT_LT((held.centroidDisplacement(2) - rest).norm(), 1e-7);
+  test::recordVerification({.group = "Wedges",
+                            .name = "wedge at phi = critical + 0.5 deg: motion from 0.2 to 0.3 s",
+                            .source = "block theory: FS = (N_A + N_B) tan phi / |w.s| > 1 (Hoek "
+                                      "& Bray, ch. 7)",
+                            .expected = 0.0,
+                            .measured = (held.centroidDisplacement(2) - rest).norm(),
+                            .tolerance = 1e-7,
+                            .unit = "m"});
   Wedge sliding = wedge(kAlpha, kBeta, critical - 0.5, g);
   Simulation slid(sliding.model, settings);
   slid.runUntil(0.3);
@@ -91,6 +111,15 @@ TEST(Wedge, CriticalFrictionAngleWithinHalfADegree) {
   // difference of large forces, so only its order is checked here (the 2% check is above).
   EXPECT_GT(slid.centroidDisplacement(2).dot(t.s), 0.5 * expected);
   EXPECT_LT(slid.centroidDisplacement(2).dot(t.s), 1.5 * expected);
+  test::recordVerification(
+      {.group = "Wedges",
+       .name = "wedge at phi = critical - 0.5 deg: acceleration (small difference of forces)",
+       .source = "block theory: a = (|w.s| - (N_A + N_B) tan phi) / m (Hoek & Bray, ch. 7)",
+       .expected = a,
+       .measured = 2.0 * slid.centroidDisplacement(2).dot(t.s) / (slid.time() * slid.time()),
+       .tolerance = 0.5,
+       .relative = true,
+       .unit = "m/s2"});
 }
 
 TEST(Wedge, RidesOnOnePlaneWhenTheOtherNormalForceIsNegative) {
@@ -111,6 +140,16 @@ TEST(Wedge, RidesOnOnePlaneWhenTheOtherNormalForceIsNegative) {
   sim.runUntil(0.2);
   const double expected = 0.5 * a * sim.time() * sim.time();
   EXPECT_NEAR(sim.centroidDisplacement(2).dot(downhill), expected, 0.02 * expected);
+  test::recordVerification(
+      {.group = "Wedges",
+       .name = "wedge with N_B < 0: rides on plane A alone, acceleration",
+       .source = "block theory: lifts off B, a = g (sin psi_A - cos psi_A tan phi) (Goodman & "
+                 "Shi 1985, ch. 9)",
+       .expected = a,
+       .measured = 2.0 * sim.centroidDisplacement(2).dot(downhill) / (sim.time() * sim.time()),
+       .tolerance = 0.02,
+       .relative = true,
+       .unit = "m/s2"});
   for (const Contact& c : sim.contacts()) {
     if (c.block_i == 1 || c.block_j == 1) {
       EXPECT_EQ(c.state, ContactState::Open);
@@ -142,15 +181,43 @@ TEST(Toppling, TallBlockToppleSquatBlockSlides) {
     Simulation sim(model, settings);
     sim.runUntil(0.5);
     const double angle = turned(sim, 1, Vec3::UnitZ());
+    const std::string shape =
+        "block b/h = " + std::string(topples ? "0.33" : "1") + " on psi = 30 deg, phi = 20 deg";
+    const std::string source =
+        "topples when b/h < tan psi (Goodman & Bray 1976; Wyllie & Mah, "
+        "Rock Slope Engineering, ch. 9)";
     if (topples) {
       // Toppling from rest: several degrees within 0.5 s (~14 deg for this block).
       EXPECT_GT(angle, 3.0);
+      test::recordVerification({.group = "Incline: sliding and toppling",
+                                .name = shape + ", slides and topples: rotation at 0.5 s",
+                                .source = source,
+                                .expected = 3.0,
+                                .measured = angle,
+                                .unit = "deg",
+                                .compare = test::Compare::AtLeast});
     } else {
       EXPECT_LT(angle, 0.1);  // stays flat: only the springs' tilt (~1e-6 deg)
       const double a =
           kG * (std::sin(radians(psi)) - std::cos(radians(psi)) * std::tan(radians(20.0)));
       const double expected = 0.5 * a * sim.time() * sim.time();
       EXPECT_NEAR(sim.centroidDisplacement(1).x(), expected, 0.01 * expected);
+      test::recordVerification({.group = "Incline: sliding and toppling",
+                                .name = shape + ", slides without toppling: rotation at 0.5 s",
+                                .source = source,
+                                .expected = 0.1,
+                                .measured = angle,
+                                .unit = "deg",
+                                .compare = test::Compare::AtMost});
+      test::recordVerification(
+          {.group = "Incline: sliding and toppling",
+           .name = shape + ", slides without toppling: acceleration over 0.5 s",
+           .source = "Coulomb: a = g (sin psi - cos psi tan phi) (Goodman & Shi 1985, ch. 1)",
+           .expected = a,
+           .measured = 2.0 * sim.centroidDisplacement(1).x() / (sim.time() * sim.time()),
+           .tolerance = 0.01,
+           .relative = true,
+           .unit = "m/s2"});
     }
   }
 }
@@ -181,6 +248,14 @@ TEST(StaticMode, WedgeAboveFsOneComesToRest) {
   // Settling on springs of k ~ 4e11 N/m: the whole motion is of the order of m g / k.
   EXPECT_LT(settled.norm(), 1e-7);
   EXPECT_LT((sim.centroidDisplacement(2) - settled).norm(), 1e-12);
+  test::recordVerification({.group = "Wedges",
+                            .name = "wedge at FS = 1.5, static mode: motion over 200 steps",
+                            .source = "block theory: FS = (N_A + N_B) tan phi / |w.s| = 1.5, at "
+                                      "rest (Goodman & Shi 1985, ch. 9)",
+                            .expected = 0.0,
+                            .measured = (sim.centroidDisplacement(2) - settled).norm(),
+                            .tolerance = 1e-12,
+                            .unit = "m"});
 }
 
 TEST(StaticMode, BlockOnASlopeAdvancesByHalfADtSquaredPerStep) {
@@ -204,15 +279,33 @@ TEST(StaticMode, BlockOnASlopeAdvancesByHalfADtSquaredPerStep) {
     const double a =
         kG * (std::sin(radians(kTheta)) - std::cos(radians(kTheta)) * std::tan(radians(kPhi)));
     double before = 0.0;
+    double worst = 0.0, worst_acceleration = a;  // the step farthest from a dt^2 / 2
     for (int k = 0; k < 300; ++k) {
       const StepReport r = sim.step();
       const double along = sim.centroidDisplacement(1).x();
       if (k >= 3) {
         const double expected = 0.5 * a * r.time_step * r.time_step;
         EXPECT_NEAR(along - before, expected, 0.01 * expected) << "step " << k;
+        const double step_acceleration = 2.0 * (along - before) / (r.time_step * r.time_step);
+        if (std::abs(step_acceleration - a) >= worst) {
+          worst = std::abs(step_acceleration - a);
+          worst_acceleration = step_acceleration;
+        }
       }
       before = along;
     }
+    test::recordVerification(
+        {.group = "Incline: sliding and toppling",
+         .name = std::string("block sliding, theta 30 deg, phi 20 deg, static mode, ") +
+                 (kinematics == Kinematics::Rigid ? "rigid" : "deformable") +
+                 ": worst step's 2 d / dt^2, steps 4-300",
+         .source = "each static step starts from rest: d = a dt^2 / 2, a = g (sin theta - cos "
+                   "theta tan phi)",
+         .expected = a,
+         .measured = worst_acceleration,
+         .tolerance = 0.01,
+         .relative = true,
+         .unit = "m/s2"});
   }
 }
 
