@@ -37,22 +37,9 @@ GROUPS = [
     ("Dams", "A gravity-dam block on a rock slab: overload and strength reduction (rockmass CLI)."),
 ]
 
-# Cases whose tests come with a fix that is under way (issue 15). A recorded case of the same
-# group and name replaces its row.
-PENDING = [
-    {"group": "Dams", "case": "eccentric dam, cohesion and uplift: overload factor K",
-     "source": "shear-friction formula K = (f (W - U) + c A) / H (USBR, Design of Gravity Dams, "
-               "ch. 4) with the resultant off the base's centre",
-     "note": "pending: the test comes with the fix of the eccentric dam (brittle cohesion)"},
-    {"group": "Dams", "case": "eccentric dam, uplift, no cohesion: strength-reduction factor",
-     "source": "SRF = f (W - U) / H (USBR, Design of Gravity Dams, ch. 4) with the resultant "
-               "off the base's centre",
-     "note": "pending: the test comes with the fix of the eccentric dam"},
-    {"group": "Wedges", "case": "wedge with cohesion: factor of safety",
-     "source": "FS = (N_A tan phi_A + N_B tan phi_B + c_A A_A + c_B A_B) / |w . s| "
-               "(Hoek & Bray, Rock Slope Engineering, ch. 7)",
-     "note": "pending: the test comes with the fix of the wedge with cohesion"},
-]
+# Cases listed before their tests exist: a recorded case of the same group and name replaces
+# its row.
+PENDING = []
 
 FIELDS = ("group", "case", "source", "expected", "measured", "unit", "tolerance", "error",
           "within", "test")

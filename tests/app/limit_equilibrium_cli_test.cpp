@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 #include <Eigen/Dense>
@@ -15,6 +16,7 @@
 
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
+#include "tests/support/verification.h"
 
 namespace rockmass {
 namespace {
@@ -85,6 +87,15 @@ TEST_F(LimitEquilibriumCli, BlockOnAFrictionalBaseSlidesAtFrictionTimesWeightOve
   ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
   // Issue 15: within 2 % (bisection to 0.01, 0.4 % of K).
   EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
+  test::recordVerification({.group = "Dams",
+                            .name = "block 20 x 20 x 30 m on a frictional base (f = 0.6, c = 0), "
+                                    "water 25 m deep upstream, heel lifting: overload factor K_s",
+                            .source = "K = f W / H (Wyllie & Mah, Rock Slope Engineering, ch. 6)",
+                            .expected = expected,
+                            .measured = s["safety_factor"].get<double>(),
+                            .tolerance = 0.02,
+                            .relative = true,
+                            .unit = "-"});
 }
 
 /// Upward unit normal of a plane of dip direction `dd` and dip `dip` (degrees).
@@ -159,9 +170,27 @@ TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
   // Issue 15: within 3 % for a bisection to 0.02 (plastic joints keep c while sliding, as
   // limit equilibrium assumes; the contact area is the overlap of the faces).
   EXPECT_NEAR(plastic["safety_factor"].get<double>(), with_cohesion, 0.03 * with_cohesion);
+  const auto record = [](const std::string& name, double expected, double measured) {
+    test::recordVerification(
+        {.group = "Wedges",
+         .name = name,
+         .source = "block theory FS = ((N_A + N_B) tan phi + c (A_A + A_B)) / |w . s| (Hoek & "
+                   "Bray, Rock Slope Engineering, ch. 7)",
+         .expected = expected,
+         .measured = measured,
+         .tolerance = 0.03,
+         .relative = true,
+         .unit = "-"});
+  };
+  record(
+      "tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 10 kPa, plastic: "
+      "critical SRF",
+      with_cohesion, plastic["safety_factor"].get<double>());
   const nlohmann::json dry = summaryOf("strength", "frictional", wedgeScene("0"));
   ASSERT_TRUE(dry["safety_factor"].is_number()) << dry.dump(2);
   EXPECT_NEAR(dry["safety_factor"].get<double>(), frictional, 0.03 * frictional);
+  record("tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 0: critical SRF", frictional,
+         dry["safety_factor"].get<double>());
   // Brittle joints (Shi's rule) lose a contact's cohesion as soon as it slides: the corner
   // carrying the most shear slides first and the others follow, so the wedge goes at the
   // cohesionless factor, not at the rigid-plastic one (docs/stability.md, "Joint models").
@@ -169,6 +198,10 @@ TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
       summaryOf("strength", "brittle", wedgeScene("10.0e3", ", model: brittle"));
   ASSERT_TRUE(brittle["safety_factor"].is_number()) << brittle.dump(2);
   EXPECT_NEAR(brittle["safety_factor"].get<double>(), frictional, 0.03 * frictional);
+  record(
+      "the same wedge, c = 10 kPa, brittle joints: critical SRF, against the factor "
+      "without cohesion",
+      frictional, brittle["safety_factor"].get<double>());
 }
 
 /// A gravity dam of section (0,0) (8,0) (crest,6) (0,6), 4 m wide, 2400 kg/m3, on a fixed
@@ -255,6 +288,20 @@ TEST_P(EccentricDam, SlidesAtTheShearFrictionFactor) {
   // Issue 15: within 2 % whatever the eccentricity and the share of cohesion (bisection to
   // 0.02; plastic joints, the default).
   EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
+  std::ostringstream name;
+  name << "dam 8/" << c.crest << "/6 m, f = 0.6, c = " << c.cohesion / 1e3 << " kPa, "
+       << (c.uplift ? "full uplift" : "no uplift") << ", resultant " << c.eccentricity
+       << " L off centre: overload factor K_s";
+  test::recordVerification(
+      {.group = "Dams",
+       .name = name.str(),
+       .source = "shear-friction factor K = (f (W - U) + c A) / H (USBR, Design of Small Dams, "
+                 "ch. 8)",
+       .expected = expected,
+       .measured = s["safety_factor"].get<double>(),
+       .tolerance = 0.02,
+       .relative = true,
+       .unit = "-"});
 }
 
 // The crest-1 dam: its resultant lies 0.08 L downstream of the centre at K_s without uplift
