@@ -65,7 +65,7 @@ python3 scripts/verification.py          # writes docs/verification.md
 ```
 
 Values are written with 4 significant digits and errors with 2, so the file is the same on
-every run; a value or an error below 1/1000 of the absolute tolerance (round-off, a block at
+every run; a value or an error below 1/100 of the absolute tolerance (round-off, a block at
 rest) is written as a bound (`< 1e-09`). The error is measured − expected, in % of the hand
 value when the tolerance is relative. "bound" rows check that the measured value is on the
 right side of the expected bound. A row marked *outside tolerance* comes from a failing test.

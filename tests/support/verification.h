@@ -8,9 +8,9 @@
 ///
 /// Numbers are written as text with limited precision, so that the manual is byte-identical
 /// run to run: expected and measured values with 4 significant digits, errors with 2. A
-/// value or an error smaller than 1/1000 of the absolute tolerance (round-off, a block at
-/// rest) is written as an upper bound, the power of ten above that 1/1000 ("< 1e-09"),
-/// instead of its digits.
+/// value or an error smaller than 1/100 of the absolute tolerance (round-off, a block at
+/// rest) is written as an upper bound, the power of ten above that 1/100 ("< 1e-09"),
+/// instead of its digits: round-off has no reproducible digits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -121,6 +121,7 @@ inline std::string currentTestName() {
 /// Appends `v` to the manual's records (no-op unless ROCKMASS_VERIFICATION_DIR is set).
 inline void recordVerification(const Verification& v) {
   namespace d = verification_detail;
+  constexpr double kFloor = 1e-2;  // of the tolerance: below it, written as a bound
   const char* dir = std::getenv("ROCKMASS_VERIFICATION_DIR");
   if (!dir || !*dir) return;
   const double absolute_tolerance = v.relative ? v.tolerance * std::abs(v.expected) : v.tolerance;
@@ -133,11 +134,11 @@ inline void recordVerification(const Verification& v) {
       if (v.relative) {
         tolerance = d::trimmed(100.0 * v.tolerance, 2) + " %";
         error = d::bounded(100.0 * (v.measured - v.expected) / std::abs(v.expected), 2,
-                           1e-3 * 100.0 * v.tolerance) +
+                           kFloor * 100.0 * v.tolerance) +
                 " %";
       } else {
         tolerance = d::trimmed(v.tolerance, 2) + unit;
-        error = d::bounded(v.measured - v.expected, 2, 1e-3 * v.tolerance) + unit;
+        error = d::bounded(v.measured - v.expected, 2, kFloor * v.tolerance) + unit;
       }
       break;
     }
@@ -152,12 +153,13 @@ inline void recordVerification(const Verification& v) {
       error = "";
       break;
   }
-  const double floor = v.compare == Compare::Near ? 1e-3 * absolute_tolerance : 0.0;
+  const double floor = v.compare == Compare::Near ? kFloor * absolute_tolerance : 0.0;
   std::string expected = d::significant(v.expected, 4);
   if (v.compare == Compare::AtLeast) expected = ">= " + d::trimmed(v.expected, 4);
   if (v.compare == Compare::AtMost) expected = "<= " + d::trimmed(v.expected, 4);
-  // A bound on a round-off quantity (at rest, no NaN): below 1/1000 of the bound, a bound.
-  const double measured_floor = v.compare == Compare::AtMost ? 1e-3 * std::abs(v.expected) : floor;
+  // A bound on a round-off quantity (at rest, no NaN): below 1/100 of the bound, a bound.
+  const double measured_floor =
+      v.compare == Compare::AtMost ? kFloor * std::abs(v.expected) : floor;
   const std::string measured = d::bounded(v.measured, 4, measured_floor);
 
   const std::string test = d::currentTestName();
