@@ -475,6 +475,7 @@ void Simulation::detectContacts() {
     }
     c.gap = c.gap0;
     c.flips = 0;
+    c.held = false;
     const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
     if (i >= 0 && j >= 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
@@ -676,13 +677,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
         const double limit = shearStrength(c, joint);
         // A contact at its friction limit with no slip velocity can flip between locked
         // and sliding forever; after two flips in a step it stays sliding (the friction
-        // force then holds it at the limit, which is what both states mean there).
+        // force then holds it at the limit, which is what both states mean there), unless its
+        // friction then drives it back (below).
         const bool frozen = c.flips >= 2;
         if (c.state == ContactState::Locked) {
           // Over the limit by more than a round-off slip: a contact whose spring the
           // predictor set at the limit must not slide on the round-off of a resting block.
           const Vec3 shear = tangential(c.shear, c.normal) + slip;
-          if (ks * (shear.norm() - reverse_tolerance) > limit) {
+          if (!c.held && ks * (shear.norm() - reverse_tolerance) > limit) {
             ++c.flips;
             c.state = ContactState::Sliding;
             // Shi's brittle joint loses its cohesion and tension as it starts to slide; the
@@ -691,11 +693,23 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
             c.slide_direction = shear.normalized();
             c.slip_length = 0.0;  // not known yet: no transverse tangent
           }
-        } else if (!frozen && rigid_slip.dot(c.slide_direction) < -reverse_tolerance) {
+        } else if (const double back = -rigid_slip.dot(c.slide_direction);
+                   frozen ? back > std::max(reverse_tolerance, shearStrength(c, joint) / ks)
+                          : back > reverse_tolerance) {
           // Friction alone would drive it back: it sticks, its spring carrying the friction.
+          // A frozen contact (above) sticks too, for the rest of the step, once its friction
+          // drove it back by more than its shear spring's stretch at the strength: its
+          // friction, a load of f N along the direction of the last iteration's slip, did
+          // work on the slip instead of resisting it. On a light block between heavy ones (a
+          // 1 cm sliver, 106 kg, under 1e5 N corner contacts) the frozen friction forces of
+          // its two faces lined up and threw it sideways at 1 m/s in one step (docs/dda3d.md,
+          // "Known limits"). A smaller reversal is the creep of a contact at its limit: it
+          // stays sliding, as the frozen rule means (a stuck spring would hold a wedge at
+          // SRF 1.6 whose FS is 1.5).
           ++c.flips;
           c.state = ContactState::Locked;
           c.shear = (shearStrength(c, joint) / ks) * c.slide_direction;
+          c.held = frozen;
         } else {
           // While the contact creeps (its slip in the step shorter than its shear spring's
           // stretch at the start of the step, the predictor's), the friction opposes the
