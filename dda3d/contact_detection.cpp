@@ -470,6 +470,15 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       const double facing = pa.normal.dot(pb.normal);
       if (facing > -kAreaCosine || pa.area <= 0.0) continue;
       if (pa.normal.dot(b.centroid) - pa.offset <= -tolerance) continue;
+      // Cheap reject before clipping: a's face wholly beyond the range from b's plane.
+      const std::vector<int>& face_a = a.shape->faces[fa];
+      double low = std::numeric_limits<double>::infinity(), high = -low;
+      for (int v : face_a) {
+        const double h = pb.normal.dot(a.shape->vertices[static_cast<std::size_t>(v)]) - pb.offset;
+        low = std::min(low, h);
+        high = std::max(high, h);
+      }
+      if (low > range.gap + tolerance || high < -range.depth - tolerance) continue;
       // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
       // b) stays counter-clockwise; a's face, seen from the other side, is reversed.
       const Vec3& n = pb.normal;
@@ -482,7 +491,6 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
         return Point2((x - origin).dot(t1), (x - origin).dot(t2));
       };
       std::vector<Point2> polygon;
-      const std::vector<int>& face_a = a.shape->faces[fa];
       for (auto v = face_a.rbegin(); v != face_a.rend(); ++v) {
         polygon.push_back(flat(a.shape->vertices[static_cast<std::size_t>(*v)]));
       }
