@@ -218,6 +218,8 @@ struct Range {
 struct AreaSample {
   int block_a = -1;       ///< block of the first face
   int block_b = -1;       ///< block of the face whose plane holds `point`
+  int piece_a = -1;       ///< piece of block_a
+  int piece_b = -1;       ///< piece of block_b
   Vec3 point;             ///< corner of the overlap polygon, in b's face plane (m)
   Vec3 normal;            ///< of b's face, out of b
   double weight = 0.0;    ///< m2
@@ -516,8 +518,9 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       const std::vector<double> weight = cornerWeights(polygon, area);
       for (std::size_t k = 0; k < polygon.size(); ++k) {
         if (weight[k] == 0.0) continue;
-        out.push_back({a.block, b.block, origin + polygon[k].x() * t1 + polygon[k].y() * t2, n,
-                       weight[k], range.larger() + tolerance});
+        out.push_back({a.block, b.block, a.piece, b.piece,
+                       origin + polygon[k].x() * t1 + polygon[k].y() * t2, n, weight[k],
+                       range.larger() + tolerance});
       }
     }
   }
@@ -634,58 +637,86 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
 /// area. Samples are taken in their found order within each pair of blocks, so the sums are
 /// the same run to run.
 void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& samples) {
-  using PairKey = std::pair<int, int>;
-  const auto keyOf = [](int a, int b) { return PairKey{std::min(a, b), std::max(a, b)}; };
+  // Key of a pair of pieces of two blocks, the lower block first: (block, block, piece, piece).
+  using Key = std::array<int, 4>;
+  const auto keyOf = [](int block_a, int piece_a, int block_b, int piece_b) {
+    return block_a < block_b ? Key{block_a, block_b, piece_a, piece_b}
+                             : Key{block_b, block_a, piece_b, piece_a};
+  };
+  const auto contactKey = [&](const Contact& c) {
+    return keyOf(c.block_i, c.piece_i, c.block_j, c.piece_j);
+  };
+  const auto sampleKey = [&](const AreaSample& s) {
+    return keyOf(s.block_a, s.piece_a, s.block_b, s.piece_b);
+  };
+  const auto sameBlocks = [](const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1]; };
   std::vector<std::size_t> by_pair(contacts.size());
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     by_pair[k] = k;
     contacts[k].area = 0.0;
   }
   std::sort(by_pair.begin(), by_pair.end(), [&](std::size_t x, std::size_t y) {
-    return std::pair{keyOf(contacts[x].block_i, contacts[x].block_j), x} <
-           std::pair{keyOf(contacts[y].block_i, contacts[y].block_j), y};
+    return std::pair{contactKey(contacts[x]), x} < std::pair{contactKey(contacts[y]), y};
   });
   std::vector<std::size_t> order(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-    return std::pair{keyOf(samples[x].block_a, samples[x].block_b), x} <
-           std::pair{keyOf(samples[y].block_a, samples[y].block_b), y};
+    return std::pair{sampleKey(samples[x]), x} < std::pair{sampleKey(samples[y]), y};
   });
   // Groups of samples of one pair of blocks, in parallel: each touches its own entries only.
   std::vector<std::size_t> group_start;
   for (std::size_t k = 0; k < order.size(); ++k) {
-    const AreaSample& s = samples[order[k]];
-    if (k == 0 || keyOf(s.block_a, s.block_b) !=
-                      keyOf(samples[order[k - 1]].block_a, samples[order[k - 1]].block_b)) {
+    if (k == 0 || !sameBlocks(sampleKey(samples[order[k]]), sampleKey(samples[order[k - 1]]))) {
       group_start.push_back(k);
     }
   }
   group_start.push_back(order.size());
-  tbb::parallel_for(std::size_t{0}, group_start.size() - 1, [&](std::size_t g) {
-    const AreaSample& first = samples[order[group_start[g]]];
-    const PairKey key = keyOf(first.block_a, first.block_b);
-    const auto begin = std::lower_bound(
-        by_pair.begin(), by_pair.end(), key, [&](std::size_t k, const PairKey& value) {
-          return keyOf(contacts[k].block_i, contacts[k].block_j) < value;
-        });
-    auto end = begin;
-    while (end != by_pair.end() && keyOf(contacts[*end].block_i, contacts[*end].block_j) == key) {
-      ++end;
+  using Iterator = std::vector<std::size_t>::iterator;
+  // The nearest entry to `sample` among [begin, end) that faces its way and lies on its plane.
+  const auto nearestIn = [&](const AreaSample& sample, Iterator begin, Iterator end,
+                             double& nearest_distance) {
+    Contact* nearest = nullptr;
+    nearest_distance = std::numeric_limits<double>::infinity();
+    for (auto it = begin; it != end; ++it) {
+      Contact& c = contacts[*it];
+      const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
+      if (normal.dot(sample.normal) < kAreaCosine) continue;
+      if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) continue;
+      const double distance = (c.point - sample.point).squaredNorm();
+      if (distance < nearest_distance) {
+        nearest_distance = distance;
+        nearest = &c;
+      }
     }
+    return nearest;
+  };
+  tbb::parallel_for(std::size_t{0}, group_start.size() - 1, [&](std::size_t g) {
+    const Key first = sampleKey(samples[order[group_start[g]]]);
+    const Key low{first[0], first[1], std::numeric_limits<int>::min(),
+                  std::numeric_limits<int>::min()};
+    const Key high{first[0], first[1], std::numeric_limits<int>::max(),
+                   std::numeric_limits<int>::max()};
+    const auto below = [&](std::size_t k, const Key& value) {
+      return contactKey(contacts[k]) < value;
+    };
+    const Iterator begin = std::lower_bound(by_pair.begin(), by_pair.end(), low, below);
+    const Iterator end = std::upper_bound(
+        begin, by_pair.end(), high,
+        [&](const Key& value, std::size_t k) { return value < contactKey(contacts[k]); });
     for (std::size_t k = group_start[g]; k < group_start[g + 1]; ++k) {
       const AreaSample& sample = samples[order[k]];
-      Contact* nearest = nullptr;
-      double nearest_distance = std::numeric_limits<double>::infinity();
-      for (auto it = begin; it != end; ++it) {
-        Contact& c = contacts[*it];
-        const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
-        if (normal.dot(sample.normal) < kAreaCosine) continue;
-        if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) continue;
-        const double distance = (c.point - sample.point).squaredNorm();
-        if (distance < nearest_distance) {
-          nearest_distance = distance;
-          nearest = &c;
-        }
+      // The corner's entry is almost always one of the same two pieces (a vertex of either,
+      // or a crossing of their edges): searched first, taken when it lies on the corner (within
+      // the sample's distance); else (the entry was kept from another piece of the same block,
+      // a duplicate dropped) every entry of the two blocks.
+      const Key key = sampleKey(sample);
+      const Iterator piece_begin = std::lower_bound(begin, end, key, below);
+      Iterator piece_end = piece_begin;
+      while (piece_end != end && contactKey(contacts[*piece_end]) == key) ++piece_end;
+      double distance = 0.0;
+      Contact* nearest = nearestIn(sample, piece_begin, piece_end, distance);
+      if (!nearest || distance > sample.distance * sample.distance) {
+        nearest = nearestIn(sample, begin, end, distance);
       }
       if (nearest) nearest->area += sample.weight;
     }
