@@ -663,7 +663,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
     return std::pair{sampleKey(samples[x]), x} < std::pair{sampleKey(samples[y]), y};
   });
-  // Groups of samples of one pair of blocks, in parallel: each touches its own entries only.
+  // Groups of samples of one pair of blocks (each touches its own entries only).
   std::vector<std::size_t> group_start;
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (k == 0 || !sameBlocks(sampleKey(samples[order[k]]), sampleKey(samples[order[k - 1]]))) {
@@ -690,7 +690,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     }
     return nearest;
   };
-  tbb::parallel_for(std::size_t{0}, group_start.size() - 1, [&](std::size_t g) {
+  const auto assignGroup = [&](std::size_t g) {
     const Key first = sampleKey(samples[order[group_start[g]]]);
     const Key low{first[0], first[1], std::numeric_limits<int>::min(),
                   std::numeric_limits<int>::min()};
@@ -720,7 +720,9 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
       }
       if (nearest) nearest->area += sample.weight;
     }
-  });
+  };
+  // Serial: most groups hold a handful of samples, and a task each cost more than the work.
+  for (std::size_t g = 0; g + 1 < group_start.size(); ++g) assignGroup(g);
 }
 
 }  // namespace
