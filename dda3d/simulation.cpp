@@ -1058,7 +1058,7 @@ std::string Simulation::stepFailureMessage(double dt, int attempts, bool settled
   }
   return "DDA step cannot progress at t = " + numberText(time_) + " s: at dt = " + numberText(dt) +
          " s (min_time_step " + numberText(settings_.min_time_step) + " s) after " +
-         std::to_string(attempts) + " attempts, " + why;
+         std::to_string(attempts) + (attempts == 1 ? " attempt, " : " attempts, ") + why;
 }
 
 StepReport Simulation::step() {
