@@ -494,9 +494,8 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
       // b) stays counter-clockwise; a's face, seen from the other side, is reversed.
       const Vec3& n = pb.normal;
-      const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-      const Vec3 t1 = n.cross(helper).normalized();
-      const Vec3 t2 = n.cross(t1);
+      Vec3 t1, t2;
+      tangents(n, t1, t2);
       const std::vector<int>& face_b = b.shape->faces[fb];
       const Vec3 origin = b.shape->vertices[static_cast<std::size_t>(face_b[0])];
       const auto flat = [&](const Vec3& x) {
@@ -537,6 +536,12 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
 }
 
 }  // namespace
+
+void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  t1 = n.cross(helper).normalized();
+  t2 = n.cross(t1);
+}
 
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
   // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
@@ -638,6 +643,20 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
     if (keep[k]) kept.push_back(std::move(contacts[k]));
   }
   return kept;
+}
+
+/// The chunks' results one after the other, in chunk order.
+template <class T>
+std::vector<T> joined(std::vector<std::vector<T>> chunks) {
+  std::size_t total = 0;
+  for (const std::vector<T>& chunk : chunks) total += chunk.size();
+  std::vector<T> out;
+  out.reserve(total);
+  for (std::vector<T>& chunk : chunks) {
+    out.insert(out.end(), std::make_move_iterator(chunk.begin()),
+               std::make_move_iterator(chunk.end()));
+  }
+  return out;
 }
 
 /// Gives every entry its share of the contact area (Contact::area): each area sample goes to
@@ -791,20 +810,8 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
       overlapAreas(a, b, range, tolerance, areas[chunk]);
     }
   });
-  std::vector<Contact> out;
-  std::size_t total = 0;
-  for (const std::vector<Contact>& f : found) total += f.size();
-  out.reserve(total);
-  for (std::vector<Contact>& f : found) {
-    out.insert(out.end(), std::make_move_iterator(f.begin()), std::make_move_iterator(f.end()));
-  }
-  std::vector<Contact> contacts = withoutDuplicates(std::move(out));
-  std::vector<AreaSample> samples;
-  for (std::vector<AreaSample>& a : areas) {
-    samples.insert(samples.end(), std::make_move_iterator(a.begin()),
-                   std::make_move_iterator(a.end()));
-  }
-  assignAreas(contacts, samples);
+  std::vector<Contact> contacts = withoutDuplicates(joined(std::move(found)));
+  assignAreas(contacts, joined(std::move(areas)));
   return contacts;
 }
 

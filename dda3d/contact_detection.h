@@ -13,6 +13,10 @@
 
 namespace rockmass::dda3d {
 
+/// Two unit tangents completing the unit normal n to a right-handed orthonormal basis
+/// (t1 x t2 = n): the shear directions of a contact, the 2D basis of a face.
+void tangents(const geometry::Vec3& n, geometry::Vec3& t1, geometry::Vec3& t2);
+
 /// The largest displacement of any vertex of `block` under the unknowns `d` (m), with the
 /// first-order field |T(v) d|. Pieces are convex and |T(x) d| is convex in x, so this
 /// bounds every point of the block; it is also >= the exact-rotation displacement

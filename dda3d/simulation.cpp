@@ -131,13 +131,6 @@ class PreviousContacts {
   std::unordered_map<ContactKey, int, ContactKeyHash> edges_;
 };
 
-/// Two unit tangents completing n to an orthonormal basis.
-void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
-  const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  t1 = n.cross(helper).normalized();
-  t2 = n.cross(t1);
-}
-
 Vec3 tangential(const Vec3& v, const Vec3& n) {
   return v - n * n.dot(v);
 }
@@ -999,10 +992,6 @@ std::string singularBlockHint(const std::vector<BlockState>& blocks, const Block
          "mechanism or contact springs far stiffer than the blocks";
 }
 
-}  // namespace
-
-namespace {
-
 std::string pointText(const Vec3& p) {
   char text[96];
   std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", p.x(), p.y(), p.z());
@@ -1016,6 +1005,10 @@ std::string numberText(double v) {
 }
 
 }  // namespace
+
+double Simulation::stepDisplacement(const StepReport& report) const {
+  return report.displacement_ratio * settings_.max_displacement_ratio * half_domain_;
+}
 
 std::string Simulation::blockText(int b) const {
   if (b < 0 || b >= static_cast<int>(blocks_.size())) return "no block";
@@ -1052,8 +1045,7 @@ std::string Simulation::stepFailureMessage(double dt, int attempts, bool settled
           numberText(allowed) + " m, with the penalty at its cap " + numberText(penalty_) + " N/m" +
           (deepest ? ": " + contactText(*deepest) : std::string());
   } else {
-    why = "a vertex moves " +
-          numberText(report.displacement_ratio * settings_.max_displacement_ratio * half_domain_) +
+    why = "a vertex moves " + numberText(stepDisplacement(report)) +
           " m in the step, over the step control's limit, in " + blockText(report.fastest_block);
   }
   return "DDA step cannot progress at t = " + numberText(time_) + " s: at dt = " + numberText(dt) +
@@ -1144,13 +1136,11 @@ StepReport Simulation::step() {
   time_ += dt;
   steps_at_min_ = dt <= settings_.min_time_step * (1.0 + 1e-12) ? steps_at_min_ + 1 : 0;
   if (steps_at_min_ >= settings_.max_steps_at_min_time_step) {
-    throw StepFailure(
-        "DDA run cannot progress: " + std::to_string(steps_at_min_) +
-        " steps in a row at min_time_step " + numberText(settings_.min_time_step) +
-        " s, now at t = " + numberText(time_) + " s; the last step moved " +
-        blockText(report.fastest_block) + " " +
-        numberText(report.displacement_ratio * settings_.max_displacement_ratio * half_domain_) +
-        " m");
+    throw StepFailure("DDA run cannot progress: " + std::to_string(steps_at_min_) +
+                      " steps in a row at min_time_step " + numberText(settings_.min_time_step) +
+                      " s, now at t = " + numberText(time_) + " s; the last step moved " +
+                      blockText(report.fastest_block) + " " + numberText(stepDisplacement(report)) +
+                      " m");
   }
   const double grow =
       report.displacement_ratio > 0.0 ? 0.9 / std::sqrt(report.displacement_ratio) : 1.2;

@@ -313,6 +313,8 @@ class Simulation {
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;
   int movableIndex(int block) const { return blocks_[static_cast<std::size_t>(block)].dof_offset; }
   const DdaJoint& jointOf(const Contact& c) const;
+  /// The largest vertex displacement of the step `report` accounts for (m).
+  double stepDisplacement(const StepReport& report) const;
   /// "block b (centroid ..., volume ...)" and a contact's description, for messages.
   std::string blockText(int b) const;
   std::string contactText(const Contact& c) const;
