@@ -19,12 +19,9 @@ namespace rockmass::dda3d {
 namespace {
 
 using geometry::Vec3;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 
-double radians(double degrees) {
-  return degrees * kPi / 180.0;
-}
+using scenes::radians;
 
 DdaSettings settingsFor(Kinematics kinematics, double dt) {
   DdaSettings s;

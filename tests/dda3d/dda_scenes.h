@@ -13,6 +13,14 @@
 
 namespace rockmass::dda3d::scenes {
 
+/// Degrees to radians and back.
+inline double radians(double degrees) {
+  return degrees * 3.14159265358979323846 / 180.0;
+}
+inline double degrees(double radians) {
+  return radians * 180.0 / 3.14159265358979323846;
+}
+
 /// A block made of one box piece.
 inline DdaBlock boxBlock(const geometry::Vec3& low, const geometry::Vec3& high, int material,
                          bool fixed) {

@@ -26,9 +26,7 @@ using geometry::Vec3;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 constexpr double kGammaW = 9810.0;
-double radians(double d) {
-  return d * kPi / 180.0;
-}
+using scenes::radians;
 
 TEST(WaterLoad, SubmergedVerticalFaceForceAndMomentAboutTheBase) {
   // A 2 x 3 x 4 m block (x, y, z) with its base at z = 1; its face x = 0.5 (outward -x,

@@ -32,15 +32,10 @@ namespace rockmass::dda3d {
 namespace {
 
 using geometry::Vec3;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
 constexpr double kGammaW = 9810.0;
-double radians(double d) {
-  return d * kPi / 180.0;
-}
-double degrees(double r) {
-  return r * 180.0 / kPi;
-}
+using scenes::degrees;
+using scenes::radians;
 
 /// Angle (deg) through which a box block has turned: its vertical edge v4 - v0 (boxPolyhedron)
 /// against the initial one.

@@ -17,14 +17,9 @@ namespace rockmass::dda3d {
 namespace {
 
 using geometry::Vec3;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.81;
-double radians(double d) {
-  return d * kPi / 180.0;
-}
-double degrees(double r) {
-  return r * 180.0 / kPi;
-}
+using scenes::degrees;
+using scenes::radians;
 
 using scenes::twoPlane;
 using scenes::TwoPlane;
