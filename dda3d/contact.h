@@ -54,6 +54,9 @@ struct Contact {
   /// Sets the friction's transverse tangent stiffness f N / slip (docs/dda3d.md).
   double slip_length = 0.0;
   int flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
+  /// Open <-> closed changes in the current step (reset every step); after two, the contact
+  /// stays closed for the rest of the step (docs/dda3d.md, "Open-close iteration").
+  int toggles = 0;
   /// Stuck for the rest of the step: a contact frozen sliding whose friction drove its slip
   /// backwards (reset every step).
   bool held = false;

@@ -145,8 +145,10 @@ double faceOverlap(const PieceView& a, const PieceView& b) {
 }
 
 /// Two faces count as touching face to face when their outward normals are opposite within
-/// this cosine (1 deg; blocks strained by 1e-3 tilt their faces by well under that).
-constexpr double kFaceToFaceCosine = 0.99985;
+/// this cosine: as for sharing contact area (10 deg). Blocks of a pile pressed side by side
+/// tilt their faces by 1.1 deg against each other; with a 1 deg bound, the corner of one
+/// such face beside the other's edge had no entry and sank 3 mm unseen into its neighbour.
+constexpr double kFaceToFaceCosine = kAreaCosine;
 
 /// The faces of `piece` on both ends of edge `e` (the faces around both vertices).
 std::vector<int> edgeFaces(const PieceTopology& topology, const std::array<int, 2>& edge) {
@@ -158,50 +160,75 @@ std::vector<int> edgeFaces(const PieceTopology& topology, const std::array<int, 
   return faces;
 }
 
-/// True when edge `ea` of a and edge `eb` of b lie in faces that touch face to face (opposite
-/// normals, planes within `distance` m) and their crossing `pc` lies within `end_margin` of an
-/// end of either edge: the corners of stacked faces that coincide but for the blocks' strain
-/// (offsets of ~1e-5 m). The face-to-face contact there is carried by the vertex-to-face
-/// entries of those corners (formulation doc, "Point-to-face contact": face-face contact is
-/// its vertex entries); an edge-to-edge entry would count the same support twice, and as the
-/// blocks strain its crossing slides in and out of the edge ends, so it appears already
-/// penetrating by the faces' spring compression (the deformable column, docs/dda3d.md).
-/// A crossing farther from the ends is a corner of the faces' overlap polygon that no vertex
-/// carries (staggered blocks in a pile): it stays, or the upper block rocks on a diagonal.
-bool crossingCarriedByFaceContact(const PieceView& a, const PieceView& b, std::size_t ea,
-                                  std::size_t eb, const Vec3& pc, double distance,
-                                  double end_margin) {
+/// Which vertices of the two pieces of a pair have a vertex-to-face entry against the other.
+struct VertexEntries {
+  std::vector<char> a, b;
+};
+
+/// Where edges of two pieces cross on faces that touch face to face.
+struct FaceCrossing {
+  bool touching = false;       ///< the edges lie in faces with opposite normals, planes near pc
+  bool carried = false;        ///< the crossing is within the end margin of an end of either edge
+  Vec3 normal = Vec3::Zero();  ///< of b's face, out of b
+};
+
+/// Looks for faces around edge `ea` of a and edge `eb` of b that touch face to face (opposite
+/// normals, both planes within `distance` m of the crossing `pc`), and whether `pc` lies within
+/// `end_margin` (in the faces' plane) of an end of either edge.
+///
+/// Such a crossing is a corner of the overlap polygon of the two faces. Near an edge end it
+/// is the corner of stacked faces that coincide but for the blocks' strain (offsets of
+/// ~1e-5 m), carried by the vertex-to-face entries of those corners (formulation doc,
+/// "Point-to-face contact": face-face contact is its vertex entries); an edge-to-edge entry
+/// would count the same support twice, and as the blocks strain its crossing slides in and
+/// out of the edge ends, so it appears already penetrating by the faces' spring compression
+/// (the deformable column, docs/dda3d.md). Farther from the ends it is a corner no vertex
+/// carries (staggered blocks in a pile): edgeToEdge records it with b's face normal.
+FaceCrossing faceCrossing(const PieceView& a, const PieceView& b, std::size_t ea, std::size_t eb,
+                          const Vec3& pc, double distance, double end_margin,
+                          const VertexEntries& entries) {
   const std::array<int, 2>& edge_a = a.topology->edges[ea];
   const std::array<int, 2>& edge_b = b.topology->edges[eb];
-  bool touching = false;
-  Vec3 face_normal = Vec3::Zero();
+  FaceCrossing crossing;
+  double best = -kFaceToFaceCosine;
   for (int fa : edgeFaces(*a.topology, edge_a)) {
     const Plane& pa = a.planes[static_cast<std::size_t>(fa)];
     for (int fb : edgeFaces(*b.topology, edge_b)) {
       const Plane& pb = b.planes[static_cast<std::size_t>(fb)];
       // Both planes pass within `distance` of the crossing. (Not |offset_a + offset_b|: for
       // faces tilted by 0.3 deg against each other, 11 m from the origin, that reads 6 cm.)
-      if (pa.normal.dot(pb.normal) < -kFaceToFaceCosine &&
-          std::abs(pa.normal.dot(pc) - pa.offset) <= distance &&
+      const double alignment = pa.normal.dot(pb.normal);
+      if (alignment < best && std::abs(pa.normal.dot(pc) - pa.offset) <= distance &&
           std::abs(pb.normal.dot(pc) - pb.offset) <= distance) {
-        touching = true;
-        face_normal = pa.normal;
+        crossing.touching = true;
+        crossing.normal = pb.normal;
+        best = alignment;
       }
     }
   }
-  if (!touching) return false;
+  if (!crossing.touching) return crossing;
   // Distance in the faces' plane: how far the faces are pressed into each other (or apart)
   // says nothing of whether the crossing is a corner; a corner of one block on an edge of the
   // other seen 1.4 mm deep was kept as a crossing, its gap read across the nearly coplanar
   // edges of a tilted block (a pile of cubes, docs/dda3d.md).
+  // Only an end that has its vertex entry carries the crossing: the vertex tests and this one
+  // measure the corner's offset differently (its foot beyond the face's boundary, its depth),
+  // and a corner coming down onto a neighbour's edge 0.35 mm a step sat on the margins of
+  // both, had neither entry and sank 2 mm unseen (a pile of cubes, docs/dda3d.md).
+  const Vec3& n = crossing.normal;
   for (const Polyhedron* shape : {a.shape, b.shape}) {
-    const std::array<int, 2>& edge = shape == a.shape ? edge_a : edge_b;
+    const bool of_a = shape == a.shape;
+    const std::array<int, 2>& edge = of_a ? edge_a : edge_b;
+    const std::vector<char>& has_entry = of_a ? entries.a : entries.b;
     for (int v : edge) {
       const Vec3 offset = shape->vertices[static_cast<std::size_t>(v)] - pc;
-      if ((offset - face_normal * face_normal.dot(offset)).norm() <= end_margin) return true;
+      if (has_entry[static_cast<std::size_t>(v)] &&
+          (offset - n * n.dot(offset)).norm() <= end_margin) {
+        crossing.carried = true;
+      }
     }
   }
-  return false;
+  return crossing;
 }
 
 /// Box of the segment p q.
@@ -236,6 +263,14 @@ struct AreaSample {
   double distance = 0.0;  ///< farthest an entry may lie from b's plane to take it (m)
 };
 
+/// True when a face of `a` around vertex v faces the direction -normal (face to face).
+bool facesAt(const PieceView& a, std::size_t v, const Vec3& normal) {
+  for (int f : a.topology->vertex_faces[v]) {
+    if (a.planes[static_cast<std::size_t>(f)].normal.dot(normal) < -kFaceToFaceCosine) return true;
+  }
+  return false;
+}
+
 /// Vertices of `a` against faces of `b`.
 void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                   const PreviousFace& previous_face, std::vector<Contact>& out) {
@@ -257,7 +292,17 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
       // coincident corners of stacked faces apart by ~1e-5 m, and dropping the entry there
       // would hand the corner to an edge crossing (seen already penetrating) or to nothing.
       const bool kept = static_cast<int>(f) == previous && outside <= range.keep_margin;
-      if (gap < -range.depth || (is_outside && gap <= tolerance && !kept)) continue;
+      // A vertex of a face of a that faces f (opposite normals), not deeper than the keep
+      // margin behind f's plane, and within that margin of f's boundary (tested below), is
+      // f's corner contact from the start, as a kept one is:
+      // edgeToEdge leaves the crossings within that margin of a corner of two touching faces
+      // to the vertex entries (faceCrossing). Without this, a corner just
+      // beyond the boundary of a face it rests on (stacked blocks flush along one side, their
+      // strain or a 1e-5 rad tilt moving it in and out) had no entry at all, penetrated
+      // unresisted and was found again 0.1-0.5 mm deep; the penalty spring then threw the
+      // blocks apart (a pile of cubes, docs/dda3d.md).
+      const bool on_face = gap >= -range.keep_margin && facesAt(a, v, plane.normal);
+      if (gap < -range.depth || (is_outside && gap <= tolerance && !kept && !on_face)) continue;
       // Without a face from the last step, a vertex in b is taken to have entered through a
       // face about as near as the nearest one (outside = minus its depth). A face far behind
       // the nearest would be a guess: at a vertex resting on b's edge or corner (nearest
@@ -274,7 +319,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
       const bool least_deep =
           !is_outside && gap >= outside - std::max(tolerance, 0.01 * range.keep_margin);
       if (!insideFace(*b.shape, b.shape->faces[f], plane.normal, foot,
-                      kept || least_deep ? range.keep_margin : tolerance)) {
+                      kept || least_deep || on_face ? range.keep_margin : tolerance)) {
         continue;
       }
       bool cone_ok = true;  // i's body near the vertex stays on the outer side of f
@@ -317,7 +362,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
 
 /// Crossing edges of `a` and `b`.
 void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
-                std::vector<Contact>& out) {
+                const VertexEntries& entries, std::vector<Contact>& out) {
   const Box reach_b = b.box.enlarged(range.larger());
   std::optional<double> overlap;  // faceOverlap(a, b)
   for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
@@ -347,19 +392,28 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       const Vec3 pc = a0 + s * u;
       const Vec3 qc = b0 + t * w;
       if ((pc - qc).norm() > range.larger()) continue;
-      if (crossingCarriedByFaceContact(a, b, ea, eb, pc, range.larger(), range.keep_margin)) {
-        continue;
-      }
-      // Orient n out of b: the plane through qc must support b (n in b's edge normal cone),
-      // and -n must support a at pc. Never from the sign of pc - qc, which flips once the
-      // edges penetrate.
+      const FaceCrossing on_faces =
+          faceCrossing(a, b, ea, eb, pc, range.larger(), range.keep_margin, entries);
+      if (on_faces.carried) continue;
       Vec3 n = cross / cross_norm;
-      const auto [low, high] = heightRange(b.shape->vertices, n, qc);
-      if (high > tolerance) {
-        if (low < -tolerance) continue;
-        n = -n;
+      if (on_faces.touching) {
+        // A corner of the overlap of two touching faces: it acts across b's face. The plane
+        // of the two edges is tilted against the faces by their relative rotation (1e-3 rad
+        // in a landing pile), and the support tests below then found b's far vertices on
+        // both sides of it: the corner had no entry until it penetrated, then came in deep
+        // and threw the blocks apart.
+        n = on_faces.normal;
+      } else {
+        // Orient n out of b: the plane through qc must support b (n in b's edge normal
+        // cone), and -n must support a at pc. Never from the sign of pc - qc, which flips
+        // once the edges penetrate.
+        const auto [low, high] = heightRange(b.shape->vertices, n, qc);
+        if (high > tolerance) {
+          if (low < -tolerance) continue;
+          n = -n;
+        }
+        if (heightRange(a.shape->vertices, n, pc).first < -tolerance) continue;
       }
-      if (heightRange(a.shape->vertices, n, pc).first < -tolerance) continue;
       Contact c;
       c.kind = ContactKind::EdgeEdge;
       c.block_i = a.block;
@@ -378,8 +432,11 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       // apart by some other plane (small pieces, a reach as large as they are) can satisfy
       // both support tests above with the slabs overlapping; without this check they were
       // recorded as penetrations as deep as the search depth.
-      if (c.gap0 < -tolerance && (outsideDistance(b.planes, pc) > tolerance ||
-                                  outsideDistance(a.planes, qc) > tolerance)) {
+      // (The closest points of edges on touching faces sit off the other's side planes by
+      // the gap times the faces' relative tilt: the keep margin is the slack there.)
+      const double slack = on_faces.touching ? range.keep_margin : tolerance;
+      if (c.gap0 < -tolerance &&
+          (outsideDistance(b.planes, pc) > slack || outsideDistance(a.planes, qc) > slack)) {
         continue;
       }
       // An edge crossing is the contact only along the axis of least penetration (the
@@ -804,9 +861,16 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
       const Range range{gap, depth,
                         std::max(tolerance, 1e-4 * (a.box.diagonal() + b.box.diagonal()))};
       std::vector<Contact>& out = found[chunk];
+      const std::size_t first = out.size();
       vertexToFace(a, b, range, tolerance, previous_face, out);
       vertexToFace(b, a, range, tolerance, previous_face, out);
-      edgeToEdge(a, b, range, tolerance, out);
+      VertexEntries entries{std::vector<char>(a.shape->vertices.size(), 0),
+                            std::vector<char>(b.shape->vertices.size(), 0)};
+      for (std::size_t e = first; e < out.size(); ++e) {
+        const bool of_a = out[e].block_i == a.block && out[e].piece_i == a.piece;
+        (of_a ? entries.a : entries.b)[static_cast<std::size_t>(out[e].vertex)] = 1;
+      }
+      edgeToEdge(a, b, range, tolerance, entries, out);
       overlapAreas(a, b, range, tolerance, areas[chunk]);
     }
   });

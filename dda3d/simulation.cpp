@@ -468,6 +468,7 @@ void Simulation::detectContacts() {
     }
     c.gap = c.gap0;
     c.flips = 0;
+    c.toggles = 0;
     c.held = false;
     const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
     if (i >= 0 && j >= 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
@@ -656,11 +657,21 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       if (d < -close_tolerance) {
         c.state = ContactState::Locked;
         c.shear.setZero();
+        ++c.toggles;
       }
     } else {
       const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
       c.normal_force = -penalty_ * d;
-      if (d > tension / penalty_ + open_tolerance) {
+      // A contact that opened and closed again in this step stays closed: it sits where
+      // neither state is consistent (solved closed it pulls by ~1e-7 m, solved open it
+      // penetrates past the closing threshold; its load shared with the contacts of the
+      // same faces), and flipping it back and forth never settled. Held closed, it pulls
+      // for one step with a force of the order of the blocks' weight, over a motion of
+      // 1e-7 m (no energy to speak of); solved open, it would have penetrated without
+      // resistance, and its spring would have pushed that back next step.
+      const bool stays_closed = c.toggles >= 2;
+      if (!stays_closed && d > tension / penalty_ + open_tolerance) {
+        ++c.toggles;
         // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
         c.state = ContactState::Open;
         c.bonded = false;
