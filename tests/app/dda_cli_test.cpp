@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/cli_support.h"
+#include "tests/support/history_reading.h"
 #include "tests/support/test_support.h"
 #include "tests/support/vtu_reading.h"
 
@@ -62,35 +63,8 @@ analysis:
 )";
 
 /// One history.csv row.
-struct Row {
-  double time = 0.0;
-  std::string monitor;
-  double ux = 0.0, uy = 0.0, uz = 0.0;
-};
-
-std::vector<Row> readHistory(const fs::path& file) {
-  std::istringstream in(test::readFile(file));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "time,monitor,ux,uy,uz,vx,vy,vz,u");
-  std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    Row row;
-    std::string field;
-    std::getline(fields, field, ',');
-    row.time = std::stod(field);
-    std::getline(fields, row.monitor, ',');
-    std::getline(fields, field, ',');
-    row.ux = std::stod(field);
-    std::getline(fields, field, ',');
-    row.uy = std::stod(field);
-    std::getline(fields, field, ',');
-    row.uz = std::stod(field);
-    rows.push_back(row);
-  }
-  return rows;
-}
+using test::readHistory;
+using Row = test::HistoryRow;
 
 /// Expected settlement (m) of the two monitors (top, middle) of the stack at equilibrium,
 /// with `top_load` N pressing uniformly on the top face. Springs in series: each interface
