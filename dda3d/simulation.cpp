@@ -159,6 +159,9 @@ VoigtVector rotateVoigt(const VoigtVector& v, const Eigen::Matrix3d& r, double s
 constexpr double kAcceptedDisplacementRatio = 1.5;
 /// Reach of a block at rest, in g2 l0: room for the step that starts it moving.
 constexpr double kRestingReachRatio = 0.1;
+/// Largest pull (in weights of the lighter block) of a contact held closed after it opened
+/// and closed again in a step (updateContactStates).
+constexpr double kHoldWeights = 5.0;
 
 /// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
 double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
@@ -662,14 +665,15 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     } else {
       const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
       c.normal_force = -penalty_ * d;
-      // A contact that opened and closed again in this step stays closed: it sits where
-      // neither state is consistent (solved closed it pulls by ~1e-7 m, solved open it
-      // penetrates past the closing threshold; its load shared with the contacts of the
-      // same faces), and flipping it back and forth never settled. Held closed, it pulls
-      // for one step with a force of the order of the blocks' weight, over a motion of
-      // 1e-7 m (no energy to speak of); solved open, it would have penetrated without
-      // resistance, and its spring would have pushed that back next step.
-      const bool stays_closed = c.toggles >= 2;
+      // A contact that opened and closed again in this step stays closed while its pull is
+      // below kHoldWeights times the lighter block's weight: it sits where neither state is
+      // consistent (solved closed it pulls by ~1e-7 m, solved open it penetrates past the
+      // closing threshold, its load shared with the contacts of the same faces), and
+      // flipping it back and forth never settled (a pile of 1000 cubes redid its steps down
+      // to 6e-5 s). Held, it pulls for one step: at most kHoldWeights g dt of velocity. A
+      // larger pull is a contact really opening: held there, it fought a neighbouring
+      // contact with forces of 100 weights and their work threw a block (random piles).
+      const bool stays_closed = c.toggles >= 2 && penalty_ * d <= holdLimit(c);
       if (!stays_closed && d > tension / penalty_ + open_tolerance) {
         ++c.toggles;
         // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
@@ -743,6 +747,15 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     }
   }
   return changes;
+}
+
+double Simulation::holdLimit(const Contact& c) const {
+  double lighter = std::numeric_limits<double>::infinity();
+  for (int b : {c.block_i, c.block_j}) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(b)];
+    if (!block.fixed) lighter = std::min(lighter, block.mass);
+  }
+  return kHoldWeights * model_.gravity.norm() * lighter;
 }
 
 double Simulation::shearStrength(const Contact& c, const DdaJoint& joint) const {

@@ -304,6 +304,8 @@ class Simulation {
     int closed = 0;    ///< of them, contacts that were open
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
+  /// Largest pull (N) of a contact held closed for the rest of the step.
+  double holdLimit(const Contact& c) const;
   /// Shear strength of a closed contact now (N): f N, plus c A while it keeps its cohesion.
   double shearStrength(const Contact& c, const DdaJoint& joint) const;
   /// Updates every contact's state from the iteration's solution.
