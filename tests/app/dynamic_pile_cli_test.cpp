@@ -96,11 +96,11 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
   const nlohmann::json summary =
       nlohmann::json::parse(test::readFile(dir.path() / "out" / "summary.json"));
   ASSERT_EQ(summary["blocks"], kSide * kSide * kLayers + 1);
-  // No time step collapse: the failure took 2.5e-7 s; the landing's worst steps take 8.4e-5 s
-  // (rigid) and 6e-4 s (deformable), where the open-close iteration needs 40 iterations.
+  // The bound: no time step below 1e-4 s (the failure took 2.5e-7 s; the landing's
+  // worst steps take 6e-4 s rigid, 1e-3 s deformable).
   const std::vector<double> dts = summary["steps"]["time_step"];
   const double smallest = *std::min_element(dts.begin(), dts.end());
-  EXPECT_GE(smallest, 5e-5);
+  EXPECT_GE(smallest, 1e-4);
   // The springs' compression under the pile is ~1e-6 m and the landing impacts ~1e-5 m; a
   // corner found deep (the failure) read 1.6e-3 m.
   const std::vector<double> penetrations = summary["steps"]["max_penetration"];
@@ -117,7 +117,7 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
   ASSERT_EQ(static_cast<int>(last.size()), kSide * kSide * kLayers);
   for (const auto& [name, row] : last) {
     // Each cube comes down by the gaps under it (all closed) and stays in the pile: cubes of
-    // the top layer slide up to 3.2 cm on the staggered layer below as they land (measured,
+    // the top layer slide up to 2.8 cm on the staggered layer below as they land (measured,
     // rigid and deformable alike); a cube thrown out of the pile moves metres.
     moved_sideways = std::max(moved_sideways, std::hypot(row.ux, row.uy));
     const double drop = kFirstGap + layerOf(name) * kLayerGap;
@@ -128,7 +128,7 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
   EXPECT_LT(moved_sideways, 0.1);
   // 1 mm: the springs' compression and the tilt of cubes resting on staggered supports.
   EXPECT_LT(settle_error, 1e-3);
-  // At rest at the end: 1 cm/s, against 1.3 m/s at landing (measured: 7e-4 m/s or less).
+  // At rest at the end: 1 cm/s, against 1.3 m/s at landing (measured: 8e-4 m/s or less).
   EXPECT_LT(last_speed, 1e-2);
   // No energy created: no cube faster than a free fall from the top layer's drop (the
   // failure threw cubes at 7 m/s), with 5 % for the impacts' elastic rebound.

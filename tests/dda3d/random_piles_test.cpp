@@ -6,7 +6,8 @@
 // no time step collapse, and no energy created: what the blocks hold (kinetic, strain,
 // springs) never exceeds the work gravity did on them. A collapse: the time step falls by
 // orders of magnitude (the 1 000-cube pile fell to 1e-7 s); corner-on-corner landings of
-// these piles take steps down to 1.2e-5 s (seeds 1-40), and the bound is 1e-6 s.
+// these piles take steps down to 1e-5 s (seeds 1-40), and the bound is 1e-6 s. Seeds 1-200
+// pass but 122 (docs/dda3d.md, "Known limits").
 //
 // CI runs kCiCases cases (seeds 1..kCiCases); ROCKMASS_FUZZ_CASES=N runs N
 // (docs/dda3d.md, "Robustness tests"), e.g.
@@ -95,41 +96,54 @@ int caseCount() {
   return text ? std::max(1, std::atoi(text)) : kCiCases;
 }
 
+/// Runs one random pile for kModelTime; fails (through gtest) at the first broken check.
+void runPile(std::uint64_t seed) {
+  const RandomPile pile = randomPile(seed);
+  SCOPED_TRACE(pile.description);
+  DdaSettings settings;
+  settings.mode = AnalysisMode::Dynamic;
+  settings.kinematics = pile.kinematics;
+  settings.time_step = 2e-3;
+  Simulation sim(pile.model, settings);
+  const double allowed = settings.allowed_penetration_ratio * sim.halfDomainSize();
+  double smallest_dt = settings.time_step, most_created = 0.0;
+  while (sim.time() < kModelTime) {
+    StepReport r;
+    ASSERT_NO_THROW(r = sim.step()) << "at t = " << sim.time();
+    smallest_dt = std::min(smallest_dt, r.time_step);
+    for (const BlockState& b : sim.blocks()) {
+      ASSERT_TRUE(b.velocity.allFinite() && b.centroid.allFinite()) << "t = " << sim.time();
+    }
+    ASSERT_LE(r.max_penetration, allowed) << "t = " << sim.time();
+    // Stored energy against the work of gravity: friction and the time integration only
+    // take energy out. The margin: the Bossak scheme's energy differs from the plain one
+    // by 1/2 (beta - gamma/2) dt^2 a^T M a (Hughes 1987, sec. 9.3), a few % at an impact.
+    const EnergyAccount e = sim.energy();
+    const double created = e.stored() - e.work_of_loads;
+    most_created = std::max(most_created, created / std::max(e.work_of_loads, 1.0));
+    ASSERT_LE(created, 0.05 * e.work_of_loads + 1.0)
+        << "t = " << sim.time() << ": kinetic " << e.kinetic << " strain " << e.strain
+        << " springs " << e.springs << " work " << e.work_of_loads << " contact changes "
+        << e.contact_changes << " friction " << e.friction << " numerical " << e.numerical;
+  }
+  EXPECT_GE(smallest_dt, 1e-6);
+  std::printf("random pile %s: smallest dt %.3g s, most energy created %.3g of the work\n",
+              pile.description.c_str(), smallest_dt, most_created);
+}
+
 TEST(RandomPiles, LandWithFiniteValuesNoTimeStepCollapseAndNoEnergyCreated) {
   const int cases = caseCount();
+  std::string failed;
   for (int seed = 1; seed <= cases; ++seed) {
-    const RandomPile pile = randomPile(static_cast<std::uint64_t>(seed));
-    SCOPED_TRACE(pile.description);
-    DdaSettings settings;
-    settings.mode = AnalysisMode::Dynamic;
-    settings.kinematics = pile.kinematics;
-    settings.time_step = 2e-3;
-    Simulation sim(pile.model, settings);
-    const double allowed = settings.allowed_penetration_ratio * sim.halfDomainSize();
-    double smallest_dt = settings.time_step, most_created = 0.0;
-    while (sim.time() < kModelTime) {
-      StepReport r;
-      ASSERT_NO_THROW(r = sim.step()) << "at t = " << sim.time();
-      smallest_dt = std::min(smallest_dt, r.time_step);
-      for (const BlockState& b : sim.blocks()) {
-        ASSERT_TRUE(b.velocity.allFinite() && b.centroid.allFinite()) << "t = " << sim.time();
-      }
-      ASSERT_LE(r.max_penetration, allowed) << "t = " << sim.time();
-      // Stored energy against the work of gravity: friction and the time integration only
-      // take energy out. The margin: the Bossak scheme's energy differs from the plain one
-      // by 1/2 (beta - gamma/2) dt^2 a^T M a (Hughes 1987, sec. 9.3), a few % at an impact.
-      const EnergyAccount e = sim.energy();
-      const double created = e.stored() - e.work_of_loads;
-      most_created = std::max(most_created, created / std::max(e.work_of_loads, 1.0));
-      ASSERT_LE(created, 0.05 * e.work_of_loads + 1.0)
-          << "t = " << sim.time() << ": kinetic " << e.kinetic << " strain " << e.strain
-          << " springs " << e.springs << " work " << e.work_of_loads << " contact changes "
-          << e.contact_changes << " friction " << e.friction << " numerical " << e.numerical;
+    const int before =
+        ::testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count();
+    runPile(static_cast<std::uint64_t>(seed));
+    if (::testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count() >
+        before) {
+      failed.append(" ").append(std::to_string(seed));
     }
-    EXPECT_GE(smallest_dt, 1e-6);
-    std::printf("random pile %s: smallest dt %.3g s, most energy created %.3g of the work\n",
-                pile.description.c_str(), smallest_dt, most_created);
   }
+  EXPECT_TRUE(failed.empty()) << "failed seeds:" << failed;
 }
 
 }  // namespace
