@@ -118,7 +118,7 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
       of_loads = std::abs(watched_work);
     }
     result.kinetic_ratio = kinetic > 0.0 ? kinetic / std::max(of_loads, 1e-300) : 0.0;
-    const bool still = !report.forced && result.unbalanced_ratio <= settings.unbalanced_ratio &&
+    const bool still = result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;
     if (calm >= settings.settle_steps) {

@@ -1141,8 +1141,7 @@ StepReport Simulation::step() {
       ++report.redo_penetration;
       continue;
     }
-    report.forced = !settled || too_far || report.max_penetration > allowed;
-    if (report.forced) {
+    if (!settled || too_far || report.max_penetration > allowed) {
       // Nothing left to try: dt is at its minimum (or the attempts are used up) and the step
       // still fails a check. Accepting it would go on with a step that broke the method's
       // assumptions, and runs left to do so shrank dt without end (docs/dda3d.md, "Step

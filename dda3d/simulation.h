@@ -153,7 +153,6 @@ struct StepReport {
   int redo_iterations = 0;          ///< redos because the open-close iteration did not settle
   int redo_displacement = 0;        ///< redos because of the displacement ratio
   int redo_penetration = 0;         ///< redos with a stiffer penalty
-  bool forced = false;              ///< accepted without meeting every check (dt at its minimum)
   double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
   int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
   double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)

@@ -203,7 +203,6 @@ TEST(SearchDistance, AStepThatWouldOutrunTheReachIsRedone) {
     for (const Vec3& v : cube.pieces[0].vertices) lowest = std::min(lowest, v.z());
     // Geometric penetration into the slab top (z = 0), whether or not a contact saw it.
     ASSERT_LE(-lowest, allowed) << "step " << k;
-    ASSERT_FALSE(r.forced) << "step " << k;
   }
   // The load is resisted by the slab: the cube ends in contact.
   EXPECT_GT(sim.contactCounts().total - sim.contactCounts().open, 0);
