@@ -55,7 +55,8 @@ struct Contact {
   double slip_length = 0.0;
   int flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
   /// Open <-> closed changes in the current step (reset every step); after two, the contact
-  /// stays closed for the rest of the step (docs/dda3d.md, "Open-close iteration").
+  /// stays closed for the rest of the step while its pull is below Simulation::holdLimit
+  /// (docs/dda3d.md, "Open-close iteration").
   int toggles = 0;
   /// Stuck for the rest of the step: a contact frozen sliding whose friction drove its slip
   /// backwards (reset every step).

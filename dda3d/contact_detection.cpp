@@ -294,13 +294,12 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
       const bool kept = static_cast<int>(f) == previous && outside <= range.keep_margin;
       // A vertex of a face of a that faces f (opposite normals), not deeper than the keep
       // margin behind f's plane, and within that margin of f's boundary (tested below), is
-      // f's corner contact from the start, as a kept one is:
-      // edgeToEdge leaves the crossings within that margin of a corner of two touching faces
-      // to the vertex entries (faceCrossing). Without this, a corner just
-      // beyond the boundary of a face it rests on (stacked blocks flush along one side, their
-      // strain or a 1e-5 rad tilt moving it in and out) had no entry at all, penetrated
-      // unresisted and was found again 0.1-0.5 mm deep; the penalty spring then threw the
-      // blocks apart (a pile of cubes, docs/dda3d.md).
+      // f's corner contact from the start, as a kept one is: edgeToEdge leaves the crossings
+      // within that margin of a corner of two touching faces to the vertex entries
+      // (faceCrossing). Without this, a corner just beyond the boundary of a face it rests on
+      // (stacked blocks flush along one side, their strain or a 1e-5 rad tilt moving it in and
+      // out) had no entry at all, penetrated unresisted and was found again 0.1-0.5 mm deep;
+      // the penalty spring then threw the blocks apart (a pile of cubes, docs/dda3d.md).
       const bool on_face = gap >= -range.keep_margin && facesAt(a, v, plane.normal);
       if (gap < -range.depth || (is_outside && gap <= tolerance && !kept && !on_face)) continue;
       // Without a face from the last step, a vertex in b is taken to have entered through a

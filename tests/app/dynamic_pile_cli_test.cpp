@@ -111,7 +111,7 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
   for (const test::HistoryRow& row : test::readHistory(dir.path() / "out" / "history.csv")) {
     ASSERT_TRUE(std::isfinite(row.ux) && std::isfinite(row.vx) && std::isfinite(row.vz))
         << row.monitor << " at t = " << row.time;
-    fastest = std::max(fastest, std::sqrt(row.vx * row.vx + row.vy * row.vy + row.vz * row.vz));
+    fastest = std::max(fastest, row.speed());
     last[row.monitor] = row;
   }
   ASSERT_EQ(static_cast<int>(last.size()), kSide * kSide * kLayers);
@@ -122,8 +122,7 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
     moved_sideways = std::max(moved_sideways, std::hypot(row.ux, row.uy));
     const double drop = kFirstGap + layerOf(name) * kLayerGap;
     settle_error = std::max(settle_error, std::abs(-row.uz - drop));
-    last_speed =
-        std::max(last_speed, std::sqrt(row.vx * row.vx + row.vy * row.vy + row.vz * row.vz));
+    last_speed = std::max(last_speed, row.speed());
   }
   EXPECT_LT(moved_sideways, 0.1);
   // 1 mm: the springs' compression and the tilt of cubes resting on staggered supports.

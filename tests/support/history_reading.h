@@ -2,6 +2,7 @@
 /// Reading the `history.csv` of `rockmass dda` (docs/dda-io.md) in the CLI tests.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@ struct HistoryRow {
   std::string monitor;
   double ux = 0.0, uy = 0.0, uz = 0.0;
   double vx = 0.0, vy = 0.0, vz = 0.0;
+  double speed() const { return std::sqrt(vx * vx + vy * vy + vz * vz); }
 };
 
 /// The rows of `file`, after checking its header.
