@@ -281,7 +281,8 @@ Command addDdaCommand(CLI::App& app) {
   addCommonOptions(*cli, options->common);
   addCutterOption(*cli, options->cutter);
   cli->add_option("--solver", options->overrides.solver,
-                  "Linear solver: auto (default: cholmod below 500 movable blocks, else pcg "
+                  "Linear solver: auto (default: cholmod below 6000 unknowns (1000 rigid or 500 "
+                  "deformable movable blocks), else pcg "
                   "warm-started), cholmod, eigen, pcg")
       ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));
   cli->add_option("--pcg-tolerance", options->overrides.pcg_tolerance,

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -363,6 +364,17 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
 void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                 const VertexEntries& entries, std::vector<Contact>& out) {
   const Box reach_b = b.box.enlarged(range.larger());
+  // The edges of b within reach of a's box, with their boxes: the only ones any edge of a
+  // can cross (computed once per pair, not once per edge of a).
+  const Box reach_a = a.box.enlarged(range.larger());
+  std::vector<std::pair<std::size_t, Box>> near_b;
+  for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
+    const Box box =
+        segmentBox(b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])],
+                   b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])]);
+    if (overlaps(box, reach_a)) near_b.emplace_back(eb, box);
+  }
+  if (near_b.empty()) return;
   std::optional<double> overlap;  // faceOverlap(a, b)
   for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
     const Vec3& a0 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][0])];
@@ -371,10 +383,10 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
     if (!overlaps(edge_box, reach_b)) continue;
     const Box edge_reach = edge_box.enlarged(range.larger());
     const Vec3 u = a1 - a0;
-    for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
+    for (const auto& [eb, box_b] : near_b) {
+      if (!overlaps(box_b, edge_reach)) continue;
       const Vec3& b0 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])];
       const Vec3& b1 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])];
-      if (!overlaps(segmentBox(b0, b1), edge_reach)) continue;
       const Vec3 w = b1 - b0;
       const Vec3 cross = u.cross(w);
       const double cross_norm = cross.norm();
@@ -806,8 +818,13 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
       if (nearest) nearest->area += sample.weight;
     }
   };
-  // Serial: most groups hold a handful of samples, and a task each cost more than the work.
-  for (std::size_t g = 0; g + 1 < group_start.size(); ++g) assignGroup(g);
+  // Groups touch disjoint entries (those of their own pair of blocks), each summed in order:
+  // the same sums whatever the threads. Ranges of groups, not a task each: most groups hold
+  // a handful of samples.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, group_start.size() - 1, 256),
+                    [&](const tbb::blocked_range<std::size_t>& groups) {
+                      for (std::size_t g = groups.begin(); g != groups.end(); ++g) assignGroup(g);
+                    });
 }
 
 }  // namespace

@@ -101,10 +101,13 @@ TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
   const std::vector<double> dts = summary["steps"]["time_step"];
   const double smallest = *std::min_element(dts.begin(), dts.end());
   EXPECT_GE(smallest, 1e-4);
-  // The springs' compression under the pile is ~1e-6 m and the landing impacts ~1e-5 m; a
-  // corner found deep (the failure) read 1.6e-3 m.
+  // The springs' compression under the pile is ~1e-6 m; a cube landing at 1 m/s compresses
+  // its contact by about v sqrt(m / k_n) = 8e-5 m, and a contact whose state flips during
+  // the step is left open until it penetrates a tenth of the allowed penetration (1.3e-4 m
+  // here, updateContactStates): 2.5e-4 m at most. A corner found deep (the failure) read
+  // 1.6e-3 m.
   const std::vector<double> penetrations = summary["steps"]["max_penetration"];
-  EXPECT_LT(*std::max_element(penetrations.begin(), penetrations.end()), 1e-4);
+  EXPECT_LT(*std::max_element(penetrations.begin(), penetrations.end()), 2.5e-4);
 
   double fastest = 0.0, moved_sideways = 0.0, settle_error = 0.0, last_speed = 0.0;
   std::map<std::string, test::HistoryRow> last;
