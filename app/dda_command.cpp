@@ -281,7 +281,7 @@ Command addDdaCommand(CLI::App& app) {
   addCommonOptions(*cli, options->common);
   addCutterOption(*cli, options->cutter);
   cli->add_option("--solver", options->overrides.solver,
-                  "Linear solver: auto (default: cholmod below 6000 unknowns (1000 rigid or 500 "
+                  "Linear solver: auto (default: cholmod up to 6000 unknowns (1000 rigid or 500 "
                   "deformable movable blocks), else pcg "
                   "warm-started), cholmod, eigen, pcg")
       ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));

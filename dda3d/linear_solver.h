@@ -19,7 +19,7 @@ enum class SolverKind {
   Eigen,    ///< Eigen::SimplicialLDLT
   Pcg,      ///< conjugate gradients with a block-Jacobi (12x12 or 6x6) preconditioner
   /// Resolved by the Simulation from the number of unknowns of the movable blocks: Cholmod
-  /// below SolverOptions::auto_pcg_unknowns, Pcg (warm-started) from there on.
+  /// up to SolverOptions::auto_cholmod_unknowns, Pcg (warm-started) above.
   Auto,
 };
 
@@ -30,14 +30,15 @@ struct SolverOptions {
                               ///< block-Jacobi preconditioner
   double tolerance = 1e-10;   ///< Pcg: relative residual |K d - F| / |F|
   int max_iterations = 5000;  ///< Pcg
-  /// Auto: unknowns (of the movable blocks) from which Pcg replaces Cholmod: 500 deformable
-  /// or 1000 rigid blocks. Measured: at 12 000 unknowns (1000 deformable cubes) PCG is the
-  /// faster one and CHOLMOD's fill-in grows superlinearly with a 3D pile's size
-  /// (bench/solver_bench.cpp); at 5 598 (the Xiangjiaba model, 933 rigid blocks) CHOLMOD
-  /// factorizes in 43 ms, as fast as a warm-started PCG solve of a resting step, and its
-  /// overload steps, with 20-40 open-close iterations, take 0.7 of PCG's time
-  /// (docs/performance.md, "Linear solvers").
-  int auto_pcg_unknowns = 6000;
+  /// Auto: the most unknowns (of the movable blocks) Cholmod solves, Pcg above: 1000 rigid
+  /// or 500 deformable blocks. Measured: at 12 000 unknowns (1000 deformable cubes) a PCG
+  /// solve is the faster one and CHOLMOD's fill-in grows superlinearly with a 3D pile's size
+  /// (bench/solver_bench.cpp); at 6 000 (1000 rigid cubes settling, 13 open-close iterations
+  /// a step) CHOLMOD runs 5.3x PCG's steps per second, and at 5 598 (the Xiangjiaba model,
+  /// 933 rigid blocks) it factorizes in 43 ms, as fast as a warm-started PCG solve of a
+  /// resting step, its overload steps taking 0.7 of PCG's time (docs/performance.md, "DDA
+  /// linear solvers").
+  int auto_cholmod_unknowns = 6000;
 };
 
 /// One solve's account, for the step statistics.

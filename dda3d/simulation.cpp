@@ -419,7 +419,7 @@ SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable) {
   SolverOptions options = settings.solver;
   options.block_size = settings.kinematics == Kinematics::Rigid ? 6 : kBlockDofs;
   if (options.kind == SolverKind::Auto) {
-    if (movable * options.block_size < options.auto_pcg_unknowns) {
+    if (movable * options.block_size <= options.auto_cholmod_unknowns) {
       options.kind = SolverKind::Cholmod;
     } else {
       options.kind = SolverKind::Pcg;

@@ -85,7 +85,7 @@ struct DdaSettings {
   double open_threshold_ratio = 1e-10;
   /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
   double half_domain_size = 0.0;
-  /// Auto: CHOLMOD below solver.auto_pcg_unknowns unknowns, above it PCG warm-started
+  /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
   /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
   SolverOptions solver{.kind = SolverKind::Auto};
 };

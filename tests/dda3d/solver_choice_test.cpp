@@ -1,5 +1,5 @@
 // The solver a DDA run uses: SolverKind::Auto (CHOLMOD for small systems, warm-started PCG
-// from DdaSettings::solver.auto_pcg_unknowns unknowns on), and a PCG run reproducing the CHOLMOD
+// above DdaSettings::solver.auto_cholmod_unknowns unknowns), and a PCG run reproducing the CHOLMOD
 // trajectory of a settling pile within what the PCG tolerance allows.
 #include <gtest/gtest.h>
 
@@ -20,24 +20,24 @@ TEST(SolverChoice, AutoIsCholmodForSmallAndPcgForLargeSystems) {
   settings.kinematics = Kinematics::Rigid;
   EXPECT_EQ(settings.solver.kind, SolverKind::Auto);
   // 6 000 unknowns: 1 000 rigid blocks (6 unknowns each), 500 deformable ones (12).
-  EXPECT_EQ(settings.solver.auto_pcg_unknowns, 6000);
-  const SolverOptions small = resolvedSolverOptions(settings, 999);
+  EXPECT_EQ(settings.solver.auto_cholmod_unknowns, 6000);
+  const SolverOptions small = resolvedSolverOptions(settings, 1000);
   EXPECT_EQ(small.kind, SolverKind::Cholmod);
   EXPECT_EQ(small.block_size, 6);
-  const SolverOptions large = resolvedSolverOptions(settings, 1000);
+  const SolverOptions large = resolvedSolverOptions(settings, 1001);
   EXPECT_EQ(large.kind, SolverKind::Pcg);
   DdaSettings deformable = settings;
   deformable.kinematics = Kinematics::Deformable;
-  EXPECT_EQ(resolvedSolverOptions(deformable, 499).kind, SolverKind::Cholmod);
-  EXPECT_EQ(resolvedSolverOptions(deformable, 500).kind, SolverKind::Pcg);
-  EXPECT_EQ(resolvedSolverOptions(deformable, 500).block_size, 12);
+  EXPECT_EQ(resolvedSolverOptions(deformable, 500).kind, SolverKind::Cholmod);
+  EXPECT_EQ(resolvedSolverOptions(deformable, 501).kind, SolverKind::Pcg);
+  EXPECT_EQ(resolvedSolverOptions(deformable, 501).block_size, 12);
   // The error bound 1e-2 g3 / g2 / 1e3 is 4e-7 with the defaults g2 = 0.01, g3 = 4e-4
   // (simulation.h), looser than the 1e-8 cap that bench/dda_accuracy_bench.cpp calls for.
   EXPECT_DOUBLE_EQ(large.tolerance, 1e-8);
   // A tighter penetration allowance makes the bound the binding one: 1e-2 * 1e-6 / 0.01 / 1e3.
   DdaSettings strict = settings;
   strict.allowed_penetration_ratio = 1e-6;
-  EXPECT_DOUBLE_EQ(resolvedSolverOptions(strict, 1000).tolerance, 1e-2 * 1e-6 / 0.01 * 1e-3);
+  EXPECT_DOUBLE_EQ(resolvedSolverOptions(strict, 1001).tolerance, 1e-2 * 1e-6 / 0.01 * 1e-3);
   // An explicit choice is kept.
   settings.solver.kind = SolverKind::Eigen;
   EXPECT_EQ(resolvedSolverOptions(settings, 100000).kind, SolverKind::Eigen);
