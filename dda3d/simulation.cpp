@@ -162,9 +162,13 @@ constexpr double kRestingReachRatio = 0.1;
 /// Largest pull (in weights of the lighter block) of a contact held closed after it opened
 /// and closed again in a step (updateContactStates).
 constexpr double kHoldWeights = 12.0;
-/// Penetration (in allowed penetrations) past which a contact that flipped open, closed and
-/// open again in a step closes (updateContactStates).
+/// A contact that flipped open, closed and open again in a step closes past this many
+/// allowed penetrations, or past kLateRestitution / 2 of its approach in the step, i.e. past
+/// the gap it closed in the step (updateContactStates).
 constexpr double kChatterClosingRatio = 0.1;
+/// Largest ratio of the push-out speed of such a contact, found penetrating at the next step,
+/// to its approach speed.
+constexpr double kLateRestitution = 1.0;
 
 /// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
 double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
@@ -662,16 +666,21 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     if (c.state == ContactState::Open) {
       c.normal_force = 0.0;
       // A contact that closed, opened (its pull over the hold limit below) and is open again
-      // in this step closes only once it penetrates a tenth of the allowed penetration: it
-      // sits where neither state is consistent (solved closed it pulls, solved open it
-      // penetrates), and flipping it every iteration never settled: a cube landing at
-      // 2.5 m/s on a pile penetrated 0.27 mm solved open and pulled 2.6 um solved closed, and
-      // its steps were redone down to 2e-5 s (a pile of 1 000 cubes, docs/dda3d.md). Left
-      // open, it is found penetrating at the next step and pushed out; the step control
-      // still bounds its depth by the allowed penetration.
-      const double close_at = c.toggles >= 3
-                                  ? std::max(close_tolerance, kChatterClosingRatio * allowed)
-                                  : close_tolerance;
+      // in this step is met mid-step by a block arriving fast: solved closed it pulls,
+      // solved open it penetrates (a cube landing at 2.5 m/s on a pile: 2.6 um and
+      // 0.27 mm), and flipping it every iteration never settled; the steps of a landing pile
+      // of 1 000 cubes were redone down to 2e-5 s (docs/dda3d.md). It stays open while its
+      // penetration is at most half its approach in the step (gap0 - d), i.e. less than the
+      // gap it closed, and a tenth of the allowed penetration: found penetrating at the next
+      // step, its spring pushes it out at about 2 |d| / dt, at most its approach speed (a
+      // restitution of 1 or less; the scheme's damping takes the rest). A resting contact (no
+      // approach) closes as any other: left open whatever its approach, contacts sank and
+      // were pushed out every step, and a settled pile boiled at 0.3 m/s.
+      const double approach = c.gap0 - d;
+      const double close_at =
+          c.toggles >= 3 ? std::max(close_tolerance, std::min(kChatterClosingRatio * allowed,
+                                                              0.5 * kLateRestitution * approach))
+                         : close_tolerance;
       if (d < -close_at) {
         c.state = ContactState::Locked;
         c.shear.setZero();
