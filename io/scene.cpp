@@ -723,7 +723,9 @@ BlocksAnalysis readBlocksAnalysis(const Cursor& c) {
   blocks.cutter = m.valueOr("cutter", blocks.cutter, [&](const Cursor& v) {
     return kCutters[v.choice("cutter", {"exact", "fast"})];
   });
-  blocks.disc_segments = m.integerOr("disc_segments", blocks.disc_segments, atLeast(3));
+  // At 1024 segments the polygon is within 5e-6 of its radius from the ellipse (1 - cos(pi /
+  // 1024)); more only costs memory (2^31 ran out of it).
+  blocks.disc_segments = m.integerOr("disc_segments", blocks.disc_segments, closed(3, 1024));
   return blocks;
 }
 
@@ -828,8 +830,15 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   dda.deformable = m.valueOr("kinematics", dda.deformable, [](const Cursor& v) {
     return v.choice("kinematics", {"deformable", "rigid"}) == 0;
   });
-  dda.steps = m.integerOr("steps", dda.steps, above(0));
+  // At most 1e7 steps: the history of every step is kept in memory (~16 MB/s of run on a
+  // small model), and 1e9 steps ran the machine out of memory after 8 minutes.
+  dda.steps = m.integerOr("steps", dda.steps, closed(1, 1e7));
   dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
+  if (const auto step = m.get("time_step");
+      step && !m.get("min_time_step") && dda.time_step < dda.min_time_step) {
+    step->fail("expected a time step >= min_time_step (" + formatDouble(dda.min_time_step) +
+               " s; set min_time_step to go lower), got " + formatDouble(dda.time_step));
+  }
   if (const auto min_step = m.get("min_time_step")) {
     dda.min_time_step = min_step->number(kPositive);
     if (dda.min_time_step > dda.time_step) {

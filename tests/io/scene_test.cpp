@@ -99,6 +99,20 @@ TEST(SceneErrors, WrongTypes) {
             "bad.yaml:5:5: analysis.dda.steps: expected an integer, got nothing");
 }
 
+// Values that would run away (../shared/repro/bad-input/r2, r3 and the steps bomb): refused
+// at their line with the allowed range, before any work.
+TEST(SceneErrors, RunawayValuesAreOutOfRange) {
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  blocks: {disc_segments: 2147483647}\n"),
+            "bad.yaml:4:27: analysis.blocks.disc_segments: expected an integer in [3, 1024], "
+            "got 2147483647");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda: {steps: 1000000000}\n"),
+            "bad.yaml:4:16: analysis.dda.steps: expected an integer in [1, 1e+07], got "
+            "1000000000");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda: {time_step: 1e-300}\n"),
+            "bad.yaml:4:20: analysis.dda.time_step: expected a time step >= min_time_step "
+            "(1e-09 s; set min_time_step to go lower), got 1e-300");
+}
+
 TEST(SceneErrors, NegativeSpacing) {
   EXPECT_EQ(errorOf(valid_head + "joint_sets:\n" +
                     jointSet("J1", "{distribution: normal, mean: -1, std: 0.1}", lognormal_trace)),
