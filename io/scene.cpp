@@ -8,6 +8,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -1232,8 +1233,55 @@ class SceneReader {
   UniqueNames structure_names_;            ///< structures
 };
 
+/// Length of the UTF-8 sequence that starts at text[k] (1-4), or 0 when it is not one: a
+/// stray continuation byte, a truncated sequence, an overlong form, a surrogate, or a code
+/// point above U+10FFFF (RFC 3629).
+std::size_t utf8Length(const std::string& text, std::size_t k) {
+  const auto byte = [&](std::size_t i) {
+    return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u;
+  };
+  const unsigned lead = byte(k);
+  if (lead < 0x80) return 1;
+  const auto continuation = [&](std::size_t i, unsigned low = 0x80, unsigned high = 0xBF) {
+    return byte(i) >= low && byte(i) <= high;
+  };
+  if (lead >= 0xC2 && lead <= 0xDF) return continuation(k + 1) ? 2 : 0;
+  if (lead >= 0xE0 && lead <= 0xEF) {
+    const unsigned low = lead == 0xE0 ? 0xA0 : 0x80, high = lead == 0xED ? 0x9F : 0xBF;
+    return continuation(k + 1, low, high) && continuation(k + 2) ? 3 : 0;
+  }
+  if (lead >= 0xF0 && lead <= 0xF4) {
+    const unsigned low = lead == 0xF0 ? 0x90 : 0x80, high = lead == 0xF4 ? 0x8F : 0xBF;
+    return continuation(k + 1, low, high) && continuation(k + 2) && continuation(k + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+/// An InputError at the first byte of `text` that is not valid UTF-8 (a scene is UTF-8, as
+/// YAML and the JSON summary require); checked before anything is read or written.
+void checkUtf8(const std::string& text, const fs::path& file) {
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t k = 0; k < text.size();) {
+    const std::size_t length = utf8Length(text, k);
+    if (length == 0) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(text[k]));
+      throw InputError(locate(
+          file, line, static_cast<int>(k - line_start) + 1,
+          std::string("invalid UTF-8 (byte ") + hex + "); the scene file must be UTF-8 text"));
+    }
+    if (text[k] == '\n') {
+      ++line;
+      line_start = k + 1;
+    }
+    k += length;
+  }
+}
+
 /// The single YAML document of `text`, or an InputError for invalid YAML.
 YAML::Node loadDocument(const std::string& text, const fs::path& file) {
+  checkUtf8(text, file);
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);

@@ -113,6 +113,21 @@ TEST(SceneErrors, RunawayValuesAreOutOfRange) {
             "(1e-09 s; set min_time_step to go lower), got 1e-300");
 }
 
+// Strings reach the JSON summary and the VTU names: a scene that is not UTF-8 is refused at
+// its first bad byte, before any output (../shared/repro/bad-input/r1_invalid_utf8_name.yaml).
+TEST(SceneErrors, InvalidUtf8IsRefusedAtItsByte) {
+  EXPECT_EQ(errorOf("version: 1\nname: \xC0\xAF\n"),
+            "bad.yaml:2:7: invalid UTF-8 (byte 0xC0); the scene file must be UTF-8 text");
+  EXPECT_EQ(errorOf(valid_head + "name: ok \xE2\x82\n"),  // truncated 3-byte sequence
+            "bad.yaml:3:10: invalid UTF-8 (byte 0xE2); the scene file must be UTF-8 text");
+  EXPECT_EQ(errorOf(valid_head + "name: \xED\xA0\x80\n"),  // a UTF-16 surrogate
+            "bad.yaml:3:7: invalid UTF-8 (byte 0xED); the scene file must be UTF-8 text");
+  // Valid multi-byte text (2, 3 and 4 bytes) is read as it is.
+  EXPECT_EQ(
+      parseScene(valid_head + "name: \"Xiàngjiābà 向家坝 \xF0\x9F\xAA\xA8\"\n", "ok.yaml").name,
+      "Xiàngjiābà 向家坝 \xF0\x9F\xAA\xA8");
+}
+
 TEST(SceneErrors, NegativeSpacing) {
   EXPECT_EQ(errorOf(valid_head + "joint_sets:\n" +
                     jointSet("J1", "{distribution: normal, mean: -1, std: 0.1}", lognormal_trace)),
