@@ -775,7 +775,13 @@ RqdCalibration readRqdCalibration(const Cursor& c, const std::vector<std::string
 }
 
 /// analysis.rqd; `joint_sets` names the joint sets in order.
-RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets) {
+/// The most cells an RQD/P32 grid may have: each casts `direction_count` scanlines, and at
+/// 1e7 cells the grid already takes minutes (a spacing of 1e-6 m asked for 4e21 and never
+/// finished).
+constexpr double kMaxGridCells = 1e7;
+
+RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets,
+                            const geometry::Box& domain, bool mesh_domain) {
   const Cursor m = c.map({"thresholds", "balls", "boreholes", "grid", "merge_distance"});
   RqdAnalysis rqd;
   if (const auto thresholds = m.get("thresholds")) {
@@ -815,6 +821,21 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
         grid->integerOr("direction_count", rqd.grid_direction_count, atLeast(1));
     if (const auto length = grid->get("length")) rqd.grid_length = length->number(kPositive);
     if (const auto region = grid->get("region")) rqd.grid_region = readBox(*region);
+    // The grid fills its region, or the domain box (a mesh domain's box is known later; the
+    // grid builder checks it then).
+    if (rqd.grid_region || !mesh_domain) {
+      const geometry::Vec3 size = (rqd.grid_region ? *rqd.grid_region : domain).size();
+      double cells = 1.0;
+      for (int axis = 0; axis < 3; ++axis) {
+        cells *= std::max(1.0, std::floor(size[axis] / *rqd.grid_spacing));
+      }
+      if (cells > kMaxGridCells) {
+        grid->at("spacing").fail("expected a spacing that gives at most " +
+                                 formatDouble(kMaxGridCells) + " cells in the grid's region, got " +
+                                 formatDouble(*rqd.grid_spacing) + " m (" + formatDouble(cells) +
+                                 " cells)");
+      }
+    }
   }
   return rqd;
 }
@@ -935,7 +956,9 @@ Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_set
   const Cursor m = c.map({"blocks", "rqd", "dda", "overload", "strength_reduction", "equilibrium"});
   Analysis analysis;
   if (const auto v = m.get("blocks")) analysis.blocks = readBlocksAnalysis(*v);
-  if (const auto v = m.get("rqd")) analysis.rqd = readRqdAnalysis(*v, joint_sets);
+  if (const auto v = m.get("rqd")) {
+    analysis.rqd = readRqdAnalysis(*v, joint_sets, domain, mesh_domain);
+  }
   if (const auto v = m.get("dda")) analysis.dda = readDdaAnalysis(*v, domain, mesh_domain);
   if (const auto v = m.get("overload")) analysis.overload = readOverloadAnalysis(*v);
   if (const auto v = m.get("strength_reduction")) {

@@ -18,6 +18,10 @@ CellGrid cellGridIn(const geometry::Box& region, double cell_size) {
   }
   CellGrid grid;
   grid.cell_size = cell_size;
+  // The scene reader refuses such a grid at its line (io/scene.cpp, kMaxGridCells); this
+  // covers --grid-spacing and mesh domains.
+  constexpr double kMaxCells = 1e7;
+  double total = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
     const double cells = std::floor(size[axis] / cell_size * (1.0 + 1e-9));
     if (cells < 1.0) {
@@ -31,6 +35,11 @@ CellGrid cellGridIn(const geometry::Box& region, double cell_size) {
                                   std::string(1, "xyz"[axis]) + ": use a larger spacing");
     }
     grid.dims[static_cast<std::size_t>(axis)] = static_cast<int>(cells);
+    total *= cells;
+    if (total > kMaxCells) {
+      throw std::invalid_argument("grid of spacing " + std::to_string(cell_size) +
+                                  " m would have more than 1e7 cells: use a larger spacing");
+    }
     // Centre the cells in the region; never start below its lower bound.
     grid.origin[axis] = region.min[axis] + std::max(0.0, 0.5 * (size[axis] - cells * cell_size));
   }

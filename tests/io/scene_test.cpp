@@ -128,6 +128,22 @@ TEST(SceneErrors, InvalidUtf8IsRefusedAtItsByte) {
       "Xiàngjiābà 向家坝 \xF0\x9F\xAA\xA8");
 }
 
+// An RQD grid is refused at its spacing when it would have more than 1e7 cells (the repro
+// bombs/grid1e6.yaml: 4e21 cells, never finished).
+TEST(SceneErrors, RqdGridOfTooManyCells) {
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  rqd:\n    grid: {spacing: 0.001}\n"),
+            "bad.yaml:5:21: analysis.rqd.grid.spacing: expected a spacing that gives at most "
+            "1e+07 cells in the grid's region, got 0.001 m (1e+12 cells)");
+  // The same spacing in a region of 10 x 10 x 10 cm: 1e6 cells, accepted.
+  EXPECT_EQ(
+      parseScene(valid_head +
+                     "analysis:\n  rqd:\n    grid: {spacing: 0.001, region: {min: [1, 1, -2], "
+                     "max: [1.1, 1.1, -1.9]}}\n",
+                 "ok.yaml")
+          .analysis.rqd->grid_spacing,
+      0.001);
+}
+
 TEST(SceneErrors, NegativeSpacing) {
   EXPECT_EQ(errorOf(valid_head + "joint_sets:\n" +
                     jointSet("J1", "{distribution: normal, mean: -1, std: 0.1}", lognormal_trace)),

@@ -56,5 +56,14 @@ TEST(CellGrid, RejectsRegionsAndSizesItCannotFill) {
   EXPECT_THROW(cellGridIn(region, 1e-10), std::invalid_argument);  // 1e11 cells along x
 }
 
+// At most 1e7 cells in all (the repro bombs/grid1e6.yaml asked for 4e21 and never finished):
+// 215^3 = 9.94e6 cells are built, 216^3 = 1.008e7 refused.
+TEST(CellGrid, RefusesMoreThanTenMillionCells) {
+  const Box cube{{0, 0, 0}, {1, 1, 1}};
+  EXPECT_EQ(cellGridIn(cube, 1.0 / 215).dims[0], 215);
+  EXPECT_THROW(cellGridIn(cube, 1.0 / 216), std::invalid_argument);
+  EXPECT_THROW(cellGridIn(Box{{2, 2, -18}, {18, 18, -2}}, 1e-6), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace rockmass::rqd
