@@ -61,7 +61,9 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
     try {
       solid.pieces = blocks::prismPieces(s.prism_profile, s.prism_sweep, s.prism_from, s.prism_to);
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(scene_path + ": structures: " + s.name + ": prism: " + e.what());
+      // The outline is checked where it is cut (CGAL's simplicity test): named at its line.
+      throw io::InputError(io::locate(scene_path, s.profile_line, s.profile_column,
+                                      "structures: " + s.name + ": prism.profile: " + e.what()));
     }
     input.structures.push_back(std::move(solid));
   }

@@ -164,6 +164,8 @@ class Cursor {
 
   /// 1-based line of this node in the scene file.
   int line() const { return mark_.line + 1; }
+  /// 1-based column of this node in the scene file.
+  int column() const { return mark_.column + 1; }
 
   /// The key path, e.g. "materials.concrete.young" ("" at the root).
   const std::string& path() const { return path_; }
@@ -589,6 +591,9 @@ geometry::Distribution readDistribution(const Cursor& c) {
 }
 
 /// Fails unless a trace length distribution gives only values > 0.
+/// The shortest mean trace length or spacing a joint set may have (m).
+constexpr double kShortestLength = 1e-6;
+
 void checkTraceLength(const Cursor& c, const geometry::Distribution& distribution) {
   const DistributionSpec& spec = distribution.spec();
   if (spec.kind == DistributionKind::Normal && !(spec.min && *spec.min > 0)) {
@@ -600,6 +605,13 @@ void checkTraceLength(const Cursor& c, const geometry::Distribution& distributio
     c.fail("expected only values > 0 for a trace length, but the distribution reaches " +
            formatDouble(distribution.lower()));
   }
+  // Below a micrometre the discs' count (P32 over a disc's area) overflows: a mean of 5e-324
+  // asked for NaN discs.
+  if (!(spec.mean >= kShortestLength)) {
+    c.get("mean").value_or(c).fail(
+        "expected a mean trace length >= " + formatDouble(kShortestLength) + " m, got " +
+        formatDouble(spec.mean));
+  }
 }
 
 /// A spacing distribution: its mean (which sets P10) must be > 0.
@@ -608,6 +620,10 @@ DistributionSpec readSpacing(const Cursor& c) {
   if (spec.mean <= 0) {
     c.get("mean").value_or(c).fail("expected a mean > 0 for a spacing, got " +
                                    formatDouble(spec.mean));
+  }
+  if (spec.mean < kShortestLength) {
+    c.get("mean").value_or(c).fail("expected a mean spacing >= " + formatDouble(kShortestLength) +
+                                   " m, got " + formatDouble(spec.mean));
   }
   return spec;
 }
@@ -1064,6 +1080,11 @@ class SceneReader {
                  " >= " + formatDouble(max) + " in " + "xyz"[axis]);
       }
     }
+    // Edges of 1e-300 m have min < max and no volume in floating point.
+    const double volume = scene_.dfn.domain.volume();
+    if (!(volume > 0.0 && std::isfinite(volume))) {
+      box.fail("expected a box with a finite volume > 0, got " + formatDouble(volume) + " m3");
+    }
   }
 
   /// A `materials` entry: unit_weight or density, young, poisson.
@@ -1182,6 +1203,8 @@ class SceneReader {
     if (m.oneOf("prism", "mesh") == 0) {
       const Cursor prism = m.at("prism").map({"profile", "sweep", "from", "to"});
       structure.prism_profile = readProfile(prism.at("profile"), 3);
+      structure.profile_line = prism.at("profile").line();
+      structure.profile_column = prism.at("profile").column();
       structure.prism_sweep = readSweep(prism.at("sweep"));
       structure.prism_from = prism.at("from").number();
       structure.prism_to =

@@ -46,6 +46,8 @@ struct StructureSpec {
   std::filesystem::path mesh;       ///< closed mesh instead of a prism (absolute path)
   int material = 0;                 ///< material index
   int joint = -1;                   ///< joint index of the structure-rock contact (-1: none)
+  int profile_line = 0;             ///< line of prism.profile in the scene file (messages)
+  int profile_column = 0;           ///< its column
 };
 
 /// Plan-view region (m); missing bounds are open.

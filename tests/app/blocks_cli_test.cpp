@@ -166,6 +166,27 @@ TEST(BlocksCli, MeshStructureIsExitTwoNamingTheSceneKey) {
   }
 }
 
+TEST(BlocksCli, PrismProfileThatIsNotSimpleIsExitTwoAtItsLine) {
+  // A bow-tie outline (../shared/repro/bad-input/r9): refused where it is cut, named at the
+  // line and column of prism.profile, before any output is written.
+  test::TempDir dir("blocks_cli_bowtie");
+  std::string text = kScene;
+  const std::size_t at = text.find("profile: [");
+  const std::size_t end = text.find("]]", at) + 2;
+  text.replace(at, end - at, "profile: [[5, 0], [15, 0], [5, -8], [15, -8]]");
+  const fs::path scene = test::writeFile(dir.path() / "scene.yaml", text);
+  const test::CliResult r =
+      test::runCli("blocks " + scene.string() + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const int line = static_cast<int>(std::count(text.begin(), text.begin() + at, '\n')) + 1;
+  EXPECT_NE(r.output.find(scene.string() + ":" + std::to_string(line) + ":"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("structures: dam: prism.profile: the polygon is not simple"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "blocks.csv"));
+}
+
 // faces.vtu: every piece face that is not an internal cut, with what made it and its joint.
 // The scene above with F1 on its own joint (weak, index 1) and the dam on an inline joint
 // (dam.joint, index 2): F1's faces (disc 1) carry joint 1, F2's (disc 2) the default joint 0,

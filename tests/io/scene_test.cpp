@@ -144,6 +144,22 @@ TEST(SceneErrors, RqdGridOfTooManyCells) {
       0.001);
 }
 
+// Values whose consequences overflow further on (../shared/repro/bad-input r4, r10): a domain
+// of 1e-300 m edges (no volume in floating point) and a denormal trace length (NaN discs).
+TEST(SceneErrors, VanishingDomainAndTraceLength) {
+  EXPECT_EQ(errorOf("version: 1\ndomain: {box: {min: [0, 0, 0], max: [1e-300, 1e-300, 1e-300]}}\n"),
+            "bad.yaml:2:15: domain.box: expected a box with a finite volume > 0, got 0 m3");
+  EXPECT_EQ(
+      errorOf(valid_head + "joint_sets:\n" +
+              jointSet("J1", lognormal_spacing, "{distribution: constant, mean: 5e-324}")),
+      "bad.yaml:8:50: joint_sets[0].trace_length.mean: expected a mean trace length >= 1e-06 m, "
+      "got 5e-324");
+  EXPECT_EQ(
+      errorOf(valid_head + "joint_sets:\n" +
+              jointSet("J1", "{distribution: constant, mean: 1e-300}", lognormal_trace)),
+      "bad.yaml:7:45: joint_sets[0].spacing.mean: expected a mean spacing >= 1e-06 m, got 1e-300");
+}
+
 TEST(SceneErrors, NegativeSpacing) {
   EXPECT_EQ(errorOf(valid_head + "joint_sets:\n" +
                     jointSet("J1", "{distribution: normal, mean: -1, std: 0.1}", lognormal_trace)),
