@@ -110,6 +110,12 @@ bool isMetre(std::string_view unit) {
 }
 
 /// Reads FAB text line by line and turns every problem into an InputError at file:line.
+/// Largest coordinate of a FAB vertex (m).
+constexpr double kLargestCoordinate = 1e12;
+/// Largest distance of a FAB polygon's vertex from its plane, in polygon sizes (bounding-box
+/// diagonals): FAB files from other tools round their coordinates to 6 or more digits.
+constexpr double kPlanarity = 1e-2;
+
 class FabParser {
  public:
   /// Parses `text`, which came from `file` (used in messages only).
@@ -247,9 +253,16 @@ class FabParser {
           fail(line.number, "vertex " + std::to_string(k) + " of " + name +
                                 " has a non-finite coordinate " + quoted(line.words[axis + 1]));
         }
+        // Beyond 1e12 m the polygon's area and normal overflow (1e308 gave "a plane normal
+        // must be a finite non-zero vector" with no line).
+        if (std::abs(vertex[axis]) > kLargestCoordinate) {
+          fail(line.number, "vertex " + std::to_string(k) + " of " + name + " has a coordinate " +
+                                quoted(line.words[axis + 1]) + " beyond 1e12 m");
+        }
       }
       fracture.vertices.push_back(vertex);
     }
+    checkPolygon(fracture.vertices, name, header.number);
     const FabLine normal = lineInside(section);
     if (tryNumber<long long>(normal.words[0]) != 0) {
       fail(normal.number, "expected the normal line '0 nx ny nz' after the " +
@@ -257,6 +270,50 @@ class FabParser {
                               quoted(normal.text));
     }
     return fracture;
+  }
+
+  /// A fracture must be a plane polygon with an area: one whose vertices are collinear, one
+  /// that crosses itself into lobes of opposite turn (a bow-tie: no net area), or one whose
+  /// vertices lie off its plane by more than kPlanarity of its size is refused at its header.
+  void checkPolygon(const std::vector<Vec3>& vertices, const std::string& name, int line) {
+    geometry::Box box{vertices.front(), vertices.front()};
+    for (const Vec3& v : vertices) {
+      box.min = box.min.cwiseMin(v);
+      box.max = box.max.cwiseMax(v);
+    }
+    const double size = box.size().norm();
+    // The fan's triangles summed without sign: zero only when the vertices are collinear.
+    double unsigned_area = 0.0;
+    for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
+      unsigned_area +=
+          0.5 * (vertices[k] - vertices[0]).cross(vertices[k + 1] - vertices[0]).norm();
+    }
+    const double tiny = 1e-12 * size * size;
+    if (!(unsigned_area > tiny)) {
+      fail(line, name + " has no area: its vertices are collinear or coincide");
+    }
+    if (!(geometry::polygonArea(vertices) > tiny)) {
+      fail(line, name + " crosses itself: its lobes turn opposite ways and cancel (no net area)");
+    }
+    const Vec3 normal = geometry::polygonNormal(vertices);
+    const Vec3 centre = vertices.front();
+    double farthest = 0.0, mean_offset = 0.0;
+    for (const Vec3& v : vertices) mean_offset += normal.dot(v - centre);
+    mean_offset /= static_cast<double>(vertices.size());
+    std::size_t worst = 0;
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      const double off = std::abs(normal.dot(vertices[k] - centre) - mean_offset);
+      if (off > farthest) {
+        farthest = off;
+        worst = k;
+      }
+    }
+    if (farthest > kPlanarity * size) {
+      fail(line, name + " is not planar: vertex " + std::to_string(worst + 1) + " lies " +
+                     formatDouble(farthest) + " m off its plane (at most " +
+                     formatDouble(kPlanarity) + " of its size, " + formatDouble(kPlanarity * size) +
+                     " m)");
+    }
   }
 
   /// Skips an optional section (PROPERTIES, SETS, TESSFRACTURE, ROCKBLOCK...) up to its END.

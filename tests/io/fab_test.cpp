@@ -27,15 +27,17 @@ std::string parseError(const std::string& text) {
 }
 
 /// Two fractures whose coordinates have no short exact decimal form in binary, or are
-/// extreme, so any loss of precision in writing or reading changes them.
+/// extreme (1e11 m, near the 1e12 m a FAB vertex may reach; the last vertex 2^-7 m off the
+/// plane of the others, within the planarity tolerance), so any loss of precision in writing
+/// or reading changes them.
 FabFile awkwardFab() {
   FabFile fab;
   fab.fractures.push_back(
       {1, 1, {Vec3(0.1, 1.0 / 3.0, -1e-300), Vec3(123456.789, 0.2, 7.0), Vec3(1.0, 2.0, 3.0)}});
   fab.fractures.push_back({9007199254740993LL,
                            12,
-                           {Vec3(-0.0, 0.0, 1e21), Vec3(1e-7, 0.0, 1e21),
-                            Vec3(1e-7, 2.0 / 3.0, 1e21), Vec3(0.0, 2.0 / 3.0, 1e21 + 131072.0)}});
+                           {Vec3(-0.0, 0.0, 1e11), Vec3(1e-7, 0.0, 1e11),
+                            Vec3(1e-7, 2.0 / 3.0, 1e11), Vec3(0.0, 2.0 / 3.0, 1e11 + 0.0078125)}});
   return fab;
 }
 
@@ -181,6 +183,19 @@ TEST(FabErrors, GarbledAndTruncatedFilesAreLocated) {
        "f.fab:13: vertex 2 of fracture 3 has a non-finite coordinate 'nan'"},
       {"a coordinate overflows", head + "3 3 1\n1 0 0 1\n2 1 1e999 1\n",
        "f.fab:13: expected a number, got '1e999'"},
+      // The geometry of each polygon (../shared/repro/bad-input r5-r8), at its header line.
+      {"a coordinate beyond 1e12 m", head + "3 3 1\n1 0 0 1\n2 1 1e308 1\n",
+       "f.fab:13: vertex 2 of fracture 3 has a coordinate '1e308' beyond 1e12 m"},
+      {"collinear vertices", head + "3 3 1\n1 0 0 1\n2 1 0 1\n3 2 0 1\n0 0 0 1\nEND FRACTURE\n",
+       "f.fab:11: fracture 3 has no area: its vertices are collinear or coincide"},
+      {"a bow-tie", head + "3 4 1\n1 0 0 1\n2 1 1 1\n3 1 0 1\n4 0 1 1\n0 0 0 1\nEND FRACTURE\n",
+       "f.fab:11: fracture 3 crosses itself: its lobes turn opposite ways and cancel (no net "
+       "area)"},
+      {"a twisted quadrilateral",
+       head + "3 4 1\n1 0 0 0\n2 1 0 0\n3 1 1 0.5\n4 0 1 0\n0 0 0 1\nEND FRACTURE\n",
+       // (the distance from the Newell plane through the vertices' mean offset)
+       "f.fab:11: fracture 3 is not planar: vertex 1 lies 0.11785113019775793 m off its plane "
+       "(at most 0.01 of its size, 0.015 m)"},
       {"the vertex count is not an integer", head + "3 four 1\n",
        "f.fab:11: expected an integer, got 'four'"},
       {"a polygon of 2 vertices", head + "3 2 1\n1 0 0 1\n2 1 0 1\n0 0 0 1\nEND FRACTURE\n",
