@@ -24,6 +24,7 @@
 #include "io/atomic_file.h"
 #include "io/fab.h"
 #include "io/input_error.h"
+#include "rqd/cell_grid.h"
 
 namespace rockmass::io {
 namespace {
@@ -590,10 +591,11 @@ geometry::Distribution readDistribution(const Cursor& c) {
   }
 }
 
-/// Fails unless a trace length distribution gives only values > 0.
 /// The shortest mean trace length or spacing a joint set may have (m).
 constexpr double kShortestLength = 1e-6;
 
+/// Fails unless a trace length distribution gives only values > 0, with a mean of at least
+/// kShortestLength.
 void checkTraceLength(const Cursor& c, const geometry::Distribution& distribution) {
   const DistributionSpec& spec = distribution.spec();
   if (spec.kind == DistributionKind::Normal && !(spec.min && *spec.min > 0)) {
@@ -790,12 +792,8 @@ RqdCalibration readRqdCalibration(const Cursor& c, const std::vector<std::string
   return calibration;
 }
 
-/// analysis.rqd; `joint_sets` names the joint sets in order.
-/// The most cells an RQD/P32 grid may have: each casts `direction_count` scanlines, and at
-/// 1e7 cells the grid already takes minutes (a spacing of 1e-6 m asked for 4e21 and never
-/// finished).
-constexpr double kMaxGridCells = 1e7;
-
+/// analysis.rqd; `joint_sets` names the joint sets in order; the grid fills its region or
+/// the domain box (unless the domain is a mesh).
 RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets,
                             const geometry::Box& domain, bool mesh_domain) {
   const Cursor m = c.map({"thresholds", "balls", "boreholes", "grid", "merge_distance"});
@@ -843,13 +841,13 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
       const geometry::Vec3 size = (rqd.grid_region ? *rqd.grid_region : domain).size();
       double cells = 1.0;
       for (int axis = 0; axis < 3; ++axis) {
-        cells *= std::max(1.0, std::floor(size[axis] / *rqd.grid_spacing));
+        cells *= std::max(1.0, rqd::cellsAlong(size[axis], *rqd.grid_spacing));
       }
-      if (cells > kMaxGridCells) {
-        grid->at("spacing").fail("expected a spacing that gives at most " +
-                                 formatDouble(kMaxGridCells) + " cells in the grid's region, got " +
-                                 formatDouble(*rqd.grid_spacing) + " m (" + formatDouble(cells) +
-                                 " cells)");
+      if (cells > rqd::kMaxGridCells) {
+        grid->at("spacing").fail(
+            "expected a spacing that gives at most " + formatDouble(rqd::kMaxGridCells) +
+            " cells in the grid's region, got " + formatDouble(*rqd.grid_spacing) + " m (" +
+            formatDouble(cells) + " cells)");
       }
     }
   }

@@ -7,6 +7,10 @@
 
 namespace rockmass::rqd {
 
+double cellsAlong(double length, double cell_size) {
+  return std::floor(length / cell_size * (1.0 + 1e-9));
+}
+
 CellGrid cellGridIn(const geometry::Box& region, double cell_size) {
   if (!(std::isfinite(cell_size) && cell_size > 0.0)) {
     throw std::invalid_argument("grid cell size must be finite and > 0 m, got " +
@@ -18,12 +22,9 @@ CellGrid cellGridIn(const geometry::Box& region, double cell_size) {
   }
   CellGrid grid;
   grid.cell_size = cell_size;
-  // The scene reader refuses such a grid at its line (io/scene.cpp, kMaxGridCells); this
-  // covers --grid-spacing and mesh domains.
-  constexpr double kMaxCells = 1e7;
   double total = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
-    const double cells = std::floor(size[axis] / cell_size * (1.0 + 1e-9));
+    const double cells = cellsAlong(size[axis], cell_size);
     if (cells < 1.0) {
       throw std::invalid_argument("grid region is " + std::to_string(size[axis]) +
                                   " m along axis " + std::string(1, "xyz"[axis]) +
@@ -36,7 +37,7 @@ CellGrid cellGridIn(const geometry::Box& region, double cell_size) {
     }
     grid.dims[static_cast<std::size_t>(axis)] = static_cast<int>(cells);
     total *= cells;
-    if (total > kMaxCells) {
+    if (total > kMaxGridCells) {
       throw std::invalid_argument("grid of spacing " + std::to_string(cell_size) +
                                   " m would have more than 1e7 cells: use a larger spacing");
     }

@@ -48,7 +48,16 @@ struct CellGrid {
 /// 100 m region with 5 m cells has 20 cells), the leftover split equally on both sides.
 /// Every cell lies inside `region`. Throws std::invalid_argument for a non-positive or
 /// non-finite cell size, an empty or non-finite region, a region thinner than one cell along
-/// some axis, or more than 2^31 - 1 cells along an axis.
+/// some axis, more than 2^31 - 1 cells along an axis, or more than kMaxGridCells in all.
 CellGrid cellGridIn(const geometry::Box& region, double cell_size);
+
+/// The most cells a grid may have: each casts its scanlines, and at 1e7 cells a grid already
+/// takes minutes (a spacing of 1e-6 m asked for 4e21 cells and never finished). cellGridIn
+/// refuses more; the scene reader refuses them at the spacing's line.
+inline constexpr double kMaxGridCells = 1e7;
+
+/// Whole cells of edge `cell_size` along `length` (m): the 1e-9 slack keeps the last cell of
+/// an exact multiple that round-off would drop.
+double cellsAlong(double length, double cell_size);
 
 }  // namespace rockmass::rqd
