@@ -19,11 +19,18 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
   command.add_option("-o,--output", options.output, "Output folder (created if missing)")
       ->required();
   command.add_option("--seed", options.seed, "Seed overriding the scene's `seed`");
+  command
+      .add_option("--max-discs", options.max_discs,
+                  "Largest expected number of joint-set discs to draw (a budget checked "
+                  "before the work)")
+      ->default_val(geometry::GenerationLimits{}.max_discs)
+      ->check(CLI::PositiveNumber);
 }
 
 io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
   io::Scene scene = io::loadScene(options.scene);
   if (options.seed) scene.seed = *options.seed;
+  scene.generation_limits.max_discs = options.max_discs;
   if (!scene.domain_mesh.empty() && mesh_domain_supported) {
     io::MeshDomain domain = io::readMeshDomain(scene.domain_mesh, options.scene);
     scene.domain_surface = std::move(domain.surface);
@@ -48,7 +55,15 @@ fs::path prepareOutput(const std::string& output) {
 
 geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::string& scene_path) {
   try {
-    return geometry::generateNetwork(scene.dfn, scene.seed);
+    return geometry::generateNetwork(scene.dfn, scene.seed, scene.generation_limits);
+  } catch (const geometry::DiscBudgetExceeded& e) {
+    const std::size_t set = static_cast<std::size_t>(e.set());
+    if (set < scene.joint_set_keys.size()) {
+      const io::JointSetKeys& keys = scene.joint_set_keys[set];
+      throw io::InputError(
+          io::locate(scene, e.bySize() ? keys.trace_length : keys.intensity, e.what()));
+    }
+    throw io::InputError(scene_path + ": " + e.what());
   } catch (const std::invalid_argument& e) {
     throw io::InputError(scene_path + ": " + e.what());
   }

@@ -23,6 +23,8 @@ struct CommonOptions {
   std::string scene;                  ///< scene file
   std::string output;                 ///< output folder
   std::optional<std::uint64_t> seed;  ///< overrides the scene's seed
+  /// --max-discs: geometry::GenerationLimits::max_discs
+  double max_discs = geometry::GenerationLimits{}.max_discs;
 };
 
 /// A registered sub-command: its CLI11 node and what runs when it was parsed.

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "geometry/fisher.h"
@@ -145,14 +147,24 @@ PilotResult runPilot(const JointSetSampler& sampler, Rng& rng) {
   return pilot;
 }
 
-/// Generates the discs of one joint set that touch the domain.
-void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain,
-                      std::uint64_t seed, FractureNetwork& network) {
+/// What a joint set will draw, known before any disc is placed: the pilot's measurements,
+/// the centre density and the enlarged domain the centres are drawn in.
+struct JointSetPlan {
+  SetInfo info;
+  double lambda = 0.0;    ///< centres per m3
+  Box enlarged;           ///< the domain enlarged by the margin
+  double expected = 0.0;  ///< expected number of discs drawn, lambda * enlarged volume
+};
+
+/// Runs the pilot of one joint set and plans its placement.
+JointSetPlan planJointSet(const JointSetSpec& spec, int set_index, const Box& domain,
+                          std::uint64_t seed) {
   const JointSetSampler sampler(spec);
   Rng pilot_rng = makeRng(seed, 2 * static_cast<std::uint64_t>(set_index) + kPilotStream);
   const PilotResult pilot = runPilot(sampler, pilot_rng);
 
-  SetInfo info;
+  JointSetPlan plan;
+  SetInfo& info = plan.info;
   info.name = spec.name;
   info.origin = DiscOrigin::JointSet;
   info.mean_normal = pilot.mean_normal;
@@ -162,26 +174,31 @@ void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain
   //   P32 = lambda E[A]            (area per volume, one face counted),
   //   P10(u) = lambda E[A |n.u|]   (crossings per metre of a line along u).
   // The normal spacing of the set is the spacing along its mean normal u: P10 = 1 / mean.
-  double lambda = 0.0;
   if (spec.spacing) {
     info.target_p10 = 1.0 / spec.spacing->mean;
-    lambda = info.target_p10 / pilot.mean_projected_area;
-    info.target_p32 = lambda * pilot.mean_area;
+    plan.lambda = info.target_p10 / pilot.mean_projected_area;
+    info.target_p32 = plan.lambda * pilot.mean_area;
   } else {
     info.target_p32 = *spec.p32;
-    lambda = info.target_p32 / pilot.mean_area;
-    info.target_p10 = lambda * pilot.mean_projected_area;
+    plan.lambda = info.target_p32 / pilot.mean_area;
+    info.target_p10 = plan.lambda * pilot.mean_projected_area;
   }
   // Centres: a Poisson process in the domain enlarged by the margin, so that discs centred
   // outside the domain still reach into it.
-  const Box enlarged = domain.enlarged(pilot.margin);
+  plan.enlarged = domain.enlarged(pilot.margin);
+  plan.expected = plan.lambda * plan.enlarged.volume();
+  if (!std::isfinite(plan.expected)) plan.expected = std::numeric_limits<double>::infinity();
+  return plan;
+}
+
+/// Draws the discs of one joint set that touch the domain, as planned.
+void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain,
+                      std::uint64_t seed, JointSetPlan plan, FractureNetwork& network) {
+  const JointSetSampler sampler(spec);
+  SetInfo& info = plan.info;
   Rng rng = makeRng(seed, 2 * static_cast<std::uint64_t>(set_index) + kPlacementStream);
-  const double expected = lambda * enlarged.volume();
-  if (!(expected < 2e9)) {
-    throw std::invalid_argument("set " + spec.name + " would need " + std::to_string(expected) +
-                                " discs; check its spacing, p32 and the domain size");
-  }
-  info.generated = std::poisson_distribution<std::int64_t>(expected)(rng);
+  info.generated = std::poisson_distribution<std::int64_t>(plan.expected)(rng);
+  const Box& enlarged = plan.enlarged;
   const Vec3 size = enlarged.size();
   for (std::int64_t i = 0; i < info.generated; ++i) {
     Disc disc;
@@ -426,15 +443,57 @@ double traceToDiameterScale(const DistributionSpec& trace_length) {
   return (4.0 / kPi) * first * first / second;
 }
 
-FractureNetwork generateNetwork(const DfnSpec& spec, std::uint64_t seed) {
+DiscBudgetExceeded::DiscBudgetExceeded(int set, bool by_size, double expected, double total,
+                                       double limit, double margin)
+    : std::invalid_argument(budgetMessage(by_size, expected, total, limit, margin)),
+      set_(set),
+      by_size_(by_size) {}
+
+std::string DiscBudgetExceeded::budgetMessage(bool by_size, double expected, double total,
+                                              double limit, double margin) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "the joint sets would draw " << total << " discs, over the limit of " << limit
+      << " (raise it with --max-discs); this set draws " << expected;
+  if (by_size) {
+    out << ", most of them far outside the domain: its largest discs (semi-axis " << margin
+        << " m) make it draw centres that far around the domain; check the trace length";
+  } else {
+    out << "; check its spacing or intensity and the domain size";
+  }
+  return out.str();
+}
+
+FractureNetwork generateNetwork(const DfnSpec& spec, std::uint64_t seed,
+                                const GenerationLimits& limits) {
   if (!(spec.domain.volume() > 0.0)) {
     throw std::invalid_argument("the domain has no volume");
   }
   FractureNetwork network;
   network.domain = spec.domain;
+  // Every joint set is planned (pilot sample only) before any disc is drawn, so that a
+  // network over the budget is refused at once, before the work and the memory.
+  std::vector<JointSetPlan> plans;
+  double total = 0.0;
+  for (std::size_t i = 0; i < spec.joint_sets.size(); ++i) {
+    plans.push_back(planJointSet(spec.joint_sets[i], static_cast<int>(i), spec.domain, seed));
+    total += plans.back().expected;
+  }
+  if (!(total <= limits.max_discs)) {
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < plans.size(); ++i) {
+      if (plans[i].expected > plans[worst].expected) worst = i;
+    }
+    const JointSetPlan& plan = plans[worst];
+    // The margin drives the count when it enlarges the domain's volume tenfold or more.
+    const bool by_size = plan.enlarged.volume() >= 10.0 * spec.domain.volume();
+    throw DiscBudgetExceeded(static_cast<int>(worst), by_size, plan.expected, total,
+                             limits.max_discs, plan.info.margin);
+  }
   int set_index = 0;
   for (const JointSetSpec& joint_set : spec.joint_sets) {
-    generateJointSet(joint_set, set_index++, spec.domain, seed, network);
+    generateJointSet(joint_set, set_index, spec.domain, seed, std::move(plans[set_index]), network);
+    ++set_index;
   }
   for (const FaultSpec& fault : spec.faults) {
     generateFault(fault, set_index++, spec.domain, network);

@@ -1,6 +1,7 @@
 #pragma once
 /// The discrete fracture network (DFN): generation from a DfnSpec.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,35 @@ struct FractureNetwork {
   std::vector<Slab> slabs;    ///< slabs of thick faults and interlayers
 };
 
+/// What the generator may draw before it refuses the spec.
+struct GenerationLimits {
+  /// Largest expected number of joint-set discs drawn (centres placed in the enlarged
+  /// domains, summed over the sets): 5e6 take about 5 s and at most ~1 GB.
+  double max_discs = 5e6;
+};
+
+/// A spec whose joint sets would draw more discs than GenerationLimits::max_discs, refused
+/// before any disc is drawn. `set()` is the set that draws the most; `bySize()` says whether
+/// its largest discs (the margin around the domain) rather than its intensity drive it.
+class DiscBudgetExceeded : public std::invalid_argument {
+ public:
+  DiscBudgetExceeded(int set, bool by_size, double expected, double total, double limit,
+                     double margin);
+  int set() const { return set_; }
+  bool bySize() const { return by_size_; }
+
+ private:
+  static std::string budgetMessage(bool by_size, double expected, double total, double limit,
+                                   double margin);
+  int set_;
+  bool by_size_;
+};
+
 /// Generates the network. Deterministic: the same spec and seed give the same discs.
-/// Throws std::invalid_argument for a spec it cannot honour (with a message that says why).
-FractureNetwork generateNetwork(const DfnSpec& spec, std::uint64_t seed);
+/// Throws std::invalid_argument for a spec it cannot honour (with a message that says why),
+/// DiscBudgetExceeded before any disc is drawn when the joint sets exceed `limits`.
+FractureNetwork generateNetwork(const DfnSpec& spec, std::uint64_t seed,
+                                const GenerationLimits& limits = {});
 
 /// Ratio between the equal-area diameter D of a disc and the trace length L drawn from a
 /// set's trace-length distribution, D = c L. See fracture_network.cpp for the derivation.

@@ -474,6 +474,11 @@ std::vector<std::string> namesOf(const std::vector<T>& items) {
 }
 
 /// Index of the name at `c` among `names`; `noun` ("joint") words the error.
+/// Where `c` is, kept for messages raised after the scene is read.
+KeyLocation locationOf(const Cursor& c) {
+  return {c.path(), c.line(), c.column()};
+}
+
 int lookupName(const Cursor& c, const std::vector<std::string>& names, const std::string& noun) {
   const std::string name = c.string();
   const auto found = std::find(names.begin(), names.end(), name);
@@ -1129,12 +1134,17 @@ class SceneReader {
     geometry::JointSetSpec set;
     set.name = dfn_names_.claimName(m);
     set.orientation = readOrientation(m);
+    JointSetKeys keys;
     if (m.oneOf("spacing", "intensity") == 0) {
+      keys.intensity = locationOf(m.at("spacing"));
       set.spacing = readSpacing(m.at("spacing"));
     } else {
+      keys.intensity = locationOf(m.at("intensity"));
       set.p32 = m.at("intensity").map({"p32"}).at("p32").number(kPositive);
     }
     const Cursor trace_length = m.at("trace_length");
+    keys.trace_length = locationOf(trace_length);
+    scene_.joint_set_keys.push_back(keys);
     const geometry::Distribution trace_distribution = readDistribution(trace_length);
     checkTraceLength(trace_length, trace_distribution);
     set.trace_length = trace_distribution.spec();
@@ -1342,6 +1352,10 @@ YAML::Node loadDocument(const std::string& text, const fs::path& file) {
 }
 
 }  // namespace
+
+std::string locate(const Scene& scene, const KeyLocation& key, const std::string& what) {
+  return locate(scene.file, key.line, key.column, key.path.empty() ? what : key.path + ": " + what);
+}
 
 Scene loadScene(const std::filesystem::path& file) {
   std::error_code error;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/dfn_spec.h"
+#include "geometry/fracture_network.h"
 #include "geometry/polyhedron.h"
 #include "geometry/vec.h"
 
@@ -202,6 +203,19 @@ struct Analysis {
   std::optional<EquilibriumAnalysis> equilibrium;
 };
 
+/// Where a key is in the scene file, for messages about it raised after reading (budgets).
+struct KeyLocation {
+  std::string path;  ///< key path, e.g. "joint_sets[0].spacing"
+  int line = 0;      ///< 1-based line
+  int column = 0;    ///< 1-based column
+};
+
+/// The keys of a joint set that drive how many discs it draws.
+struct JointSetKeys {
+  KeyLocation intensity;     ///< `spacing` or `intensity`
+  KeyLocation trace_length;  ///< `trace_length`
+};
+
 /// A whole scene, validated, with names resolved to indices.
 struct Scene {
   std::filesystem::path file;         ///< the scene file as given
@@ -212,7 +226,10 @@ struct Scene {
   /// The mesh domain's checked surface (io/mesh_domain.h), filled by the commands that
   /// support mesh domains (then dfn.domain is its bounding box); empty otherwise.
   geometry::Polyhedron domain_surface;
-  geometry::DfnSpec dfn;                  ///< domain box and everything the DFN is made of
+  geometry::DfnSpec dfn;                     ///< domain box and everything the DFN is made of
+  std::vector<JointSetKeys> joint_set_keys;  ///< per joint set (dfn.joint_sets order)
+  /// How many discs the DFN may draw: not a scene key; the commands set it (--max-discs).
+  geometry::GenerationLimits generation_limits;
   std::vector<Material> materials;        ///< in scene order
   int rock_material = -1;                 ///< material of the rock (-1: not given)
   std::vector<Joint> joints;              ///< named joints, then inline ones (structures)
@@ -225,6 +242,9 @@ struct Scene {
   std::vector<Monitor> monitors;         ///< measure points
   Analysis analysis;                     ///< what to compute
 };
+
+/// "file:line:column: path: what" for a key of `scene`.
+std::string locate(const Scene& scene, const KeyLocation& key, const std::string& what);
 
 /// Reads and validates a scene. Relative paths inside it are resolved against its folder;
 /// FAB files named under `fractures` are read into dfn.polygon_sets.

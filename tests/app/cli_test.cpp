@@ -107,6 +107,58 @@ TEST(Cli, BadSceneExitsWithTwoAndALocatedMessage) {
   EXPECT_FALSE(fs::exists(dir.path() / "out" / "fractures.fab"));
 }
 
+TEST(Cli, DiscBudgetIsCheckedBeforeAnyDiscAtTheKeyThatDrivesIt) {
+  // The bad-input bombs: a joint set of p32 0.4 in a 1 km cube with 1 m traces would draw
+  // ~4e8 discs (27 s, 4.8 GB, then std::bad_alloc before the budget); an exponential trace
+  // length of mean 4e6 m in a 20 m cube draws its centres millions of metres around the
+  // domain (still generating after 120 s). Both are refused by the pilot's estimate, at the
+  // key that drives them, before anything is written.
+  TempDir dir("cli_disc_budget");
+  const std::string header = R"(version: 1
+name: disc-budget
+seed: 1
+domain:
+  box: {min: [0, 0, -1000], max: [1000, 1000, 0]}
+joint_sets:
+)";
+  const std::string dense = header + R"(  - name: J1
+    orientation: {distribution: fisher, dip_direction: 90, dip: 20, kappa: 30}
+    intensity: {p32: 0.4}
+    trace_length: {distribution: lognormal, mean: 1.0, std: 0.5}
+)";
+  std::string output;
+  EXPECT_EQ(test::runOnScene("dfn", dir.path(), "dense", dense, &output), 2) << output;
+  const std::string dense_scene = (dir.path() / "dense.yaml").string();
+  EXPECT_NE(output.find(dense_scene + ":9:16: joint_sets[0].intensity: "), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("--max-discs"), std::string::npos) << output;
+  EXPECT_NE(output.find("4.01e+08 discs"), std::string::npos) << output;  // lambda V, 3 digits
+  EXPECT_FALSE(fs::exists(dir.path() / "dense" / "fractures.fab"));
+
+  std::string huge = header + R"(  - name: J2
+    orientation: {distribution: fisher, dip_direction: 300, dip: 70, kappa: 40}
+    intensity: {p32: 0.3}
+    trace_length: {distribution: exponential, mean: 4000000.0, min: 0.5}
+)";
+  huge.replace(huge.find("-1000], max: [1000, 1000"), 24, "-20], max: [20, 20");
+  EXPECT_EQ(test::runOnScene("dfn", dir.path(), "huge", huge, &output), 2) << output;
+  const std::string huge_scene = (dir.path() / "huge.yaml").string();
+  EXPECT_NE(output.find(huge_scene + ":10:19: joint_sets[0].trace_length: "), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("check the trace length"), std::string::npos) << output;
+
+  // The limit is the user's: the small scene draws a few hundred discs, refused under
+  // --max-discs 100, written with the default.
+  writeFile(dir.path() / "small.yaml", kScene);
+  const std::string small = (dir.path() / "small.yaml").string();
+  const Result refused =
+      test::runCli("dfn " + small + " -o " + (dir.path() / "s1").string() + " --max-discs 100");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("over the limit of 100 "), std::string::npos) << refused.output;
+  const Result accepted = test::runCli("dfn " + small + " -o " + (dir.path() / "s2").string());
+  EXPECT_EQ(accepted.exit_code, 0) << accepted.output;
+}
+
 TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
   EXPECT_EQ(test::runCli("dfn /nonexistent/scene.yaml -o /tmp/rockmass_cli_none").exit_code, 2);
   EXPECT_EQ(test::runCli("dfn").exit_code, 2);  // no scene, no -o
