@@ -25,12 +25,19 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
                   "before the work)")
       ->default_val(geometry::GenerationLimits{}.max_discs)
       ->check(CLI::PositiveNumber);
+  command
+      .add_option("--max-blocks", options.max_blocks,
+                  "Largest estimated number of blocks a cut may make (an upper estimate, "
+                  "checked before the cut)")
+      ->default_val(io::Scene{}.max_blocks)
+      ->check(CLI::PositiveNumber);
 }
 
 io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
   io::Scene scene = io::loadScene(options.scene);
   if (options.seed) scene.seed = *options.seed;
   scene.generation_limits.max_discs = options.max_discs;
+  scene.max_blocks = options.max_blocks;
   if (!scene.domain_mesh.empty() && mesh_domain_supported) {
     io::MeshDomain domain = io::readMeshDomain(scene.domain_mesh, options.scene);
     scene.domain_surface = std::move(domain.surface);

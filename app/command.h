@@ -25,6 +25,7 @@ struct CommonOptions {
   std::optional<std::uint64_t> seed;  ///< overrides the scene's seed
   /// --max-discs: geometry::GenerationLimits::max_discs
   double max_discs = geometry::GenerationLimits{}.max_discs;
+  double max_blocks = 1e6;  ///< --max-blocks: io::Scene::max_blocks
 };
 
 /// A registered sub-command: its CLI11 node and what runs when it was parsed.

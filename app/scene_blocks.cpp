@@ -1,9 +1,10 @@
 #include "app/scene_blocks.h"
 
 #include <cstdio>
-
+#include <sstream>
 #include <stdexcept>
 
+#include "blocks/cut_budget.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "blocks/piece_coarsening.h"
@@ -70,10 +71,38 @@ blocks::CutInput cutInput(const io::Scene& scene, const geometry::FractureNetwor
   return input;
 }
 
+/// Refuses a cut whose estimated blocks exceed the scene's limit (--max-blocks), at the key
+/// of the set whose discs take part in the most crossings.
+void checkBlockBudget(const io::Scene& scene, const geometry::FractureNetwork& network,
+                      const blocks::CutInput& input, const std::string& scene_path) {
+  const blocks::BlockEstimate estimate = blocks::estimateBlocks(input, scene.max_blocks);
+  if (!estimate.stopped) return;
+  std::size_t set = 0;
+  for (std::size_t i = 1; i < estimate.set_intersections.size(); ++i) {
+    if (estimate.set_intersections[i] > estimate.set_intersections[set]) set = i;
+  }
+  std::ostringstream what;
+  what.precision(3);
+  what << "the cut would make more than " << scene.max_blocks
+       << " blocks, the limit (raise it with --max-blocks): its " << estimate.discs
+       << " cutting discs cross " << estimate.intersections << " times";
+  if (estimate.vertices > 0) what << " and meet in " << estimate.vertices << " triple points";
+  what << " (counted until the estimate passed the limit)";
+  if (set < network.sets.size()) {
+    what << "; set " << network.sets[set].name << " takes part in the most crossings";
+  }
+  if (set < scene.joint_set_keys.size()) {
+    throw io::InputError(io::locate(scene, scene.joint_set_keys[set].intensity,
+                                    what.str() + "; check its spacing or intensity"));
+  }
+  throw io::InputError(scene_path + ": " + what.str());
+}
+
 SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwork& network,
                            const std::string& cutter, const std::string& scene_path) {
   SceneBlocks cut;
   cut.input = cutInput(scene, network, scene_path);
+  checkBlockBudget(scene, network, cut.input, scene_path);
   try {
     if (cutter == "exact") {
       blocks::ExactCutReport report;

@@ -230,6 +230,9 @@ struct Scene {
   std::vector<JointSetKeys> joint_set_keys;  ///< per joint set (dfn.joint_sets order)
   /// How many discs the DFN may draw: not a scene key; the commands set it (--max-discs).
   geometry::GenerationLimits generation_limits;
+  /// How many blocks a cut may make by the estimate (blocks::estimateBlocks): not a scene key;
+  /// the commands set it (--max-blocks).
+  double max_blocks = 1e6;
   std::vector<Material> materials;        ///< in scene order
   int rock_material = -1;                 ///< material of the rock (-1: not given)
   std::vector<Joint> joints;              ///< named joints, then inline ones (structures)

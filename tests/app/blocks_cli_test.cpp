@@ -187,6 +187,56 @@ TEST(BlocksCli, PrismProfileThatIsNotSimpleIsExitTwoAtItsLine) {
   EXPECT_FALSE(fs::exists(dir.path() / "out" / "blocks.csv"));
 }
 
+TEST(BlocksCli, ACutOverTheBlockBudgetIsExitTwoAtTheSetThatDrivesIt) {
+  // ../shared/repro/bad-input/scene_02822: a set of constant spacing 0.0015 m with 3 m
+  // traces in a 5 m cube (22 936 discs) would cut ~1e8 blocks (blocks ran over 90 s and
+  // 7.6 GB). The estimate stops once it passes --max-blocks (default 1e6) and names the
+  // set whose discs cross the most, at its spacing's line, before any output is written.
+  test::TempDir dir("blocks_cli_budget");
+  const std::string bomb = R"(version: 1
+name: block-bomb
+seed: 18446744073709551615
+domain:
+  box: {min: [0, 0, -5], max: [5, 5, 0]}
+joint_sets:
+  - name: A
+    orientation: {distribution: fisher, dip_direction: 0, dip: 90, kappa: 100}
+    spacing: {distribution: constant, mean: 0.0015}
+    trace_length: {distribution: constant, mean: 3}
+    shape: {aspect_ratio: 1, major_axis: dip}
+  - name: B
+    dip_direction: {distribution: constant, mean: 90}
+    dip: {distribution: normal, mean: 80, std: 5, min: 60, max: 90}
+    intensity: {p32: 0.5}
+    trace_length: {distribution: uniform, min: 1, max: 4}
+analysis:
+  blocks: {cutter: fast}
+)";
+  std::string output;
+  EXPECT_EQ(test::runOnScene("blocks", dir.path(), "bomb", bomb, &output), 2) << output;
+  const std::string scene = (dir.path() / "bomb.yaml").string();
+  EXPECT_NE(output.find(scene + ":9:14: joint_sets[0].spacing: the cut would make more than "
+                                "1e+06 blocks"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("--max-blocks"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(dir.path() / "bomb" / "blocks.csv"));
+
+  // The limit is the user's: the two faults and the dam above make 5 blocks, with an
+  // estimate of 1 + 2 discs + 1 crossing = 4 cells of rock; --max-blocks 3 refuses it (at
+  // the scene file: faults have no spacing), the default cuts it.
+  const fs::path small = test::writeFile(dir.path() / "small.yaml", kScene);
+  const test::CliResult refused = test::runCli("blocks " + small.string() + " -o " +
+                                               (dir.path() / "s1").string() + " --max-blocks 3");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find(small.string() + ": the cut would make more than 3 blocks"),
+            std::string::npos)
+      << refused.output;
+  const test::CliResult accepted =
+      test::runCli("blocks " + small.string() + " -o " + (dir.path() / "s2").string());
+  EXPECT_EQ(accepted.exit_code, 0) << accepted.output;
+}
+
 // faces.vtu: every piece face that is not an internal cut, with what made it and its joint.
 // The scene above with F1 on its own joint (weak, index 1) and the dam on an inline joint
 // (dam.joint, index 2): F1's faces (disc 1) carry joint 1, F2's (disc 2) the default joint 0,
