@@ -315,6 +315,40 @@ BENCHMARK(BM_ExactSegments)
 
 }  // namespace
 
+/// One FAB-like circle of n vertices (radius 4 m, tilted) ending inside a 10 m cube: a crack
+/// whose covered part of the cells' faces is the n-gon. The fast cutter's cost should grow
+/// like n (over 64 edges it clips the polygon by the faces, not the faces by its n edges).
+void BM_FastManyVertexPolygon(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  rockmass::geometry::FractureNetwork network;
+  network.domain = {rockmass::geometry::Vec3::Zero(), rockmass::geometry::Vec3::Constant(10.0)};
+  const rockmass::geometry::Vec3 normal = rockmass::geometry::Vec3(0.2, 0.1, 1.0).normalized();
+  const rockmass::geometry::Vec3 u = normal.unitOrthogonal();
+  const rockmass::geometry::Vec3 v = normal.cross(u);
+  std::vector<rockmass::geometry::Vec3> points;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    points.push_back(rockmass::geometry::Vec3::Constant(5.0) +
+                     4.0 * (std::cos(t) * u + std::sin(t) * v));
+  }
+  network.discs.push_back(rockmass::geometry::discFromPolygon(points));
+  network.discs.back().id = 1;
+  const CutInput input = boxCutInput(network);
+  BlockModel model;
+  for (auto _ : state) {
+    model = cutFast(input);
+    benchmark::DoNotOptimize(model.blocks.data());
+  }
+  state.counters["vertices"] = n;
+  state.counters["blocks"] = static_cast<double>(model.blocks.size());
+}
+BENCHMARK(BM_FastManyVertexPolygon)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   rockmass::bench::RecordingReporter reporter;
@@ -364,6 +398,15 @@ int main(int argc, char** argv) {
           "  %-12s fitted over %zu sizes: wall ~ n^%.2f, CPU ~ n^%.2f, pieces ~ n^%.2f"
           " (target: growth within 1.3x of linear)\n",
           cutter.c_str(), log_n.size(), slope(log_t), slope(log_c), slope(log_p));
+    }
+  }
+  if (const auto* small = find("BM_FastManyVertexPolygon/1000")) {
+    std::printf("One polygon of n vertices, time over n = 1000 (same run; linear = n/1000):\n");
+    for (int n : {10000, 100000}) {
+      if (const auto* r = find("BM_FastManyVertexPolygon/" + std::to_string(n))) {
+        std::printf("  %6d vertices: %8.1f ms, t/t(1000) = %6.1f (n/1000 = %d)\n", n, r->real_time,
+                    r->real_time / small->real_time, n / 1000);
+      }
     }
   }
   std::printf("Exact over fast, same scene (same run; target >= 50 at 100 discs):\n");

@@ -377,5 +377,41 @@ TEST(CutterAgreement, HundredDiscBenchmarkScene) {
   expectSameBlocks(both, "100 discs");
 }
 
+TEST(CutterAgreement, PolygonsOfManyVerticesAgree) {
+  // FAB polygons of thousands of vertices (../shared/repro/bad-input/fab_00243: one circle of
+  // 200 000 took the fast cutter 97 s, the covered part of a face being clipped edge by
+  // edge). Over 64 edges the fast cutter clips the polygon by the face instead: the same
+  // blocks as the exact cutter, for circles that cross the cube, end inside it (a crack,
+  // a face partly covered) and cross each other, with an ellipse of 24 segments among them.
+  const auto circle = [](const Vec3& center, const Vec3& normal, double r, int n) {
+    const Vec3 u = normal.normalized().unitOrthogonal();
+    const Vec3 v = normal.normalized().cross(u);
+    std::vector<Vec3> points;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2.0 * M_PI * i / n;
+      points.push_back(center + r * (std::cos(t) * u + std::sin(t) * v));
+    }
+    return geometry::discFromPolygon(points);
+  };
+  FractureNetwork network;
+  network.domain = {Vec3::Zero(), Vec3::Constant(10.0)};
+  network.discs = {circle({5, 5, 5}, {0.2, 0.1, 1.0}, 9.0, 5000),  // crosses the cube
+                   circle({4, 6, 5}, {1.0, 0.3, 0.2}, 3.0, 2000),  // ends inside it
+                   circle({6, 4, 3}, {0.1, 1.0, 0.4}, 12.0, 100)};
+  Disc ellipse;
+  ellipse.center = {3, 3, 7};
+  ellipse.normal = Vec3(1, 1, 1).normalized();
+  ellipse.major = ellipse.normal.unitOrthogonal();
+  ellipse.a = 5.0;
+  ellipse.b = 3.0;
+  network.discs.push_back(ellipse);
+  for (std::size_t i = 0; i < network.discs.size(); ++i) {
+    network.discs[i].id = static_cast<std::int64_t>(i) + 1;
+  }
+  const Both both = cutBoth(boxCutInput(network, 24), /*nef_referee=*/false);
+  EXPECT_GE(both.fast.blocks.size(), 4u);
+  expectSameBlocks(both, "many-vertex polygons");
+}
+
 }  // namespace
 }  // namespace rockmass::blocks
