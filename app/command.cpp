@@ -1,7 +1,16 @@
 #include "app/command.h"
 
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
 
 #include "io/input_error.h"
 #include "io/mesh_domain.h"
@@ -50,6 +59,14 @@ io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
   return scene;
 }
 
+namespace {
+/// The folder prepareOutput made ready (for the interruption marker).
+std::optional<fs::path>& preparedFolder() {
+  static std::optional<fs::path> folder;
+  return folder;
+}
+}  // namespace
+
 fs::path prepareOutput(const std::string& output) {
   std::error_code error;
   fs::create_directories(output, error);
@@ -57,7 +74,45 @@ fs::path prepareOutput(const std::string& output) {
     throw std::runtime_error(output + ": cannot create the output folder (" + error.message() +
                              ")");
   }
+  // A marker left by an earlier interrupted run into this folder no longer describes it.
+  fs::remove(fs::path(output) / kInterruptedMarker, error);
+  preparedFolder() = fs::path(output);
   return fs::path(output);
+}
+
+int reportInterruption(const Interrupted& interruption, const std::string& command) {
+  const int signal = interruption.signal() > 0 ? interruption.signal() : SIGINT;
+  const char* name = signal == SIGTERM ? "SIGTERM" : signal == SIGINT ? "SIGINT" : "a signal";
+  std::fprintf(stderr, "rockmass %s: interrupted by %s during %s; stopped there.\n",
+               command.c_str(), name, interruption.where().c_str());
+  if (const std::optional<fs::path>& folder = preparedFolder()) {
+    std::vector<std::string> complete;
+    for (const fs::path& path : io::filesWritten()) {
+      std::string file = path.lexically_relative(*folder).generic_string();
+      if (file.empty() || file.rfind("..", 0) == 0) file = path.generic_string();
+      if (std::find(complete.begin(), complete.end(), file) == complete.end()) {
+        complete.push_back(file);
+      }
+    }
+    std::sort(complete.begin(), complete.end());
+    nlohmann::ordered_json marker;
+    marker["interrupted"] = true;
+    marker["signal"] = name;
+    marker["command"] = command;
+    marker["during"] = interruption.where();
+    marker["complete"] = complete;
+    marker["note"] =
+        "the files in `complete` were written whole by this run before it stopped; the "
+        "command's other outputs (and summary.json, unless listed) were not written";
+    try {
+      io::writeFileAtomically(*folder / kInterruptedMarker, marker.dump(2) + "\n");
+      std::fprintf(stderr, "rockmass %s: %zu files were complete; see %s\n", command.c_str(),
+                   complete.size(), (*folder / kInterruptedMarker).string().c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "rockmass %s: %s\n", command.c_str(), e.what());
+    }
+  }
+  return 128 + signal;
 }
 
 geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::string& scene_path) {

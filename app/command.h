@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "geometry/fracture_network.h"
+#include "geometry/interrupt.h"
 #include "io/scene.h"
 
 namespace rockmass::app {
@@ -45,8 +46,17 @@ void addCommonOptions(CLI::App& command, CommonOptions& options);
 /// `mesh_domain_supported`, else it is an io::InputError (the command works on boxes only).
 io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported = false);
 
-/// Creates the output folder (an error naming it when that is impossible).
+/// Creates the output folder (an error naming it when that is impossible) and removes a
+/// stale interruption marker from it.
 std::filesystem::path prepareOutput(const std::string& output);
+
+/// The marker an interrupted command leaves in its output folder.
+inline constexpr const char* kInterruptedMarker = "interrupted.json";
+
+/// Reports an interruption: a message on stderr and, once an output folder was prepared,
+/// `interrupted.json` in it (the signal, where the command stopped, and the files it had
+/// completed, all written whole). Returns the exit code, 128 + the signal (130 for Ctrl-C).
+int reportInterruption(const Interrupted& interruption, const std::string& command);
 
 /// Generates the scene's fracture network; an impossible distribution becomes an
 /// io::InputError that names the scene file.

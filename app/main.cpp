@@ -1,6 +1,11 @@
 // rockmass: the command-line program. Sub-commands (one file each, see command.h) wire the
 // modules together; every exception becomes an exit code and a message (0 success, 2 bad
 // input, 1 anything else).
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <ctime>
 #include <exception>
 #include <iostream>
 #include <vector>
@@ -36,10 +41,45 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
+  // Ctrl-C (and SIGTERM) asks the running stage to stop at its next safe point. A second
+  // signal a second or more later ends the program at once; one sooner is the same request
+  // delivered twice (GNU timeout signals the process and then its process group).
+  struct sigaction action {};
+  action.sa_handler = [](int signal) {
+    static std::atomic<long long> first_ns{0};
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const long long ns = now.tv_sec * 1'000'000'000LL + now.tv_nsec;
+    if (!rockmass::interruptRequested()) {
+      first_ns.store(ns);
+      rockmass::requestInterrupt(signal);
+      static const char message[] =
+          "\nrockmass: stopping at the next safe point (Ctrl-C again to stop at once)\n";
+      [[maybe_unused]] const auto written = write(STDERR_FILENO, message, sizeof message - 1);
+      return;
+    }
+    if (ns - first_ns.load() < 1'000'000'000LL) return;
+    static const char message[] = "\nrockmass: stopped at once\n";
+    [[maybe_unused]] const auto written = write(STDERR_FILENO, message, sizeof message - 1);
+    _exit(128 + signal);
+  };
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+
+  std::string command_name;
   try {
     for (const rockmass::app::Command& command : commands) {
-      if (command.cli->parsed()) return command.run();
+      if (!command.cli->parsed()) continue;
+      command_name = command.cli->get_name();
+      const int code = command.run();
+      // A request that came after the last safe point still ends as an interruption.
+      rockmass::throwIfInterrupted("the last step of " + command_name);
+      return code;
     }
+  } catch (const rockmass::Interrupted& e) {
+    return rockmass::app::reportInterruption(e, command_name);
   } catch (const rockmass::io::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

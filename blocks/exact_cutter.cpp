@@ -26,6 +26,7 @@
 #include "blocks/piece_soundness.h"
 #include "blocks/slab_material.h"
 #include "blocks/union_find.h"
+#include "geometry/interrupt.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -1350,6 +1351,7 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
+      throwIfInterrupted("the block cut (exact cutter)");
       results[r] = cutRegion(context, regions[r], options.check_exact_volume, options.nef_referee);
     });
   });

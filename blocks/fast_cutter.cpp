@@ -17,6 +17,7 @@
 #include "blocks/piece_contacts.h"
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
+#include "geometry/interrupt.h"
 
 namespace rockmass::blocks {
 namespace {
@@ -1312,6 +1313,7 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
   std::vector<RegionCut> cuts(regions.size());
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
+    throwIfInterrupted("the block cut (fast cutter)");
     cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
                         options.track_contacts);
   });

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "dda3d/block_terms.h"
 #include "dda3d/contact_detection.h"
 #include "dda3d/contact_joint.h"
+#include "geometry/interrupt.h"
 
 namespace rockmass::dda3d {
 
@@ -1103,6 +1105,11 @@ std::string Simulation::stepFailureMessage(double dt, int attempts, bool settled
 }
 
 StepReport Simulation::step() {
+  if (interruptRequested()) {
+    std::ostringstream where;
+    where << "the DDA at t = " << time_ << " s";
+    throwIfInterrupted(where.str());
+  }
   StepReport report;
   Clock::time_point start = Clock::now();
   const int patterns_before = pattern_changes_;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "geometry/fisher.h"
+#include "geometry/interrupt.h"
 #include "geometry/orientation.h"
 #include "geometry/random.h"
 
@@ -201,6 +202,7 @@ void generateJointSet(const JointSetSpec& spec, int set_index, const Box& domain
   const Box& enlarged = plan.enlarged;
   const Vec3 size = enlarged.size();
   for (std::int64_t i = 0; i < info.generated; ++i) {
+    if ((i & 0xffff) == 0) throwIfInterrupted("the DFN (joint set " + spec.name + ")");
     Disc disc;
     disc.center = enlarged.min + Vec3(uniformOpen01(rng) * size.x(), uniformOpen01(rng) * size.y(),
                                       uniformOpen01(rng) * size.z());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -45,7 +46,15 @@ std::string writeAndClose(const std::filesystem::path& temporary, std::string_vi
   return {};
 }
 
+std::mutex written_mutex;
+std::vector<std::filesystem::path> written;  ///< guarded by written_mutex
+
 }  // namespace
+
+std::vector<std::filesystem::path> filesWritten() {
+  const std::lock_guard<std::mutex> lock(written_mutex);
+  return written;
+}
 
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& temporary)>& write) {
@@ -66,7 +75,11 @@ void writeAtomically(const std::filesystem::path& path,
     std::filesystem::rename(temporary, path, error);
     if (error) reason = "renaming " + temporary.string() + " failed: " + error.message();
   }
-  if (reason.empty()) return;
+  if (reason.empty()) {
+    const std::lock_guard<std::mutex> lock(written_mutex);
+    written.push_back(path);
+    return;
+  }
   std::error_code ignored;
   std::filesystem::remove(temporary, ignored);
   throw std::runtime_error("cannot write " + path.string() + ": " + reason);

@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rockmass::io {
 
@@ -20,6 +21,10 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
 /// a std::exception or the rename fails; the temporary file is removed then.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& temporary)>& write);
+
+/// Every path this process wrote through writeAtomically or writeFileAtomically, in the
+/// order written (a file written twice appears twice): what an interrupted run completed.
+std::vector<std::filesystem::path> filesWritten();
 
 /// Shortest text that reads back to the same double (std::to_chars).
 std::string formatDouble(double value);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/interrupt.h"
 #include "rqd/directions.h"
 
 namespace rockmass::rqd {
@@ -73,6 +74,7 @@ std::vector<double> segmentRqd(const ScanlineScene& scene, std::span<const Segme
   const std::size_t step = std::max<std::size_t>(1, segments.size() / kProgressReports);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 16),
                     [&](const tbb::blocked_range<std::size_t>& range) {
+                      throwIfInterrupted("the RQD scanlines");
                       SegmentBuffers buffers;
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         evaluateSegment(scene, segments[i], thresholds, merge_distance,

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/interrupt.h"
 #include "rqd/directions.h"
 #include "rqd/p32_grid.h"
 
@@ -153,6 +154,7 @@ RqdVolume computeRqdVolume(const ScanlineScene& scene, const geometry::FractureN
       std::max<std::int64_t>(1, (cells + kProgressSteps - 1) / kProgressSteps);
   for (std::int64_t first = 0; first < cells; first += batch) {
     const std::int64_t last = std::min(cells, first + batch);
+    throwIfInterrupted("the RQD volume");
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(first, last), computeCells);
     if (progress) progress(static_cast<double>(last) / static_cast<double>(cells));
   }
