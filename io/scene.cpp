@@ -2,6 +2,7 @@
 /// InputError "file:line:column: key.path: expected ..., got ..." located with yaml-cpp's marks.
 #include "io/scene.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <tuple>
@@ -1199,6 +1201,23 @@ class SceneReader {
     layer.profile = readProfile(m.at("profile"), 2);
     layer.sweep = readSweep(m.at("sweep"));
     std::tie(layer.thickness, layer.material) = readSlab(m, "an interlayer");
+    if (layer.thickness > 0.0) {
+      // The slab's surfaces are the profile offset by half the thickness, with mitred
+      // knees; a knee turning by more than 150 degrees would put its mitre point more than
+      // 3.9 thicknesses away (geometry::generateInterlayer refuses it too).
+      const std::vector<Cursor> points = m.at("profile").items();
+      for (std::size_t i = 1; i + 1 < layer.profile.size(); ++i) {
+        const Vec2 d1 = (layer.profile[i] - layer.profile[i - 1]).normalized();
+        const Vec2 d2 = (layer.profile[i + 1] - layer.profile[i]).normalized();
+        if (d1.dot(d2) < std::cos(150.0 * std::numbers::pi / 180.0)) {
+          const double turn =
+              std::acos(std::clamp(d1.dot(d2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+          points[i].fail("the profile turns by " + formatDouble(std::round(turn * 10.0) / 10.0) +
+                         " degrees at point " + std::to_string(i + 1) +
+                         ", more than the 150 an interlayer with thickness can turn");
+        }
+      }
+    }
     layer.joint = jointOf(m);
     return layer;
   }
@@ -1334,21 +1353,54 @@ void checkUtf8(const std::string& text, const fs::path& file) {
 }
 
 /// The single YAML document of `text`, or an InputError for invalid YAML.
+/// Sees where each document of a YAML stream starts, nothing else.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
 YAML::Node loadDocument(const std::string& text, const fs::path& file) {
   checkUtf8(text, file);
-  std::vector<YAML::Node> documents;
+  const auto invalid = [&](const YAML::Mark& mark, const std::string& what) {
+    return InputError(locate(file, std::max(mark.line, 0) + 1, std::max(mark.column, 0) + 1,
+                             "invalid YAML: " + what));
+  };
   try {
-    documents = YAML::LoadAll(text);
+    // The documents are counted first, at most two, with the parser alone: yaml-cpp 0.7's
+    // LoadAll never ends on a stray ',' outside [ ] or { } (the parser starts the same empty
+    // document again without consuming it, and the list of documents grows until memory
+    // runs out: jbeder/yaml-cpp#1040, fixed upstream after 0.8 by PR #1319). Such a document
+    // starts where the previous one did.
+    std::istringstream stream(text);
+    YAML::Parser parser(stream);
+    DocumentStarts documents;
+    while (documents.starts.size() < 2 && parser.HandleNextDocument(documents)) {
+    }
+    if (documents.starts.size() == 2) {
+      const YAML::Mark& first = documents.starts[0];
+      const YAML::Mark& second = documents.starts[1];
+      if (second.pos == first.pos) {
+        throw invalid(second, "a ',' outside a flow collection ([ ] or { })");
+      }
+      throw InputError(locate(file, std::max(second.line, 0) + 1, std::max(second.column, 0) + 1,
+                              "expected one YAML document; a second one starts here"));
+    }
+    return documents.starts.empty() ? YAML::Node() : YAML::Load(text);
   } catch (const YAML::Exception& error) {
-    throw InputError(locate(file, std::max(error.mark.line, 0) + 1,
-                            std::max(error.mark.column, 0) + 1, "invalid YAML: " + error.msg));
+    throw invalid(error.mark, error.msg);
   }
-  if (documents.size() > 1) {
-    const YAML::Mark mark = documents[1].Mark();
-    throw InputError(locate(file, std::max(mark.line, 0) + 1, std::max(mark.column, 0) + 1,
-                            "expected one YAML document, got " + std::to_string(documents.size())));
-  }
-  return documents.empty() ? YAML::Node() : documents.front();
 }
 
 }  // namespace
