@@ -19,6 +19,7 @@ packages=(
   python3-matplotlib python3-numpy     # figures from the CSV outputs
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
+  clang-14 libclang-rt-14-dev   # fuzz: libFuzzer targets of the input readers
 )
 
 missing=()

@@ -3,7 +3,8 @@
 # checks the verification manual: the tests record every comparison with a hand value into
 # build/verification (tests/support/verification.h), and docs/verification.md must be what
 # scripts/verification.py writes from those records (the script fails with a diff otherwise;
-# regenerate it with `python3 scripts/verification.py` and commit it).
+# regenerate it with `python3 scripts/verification.py` and commit it), then fuzzes the scene
+# and FAB readers for 60 s each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup-debian.sh
@@ -15,3 +16,5 @@ rm -rf "$ROCKMASS_VERIFICATION_DIR"
 mkdir -p "$ROCKMASS_VERIFICATION_DIR"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 /usr/bin/python3 scripts/verification.py --records "$ROCKMASS_VERIFICATION_DIR" --check
+# The readers' fuzz targets, 60 s each (fuzz/; bash scripts/fuzz.sh 3600 to run longer).
+bash scripts/fuzz.sh 60
