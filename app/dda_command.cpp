@@ -66,12 +66,13 @@ io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blo
   return frame;
 }
 
-/// One history row per monitor at the simulation's current time.
-void recordMonitors(const dda3d::Simulation& sim, std::vector<io::MonitorSample>& samples) {
+/// One history row per monitor at the simulation's current time, appended to history.csv.
+void recordMonitors(const dda3d::Simulation& sim, const std::vector<std::string>& names,
+                    io::StreamedFile& history) {
   const std::vector<dda3d::MonitorState> monitors = sim.monitors();
   for (std::size_t m = 0; m < monitors.size(); ++m) {
-    samples.push_back(
-        {sim.time(), static_cast<int>(m), monitors[m].displacement, monitors[m].velocity});
+    history.write(io::formatHistoryRow(
+        names, {sim.time(), static_cast<int>(m), monitors[m].displacement, monitors[m].velocity}));
   }
 }
 
@@ -154,8 +155,12 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   io::DdaFrameWriter frames(out, frame_every);
-  std::vector<io::MonitorSample>& samples = stage.samples;
-  recordMonitors(sim, samples);
+  // The histories go to disk as the run goes: a run of 10^7 steps would not fit in memory.
+  stage.history = std::make_shared<io::StreamedFile>(out / "history.csv");
+  stage.history->write(io::historyCsvHeader());
+  stage.steps_csv = std::make_shared<io::StreamedFile>(out / "steps.csv");
+  stage.steps_csv->write(io::stepsCsvHeader());
+  recordMonitors(sim, stage.monitor_names, *stage.history);
   frames.write(frameOf(sim, blocks, 0));
 
   io::DdaRunSummary& summary = stage.summary;
@@ -164,6 +169,8 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   const double end = duration * (1.0 - 1e-9);
   int step = 0;
   int next_report = 1;
+  io::DdaStepRecord last;
+  std::vector<std::pair<std::string, double>> phase_totals;
   // Progress every 10 % of the simulated time, and at least every 30 s of wall time (a
   // large model may take minutes per 10 %).
   auto last_report = std::chrono::steady_clock::now();
@@ -171,8 +178,19 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     const dda3d::PhaseTimings before = sim.timings();
     const dda3d::StepReport report = sim.step();
     ++step;
-    summary.steps.push_back(stepRecord(step, report, sim, phaseSeconds(before, sim.timings())));
-    recordMonitors(sim, samples);
+    last = stepRecord(step, report, sim, phaseSeconds(before, sim.timings()));
+    stage.steps_csv->write(io::formatStepsRow(last));
+    for (const auto& [name, seconds] : last.phase_seconds) {
+      const auto at = std::find_if(phase_totals.begin(), phase_totals.end(),
+                                   [&](const auto& p) { return p.first == name; });
+      if (at == phase_totals.end()) {
+        phase_totals.emplace_back(name, seconds);
+      } else {
+        at->second += seconds;
+      }
+    }
+    io::keepStepRecord(summary.steps, summary.step_stride, last);
+    recordMonitors(sim, stage.monitor_names, *stage.history);
     if (frames.due(step)) frames.write(frameOf(sim, blocks, step));
     if (options.debug_step && *options.debug_step == step) {
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
@@ -192,6 +210,11 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     }
   }
   frames.write(frameOf(sim, blocks, step));
+  if (step > 0 && (summary.steps.empty() || summary.steps.back().step != step)) {
+    summary.steps.push_back(last);
+  }
+  summary.steps_taken = step;
+  summary.phase_totals = std::move(phase_totals);
   for (const io::PvdEntry& entry : frames.entries()) stage.frame_files.push_back(entry.file);
 
   stage.effects = sim.activeTerms().names();
@@ -220,9 +243,9 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   return stage;
 }
 
-void writeDdaFiles(const fs::path& out, const DdaStage& stage) {
-  io::writeFileAtomically(out / "history.csv",
-                          io::formatHistoryCsv(stage.monitor_names, stage.samples));
+void writeDdaFiles(const fs::path& /*out*/, const DdaStage& stage) {
+  stage.history->commit();
+  stage.steps_csv->commit();
 }
 
 namespace {

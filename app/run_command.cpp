@@ -488,7 +488,7 @@ int runAll(const RunOptions& options) {
     run.timings.emplace_back("dda", secondsSince(start));
     run.effects = stage.effects;
     timedWrite([&] { writeDdaFiles(out, stage); });
-    report.files.insert(report.files.end(), {"history.csv", "dda.pvd"});
+    report.files.insert(report.files.end(), {"history.csv", "steps.csv", "dda.pvd"});
     report.files.insert(report.files.end(), stage.frame_files.begin(), stage.frame_files.end());
     parts.push_back({"dda", io::formatDdaSummary(stageRun(run, {}), stage.summary)});
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -11,6 +12,7 @@
 
 #include "app/scene_blocks.h"
 #include "geometry/fracture_network.h"
+#include "io/atomic_file.h"
 #include "io/block_output.h"
 #include "io/dda_output.h"
 #include "io/dda_summary.h"
@@ -115,8 +117,10 @@ struct DdaStage {
   io::DdaRunSummary summary;               ///< model, steps, monitors
   std::vector<std::string> effects;        ///< active physics terms
   std::vector<std::string> monitor_names;  ///< in model order
-  std::vector<io::MonitorSample> samples;  ///< monitor history
-  std::vector<std::string> frame_files;    ///< dda.pvd's frames (dda_<step>.vtu)
+  /// history.csv and steps.csv, written as the run went; writeDdaFiles commits them.
+  std::shared_ptr<io::StreamedFile> history;
+  std::shared_ptr<io::StreamedFile> steps_csv;
+  std::vector<std::string> frame_files;  ///< dda.pvd's frames (dda_<step>.vtu)
 };
 
 /// Builds the DDA model of `blocks` (cut with the discs of `network`) from the scene (loads,

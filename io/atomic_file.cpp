@@ -85,6 +85,51 @@ void writeAtomically(const std::filesystem::path& path,
   throw std::runtime_error("cannot write " + path.string() + ": " + reason);
 }
 
+StreamedFile::StreamedFile(std::filesystem::path path)
+    : path_(std::move(path)), temporary_(temporaryPathFor(path_)) {
+  errno = 0;
+  stream_ = std::make_unique<std::ofstream>(temporary_, std::ios::binary | std::ios::trunc);
+  if (!stream_->is_open()) {
+    throw std::runtime_error("cannot write " + path_.string() + ": " +
+                             withErrno("cannot create " + temporary_.string()));
+  }
+}
+
+StreamedFile::~StreamedFile() {
+  if (!stream_) return;
+  stream_.reset();
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+void StreamedFile::write(std::string_view text) {
+  if (!stream_) throw std::logic_error("StreamedFile::write after commit: " + path_.string());
+  stream_->write(text.data(), static_cast<std::streamsize>(text.size()));
+}
+
+void StreamedFile::commit() {
+  if (!stream_) throw std::logic_error("StreamedFile::commit twice: " + path_.string());
+  errno = 0;
+  stream_->flush();
+  std::string reason;
+  if (!*stream_) reason = withErrno("writing " + temporary_.string() + " failed");
+  stream_->close();
+  if (reason.empty() && !*stream_) reason = withErrno("closing " + temporary_.string() + " failed");
+  stream_.reset();
+  if (reason.empty()) {
+    std::error_code error;
+    std::filesystem::rename(temporary_, path_, error);
+    if (error) reason = "renaming " + temporary_.string() + " failed: " + error.message();
+  }
+  if (!reason.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    throw std::runtime_error("cannot write " + path_.string() + ": " + reason);
+  }
+  const std::lock_guard<std::mutex> lock(written_mutex);
+  written.push_back(path_);
+}
+
 /// Writes to a temporary file beside `path`, checks the stream, then renames it onto `path`.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
   writeAtomically(path, [&](const std::filesystem::path& temporary) {

@@ -67,16 +67,24 @@ bool exactlySymmetric(const dda3d::SparseMatrix& k) {
 
 }  // namespace
 
+std::string historyCsvHeader() {
+  return "time,monitor,ux,uy,uz,vx,vy,vz,u\n";
+}
+
+std::string formatHistoryRow(const std::vector<std::string>& monitor_names,
+                             const MonitorSample& s) {
+  std::string out = formatDouble(s.time);
+  out += ',';
+  out += csvField(monitor_names.at(static_cast<std::size_t>(s.monitor)));
+  out += ',' + csvVector(s.displacement) + ',' + csvVector(s.velocity) + ',' +
+         formatDouble(s.displacement.norm()) + '\n';
+  return out;
+}
+
 std::string formatHistoryCsv(const std::vector<std::string>& monitor_names,
                              const std::vector<MonitorSample>& samples) {
-  std::string out = "time,monitor,ux,uy,uz,vx,vy,vz,u\n";
-  for (const MonitorSample& s : samples) {
-    out += formatDouble(s.time);
-    out += ',';
-    out += csvField(monitor_names.at(static_cast<std::size_t>(s.monitor)));
-    out += ',' + csvVector(s.displacement) + ',' + csvVector(s.velocity) + ',' +
-           formatDouble(s.displacement.norm()) + '\n';
-  }
+  std::string out = historyCsvHeader();
+  for (const MonitorSample& s : samples) out += formatHistoryRow(monitor_names, s);
   return out;
 }
 

@@ -29,6 +29,11 @@ struct MonitorSample {
 /// monitor is the monitor's name, u = |(ux, uy, uz)| (m). Numbers round-trip exactly.
 std::string formatHistoryCsv(const std::vector<std::string>& monitor_names,
                              const std::vector<MonitorSample>& samples);
+/// history.csv's header line, with its newline (for a file written as the run goes).
+std::string historyCsvHeader();
+/// One history.csv row, with its newline.
+std::string formatHistoryRow(const std::vector<std::string>& monitor_names,
+                             const MonitorSample& sample);
 
 // ---------------------------------------------------------------------------------------------
 // dda.pvd + frames

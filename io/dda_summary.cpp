@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "io/atomic_file.h"
 #include "io/summary_json.h"
 
 namespace rockmass::io {
@@ -39,6 +40,33 @@ double phaseSeconds(const DdaStepRecord& s, const std::string& name) {
 
 }  // namespace
 
+void keepStepRecord(std::vector<DdaStepRecord>& steps, int& stride, DdaStepRecord record,
+                    std::size_t limit) {
+  if (record.step % stride != 0) return;
+  steps.push_back(std::move(record));
+  while (steps.size() > limit) {
+    stride *= 2;
+    std::erase_if(steps, [&](const DdaStepRecord& r) { return r.step % stride != 0; });
+  }
+}
+
+std::string stepsCsvHeader() {
+  return "step,time,time_step,contacts,open,sliding,locked,iterations,retries,max_displacement,"
+         "max_penetration\n";
+}
+
+std::string formatStepsRow(const DdaStepRecord& r) {
+  std::string out = std::to_string(r.step);
+  for (const double x : {r.time, r.time_step}) out += ',' + formatDouble(x);
+  for (const int n :
+       {r.contacts, r.open, r.sliding, r.locked, r.open_close_iterations, r.retries}) {
+    out += ',' + std::to_string(n);
+  }
+  for (const double x : {r.max_displacement, r.max_penetration}) out += ',' + formatDouble(x);
+  out += '\n';
+  return out;
+}
+
 std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   Json j = summaryHeader(run);
   j["blocks"] = dda.blocks;
@@ -53,7 +81,8 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   if (dda.time_integration == "bossak")
     j["time_integration"]["spectral_radius"] = dda.spectral_radius;
   j["steps_requested"] = dda.steps_requested;
-  j["steps_taken"] = dda.steps.size();
+  j["steps_taken"] =
+      dda.steps_taken >= 0 ? static_cast<std::size_t>(dda.steps_taken) : dda.steps.size();
   j["time_step"] = dda.time_step;
   j["duration"] = dda.duration;
   j["penalty"] = dda.penalty;
@@ -68,7 +97,9 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   }
   j["monitors"] = monitors;
   const auto& s = dda.steps;
+  j["steps_stride"] = dda.step_stride;
   j["steps"] = {
+      {"step", perStep(s, [](const DdaStepRecord& r) { return r.step; })},
       {"time", perStep(s, [](const DdaStepRecord& r) { return r.time; })},
       {"time_step", perStep(s, [](const DdaStepRecord& r) { return r.time_step; })},
       {"contacts", perStep(s, [](const DdaStepRecord& r) { return r.contacts; })},
@@ -92,6 +123,7 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
     totals[name] = total;
     per_step[name] = values;
   }
+  for (const auto& [name, seconds] : dda.phase_totals) totals[name] = seconds;
   j["timings"]["dda_phases"] = totals;
   j["timings"]["dda_steps"] = per_step;
   return j.dump(2) + "\n";

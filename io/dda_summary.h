@@ -56,16 +56,40 @@ struct DdaRunSummary {
   double duration = 0.0;         ///< simulated time reached (s)
   double penalty = 0.0;          ///< contact normal penalty at the end (N/m)
   std::vector<DdaMonitorResult> monitors;
+  /// The step records summary.json holds: every `step_stride`-th step (and the last); all of
+  /// them when the stride is 1. steps.csv has every step.
   std::vector<DdaStepRecord> steps;
+  int step_stride = 1;
+  int steps_taken = -1;  ///< accepted steps (-1: steps.size())
+  /// Seconds per phase over every step (empty: summed from `steps`).
+  std::vector<std::pair<std::string, double>> phase_totals;
   /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).
   std::optional<blocks::MergeReport> glued;
 };
 
+/// summary.json keeps at most this many step records (keepStepRecord).
+inline constexpr std::size_t kSummaryStepRecords = 100'000;
+
+/// Keeps `record` (the next step) in `steps` when its step is a multiple of `stride`; once
+/// more than `limit` records are kept, the stride doubles and the records off it are dropped,
+/// so that a long run's summary stays small and spans the whole run (steps.csv has every
+/// step).
+void keepStepRecord(std::vector<DdaStepRecord>& steps, int& stride, DdaStepRecord record,
+                    std::size_t limit = kSummaryStepRecords);
+
+/// steps.csv's header line (with its newline): `step,time,time_step,contacts,open,sliding,
+/// locked,iterations,retries,max_displacement,max_penetration`, one row per accepted step
+/// (no wall-clock times, so that the file is the same on every run).
+std::string stepsCsvHeader();
+/// One steps.csv row, with its newline.
+std::string formatStepsRow(const DdaStepRecord& record);
+
 /// summary.json of a dda run: keys command, ..., effects, blocks, fixed_blocks, pieces,
 /// unknowns, glued_blocks{...} (when blocks were glued, gluedBlocksJson), mode, kinematics, solver,
 /// time_integration{scheme, spectral_radius (bossak only)}, steps_requested, steps_taken,
-/// time_step, duration, penalty, monitors[], steps{time, time_step, contacts, open, sliding,
-/// locked, iterations, retries, max_displacement, max_penetration} (one array entry per step), then
+/// time_step, duration, penalty, monitors[], steps_stride, steps{step, time, time_step,
+/// contacts, open, sliding, locked, iterations, retries, max_displacement, max_penetration} (one
+/// array entry per kept step: every step_stride-th and the last), then
 /// timings (run.timings plus dda_phases: totals per phase, and dda_steps: per phase, one entry per
 /// step).
 std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda);

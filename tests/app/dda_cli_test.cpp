@@ -126,6 +126,31 @@ TEST_F(DdaCli, StackSettlesOnItsContactSprings) {
   EXPECT_EQ(summary["unknowns"], 24);
   EXPECT_EQ(summary["solver"], "cholmod");
   EXPECT_EQ(summary["steps_taken"], 100);
+  // steps.csv, written as the run went: one row per step, the summary's step arrays (stride
+  // 1 below 100 000 steps) in its columns.
+  EXPECT_EQ(summary["steps_stride"], 1);
+  {
+    std::istringstream steps_csv(test::readFile(dir.path() / "a" / "steps.csv"));
+    std::string line;
+    std::getline(steps_csv, line);
+    EXPECT_EQ(line,
+              "step,time,time_step,contacts,open,sliding,locked,iterations,retries,"
+              "max_displacement,max_penetration");
+    int rows = 0;
+    while (std::getline(steps_csv, line)) {
+      std::istringstream fields(line);
+      std::string step, time, time_step, contacts;
+      std::getline(fields, step, ',');
+      std::getline(fields, time, ',');
+      std::getline(fields, time_step, ',');
+      std::getline(fields, contacts, ',');
+      EXPECT_EQ(std::stoi(step), summary["steps"]["step"][rows].get<int>());
+      EXPECT_EQ(std::stod(time), summary["steps"]["time"][rows].get<double>());
+      EXPECT_EQ(std::stoi(contacts), summary["steps"]["contacts"][rows].get<int>());
+      ++rows;
+    }
+    EXPECT_EQ(rows, 100);
+  }
   const std::vector<std::string> effects = summary["effects"];
   EXPECT_NE(std::find(effects.begin(), effects.end(), "body_force"), effects.end());
   EXPECT_NE(std::find(effects.begin(), effects.end(), "fixed_blocks"), effects.end());
@@ -203,8 +228,8 @@ TEST_F(DdaCli, FramesDebugDumpAndTheSameBytesTwice) {
   EXPECT_TRUE(contacts.starts_with("kind,state,block_i,"));
   EXPECT_NE(contacts.find("vertex-face,"), std::string::npos);
   // Same scene and seed: identical data files; summary.json differs in timings only.
-  for (const char* file : {"history.csv", "dda.pvd", "dda_000100.vtu", "debug_step3_K.mtx",
-                           "debug_step3_contacts.csv"}) {
+  for (const char* file : {"history.csv", "steps.csv", "dda.pvd", "dda_000100.vtu",
+                           "debug_step3_K.mtx", "debug_step3_contacts.csv"}) {
     EXPECT_EQ(test::readFile(dir.path() / "a" / file), test::readFile(dir.path() / "b" / file))
         << file;
   }

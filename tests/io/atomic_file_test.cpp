@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <algorithm>
 
 #include <bit>
 #include <charconv>
@@ -60,6 +61,27 @@ TEST_F(AtomicFileTest, WritesContentExactly) {
   writeFileAtomically(folder / "out.csv", content);
   EXPECT_EQ(readBytes(folder / "out.csv"), content);
   EXPECT_EQ(entries(), std::set<std::string>{"out.csv"});
+}
+
+TEST_F(AtomicFileTest, StreamedFileAppearsOnlyWhenCommitted) {
+  // A long run's history: written as it goes under a temporary name, renamed at the end;
+  // a run that stops before (an exception, Ctrl-C) leaves nothing.
+  {
+    StreamedFile file(folder / "history.csv");
+    file.write("time,u\n");
+    file.write("0,0\n");
+    EXPECT_EQ(entries().size(), 1u);
+    EXPECT_EQ(entries().begin()->rfind(".history.csv.tmp.", 0), 0u) << *entries().begin();
+  }
+  EXPECT_TRUE(entries().empty());
+  StreamedFile file(folder / "history.csv");
+  for (int i = 0; i < 100000; ++i) file.write("1,2\n");
+  file.commit();
+  EXPECT_EQ(entries(), std::set<std::string>{"history.csv"});
+  EXPECT_EQ(readBytes(folder / "history.csv").size(), 400000u);
+  const std::vector<fs::path> written = filesWritten();
+  EXPECT_NE(std::find(written.begin(), written.end(), folder / "history.csv"), written.end());
+  EXPECT_THROW(file.write("late\n"), std::logic_error);
 }
 
 TEST_F(AtomicFileTest, ReplacesAnExistingFile) {

@@ -223,6 +223,39 @@ TEST(DdaFrameWriter, CollectionListsOnlyWrittenFrames) {
   EXPECT_EQ(ddaFrameFileName(1234567), "dda_1234567.vtu");
 }
 
+TEST(DdaSummary, LongRunsKeepEveryStrideThStepAcrossTheRun) {
+  // summary.json keeps at most `limit` step records: each time the limit is passed the
+  // stride doubles and the records off it go. 1000 steps under a limit of 100: stride 16,
+  // the 62 multiples of 16 up to 992; every kept record is a multiple of the stride.
+  std::vector<DdaStepRecord> steps;
+  int stride = 1;
+  for (int step = 1; step <= 1000; ++step) {
+    DdaStepRecord r;
+    r.step = step;
+    keepStepRecord(steps, stride, r, 100);
+  }
+  EXPECT_EQ(stride, 16);
+  ASSERT_EQ(steps.size(), 62u);
+  EXPECT_EQ(steps.front().step, 16);
+  EXPECT_EQ(steps.back().step, 992);
+  for (const DdaStepRecord& r : steps) EXPECT_EQ(r.step % 16, 0);
+  // steps.csv has every step: one row per record, no wall-clock times.
+  DdaStepRecord r;
+  r.step = 7;
+  r.time = 0.25;
+  r.time_step = 0.001;
+  r.contacts = 4;
+  r.open = 1;
+  r.locked = 3;
+  r.open_close_iterations = 2;
+  r.max_displacement = 1.5e-5;
+  r.phase_seconds = {{"solve", 0.5}};
+  EXPECT_EQ(stepsCsvHeader(),
+            "step,time,time_step,contacts,open,sliding,locked,iterations,retries,"
+            "max_displacement,max_penetration\n");
+  EXPECT_EQ(formatStepsRow(r), "7,0.25,0.001,4,1,0,3,2,0,1.5e-05,0\n");
+}
+
 TEST(DdaSummary, StepStatisticsAndTimingsApart) {
   RunInfo run;
   run.command = "dda";
