@@ -171,6 +171,12 @@ BlockEstimate estimateBlocks(const CutInput& input, double limit) {
     Vec3 dir = a.normal.cross(b.normal);
     const double sine = dir.norm();
     if (sine < 1e-9) return;  // parallel planes do not cross
+    // Each disc must reach the other's plane: its centre lies within radius x sine of it.
+    const Vec3 between = b.center - a.center;
+    if (std::abs(a.normal.dot(between)) > b.radius * sine ||
+        std::abs(b.normal.dot(between)) > a.radius * sine) {
+      return;
+    }
     const double ha = a.normal.dot(a.center);
     const double hb = b.normal.dot(b.center);
     const Vec3 p = (ha * b.normal.cross(dir) + hb * dir.cross(a.normal)) / (sine * sine);
