@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
 
+#include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
@@ -35,6 +37,12 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
       ->default_val(geometry::GenerationLimits{}.max_discs)
       ->check(CLI::PositiveNumber);
   command
+      .add_option("--threads", options.threads,
+                  "Worker threads (0: every core); the outputs are the same bytes whatever "
+                  "the count")
+      ->default_val(0)
+      ->check(CLI::NonNegativeNumber);
+  command
       .add_option("--max-blocks", options.max_blocks,
                   "Largest estimated number of blocks a cut may make (an upper estimate, "
                   "checked before the cut)")
@@ -43,6 +51,12 @@ void addCommonOptions(CLI::App& command, CommonOptions& options) {
 }
 
 io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
+  if (options.threads > 0) {
+    // For the rest of the process: every parallel loop (TBB) runs on at most this many.
+    static std::unique_ptr<tbb::global_control> limit;
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(options.threads));
+  }
   io::Scene scene = io::loadScene(options.scene);
   if (options.seed) scene.seed = *options.seed;
   scene.generation_limits.max_discs = options.max_discs;

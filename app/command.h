@@ -27,6 +27,7 @@ struct CommonOptions {
   /// --max-discs: geometry::GenerationLimits::max_discs
   double max_discs = geometry::GenerationLimits{}.max_discs;
   double max_blocks = 1e6;  ///< --max-blocks: io::Scene::max_blocks
+  int threads = 0;          ///< --threads: worker threads (0: every core)
 };
 
 /// A registered sub-command: its CLI11 node and what runs when it was parsed.

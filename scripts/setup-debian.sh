@@ -20,6 +20,7 @@ packages=(
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
   clang-14 libclang-rt-14-dev   # fuzz: libFuzzer targets of the input readers
+  clang-format-14        # tests: the formatting check
 )
 
 missing=()

@@ -250,6 +250,37 @@ const QuickRun& xiangjiabaQuick() {
   return *run;
 }
 
+TEST(RunCli, XiangjiabaQuickGivesTheSameBytesOnOneThread) {
+  // Every stage's parallel loops (DFN measurement, both cutters' regions, RQD scanlines and
+  // volume, DDA contact detection and area assignment) must not depend on how the work is
+  // split: the quick run on one thread writes the same files, byte for byte, as on every
+  // core (summary.json: all but its timings).
+  const QuickRun& all = xiangjiabaQuick();
+  ASSERT_EQ(all.code, 0) << all.log;
+  test::TempDir dir("run_cli_one_thread");
+  const fs::path out = dir.path() / "out";
+  std::string log;
+  ASSERT_EQ(test::runRockmass(std::string("run ") + ROCKMASS_SOURCE_DIR +
+                                  "/examples/xiangjiaba/scene.yaml -o " + out.string() +
+                                  " --quick --cutter fast --no-figures --threads 1",
+                              &log),
+            0)
+      << log;
+  Json a = readJson(all.out / "summary.json");
+  Json b = readJson(out / "summary.json");
+  for (Json* j : {&a, &b}) j->erase("timings");
+  EXPECT_EQ(a, b);
+  int compared = 0;
+  for (const Json& f : a["run"]["files"]) {
+    if (f == "summary.json") continue;
+    EXPECT_EQ(test::readFile(all.out / f.get<std::string>()),
+              test::readFile(out / f.get<std::string>()))
+        << f;
+    ++compared;
+  }
+  EXPECT_GE(compared, 15);
+}
+
 TEST(RunCli, XiangjiabaQuick) {
   const QuickRun& run = xiangjiabaQuick();
   // Written before the DDA starts: the DFN, blocks, section and RQD files.
