@@ -69,25 +69,6 @@ std::optional<std::array<double, 2>> lineInside(const PlanarDisc& d, const Vec3&
   return std::array<double, 2>{lo, hi};
 }
 
-/// The interval of t on p + t dir inside the box (slabs).
-std::optional<std::array<double, 2>> lineInBox(const Box& box, const Vec3& p, const Vec3& dir) {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (dir[a] == 0.0) {
-      if (p[a] < box.min[a] || p[a] > box.max[a]) return std::nullopt;
-      continue;
-    }
-    double t0 = (box.min[a] - p[a]) / dir[a];
-    double t1 = (box.max[a] - p[a]) / dir[a];
-    if (t0 > t1) std::swap(t0, t1);
-    lo = std::max(lo, t0);
-    hi = std::min(hi, t1);
-  }
-  if (!(lo < hi)) return std::nullopt;
-  return std::array<double, 2>{lo, hi};
-}
-
 /// A segment cut on a disc by another, in the disc's (u, v) frame.
 struct Segment {
   Vec2 a, b;
@@ -186,7 +167,8 @@ BlockEstimate estimateBlocks(const CutInput& input, double limit) {
         (b.center - p).cross(dir).squaredNorm() > b.radius * b.radius) {
       return;
     }
-    const auto in_box = lineInBox(domain, p, dir);
+    const double far = std::numeric_limits<double>::infinity();
+    const auto in_box = geometry::lineInterval(domain, p, dir, -far, far);
     if (!in_box) return;
     const auto in_a = lineInside(a, p, dir);
     if (!in_a) return;

@@ -1,5 +1,10 @@
 #pragma once
 /// Axis-aligned boxes: the rock domain and bounding boxes.
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <utility>
+
 #include "geometry/vec.h"
 
 namespace rockmass::geometry {
@@ -29,5 +34,27 @@ struct Box {
     return d.norm();
   }
 };
+
+/// The part [t0, t1] of [t_min, t_max] where p + t dir lies in `box` (Liang-Barsky slabs), or
+/// nothing when the line misses the box there. t0 == t1 when it only touches it.
+inline std::optional<std::array<double, 2>> lineInterval(const Box& box, const Vec3& p,
+                                                         const Vec3& dir, double t_min,
+                                                         double t_max) {
+  double t0 = t_min;
+  double t1 = t_max;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (dir[axis] == 0.0) {
+      if (p[axis] < box.min[axis] || p[axis] > box.max[axis]) return std::nullopt;
+      continue;
+    }
+    double enter = (box.min[axis] - p[axis]) / dir[axis];
+    double leave = (box.max[axis] - p[axis]) / dir[axis];
+    if (enter > leave) std::swap(enter, leave);
+    t0 = std::max(t0, enter);
+    t1 = std::min(t1, leave);
+    if (t0 > t1) return std::nullopt;
+  }
+  return std::array<double, 2>{t0, t1};
+}
 
 }  // namespace rockmass::geometry

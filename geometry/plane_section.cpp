@@ -37,22 +37,11 @@ std::vector<Vec2> convexHull(std::vector<Vec2> points, double eps) {
 
 /// Clips the segment a-b to `box` (Liang-Barsky); false when nothing is left.
 bool clipToBox(Vec3& a, Vec3& b, const Box& box) {
-  double t0 = 0.0, t1 = 1.0;
   const Vec3 d = b - a;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (d[axis] == 0.0) {
-      if (a[axis] < box.min[axis] || a[axis] > box.max[axis]) return false;
-      continue;
-    }
-    double lo = (box.min[axis] - a[axis]) / d[axis];
-    double hi = (box.max[axis] - a[axis]) / d[axis];
-    if (lo > hi) std::swap(lo, hi);
-    t0 = std::max(t0, lo);
-    t1 = std::min(t1, hi);
-    if (t0 > t1) return false;
-  }
-  const Vec3 start = a + t0 * d;
-  b = a + t1 * d;
+  const auto inside = lineInterval(box, a, d, 0.0, 1.0);
+  if (!inside) return false;
+  const Vec3 start = a + (*inside)[0] * d;
+  b = a + (*inside)[1] * d;
   a = start;
   return true;
 }

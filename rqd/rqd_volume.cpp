@@ -100,22 +100,7 @@ int sumRqd(const ScanlineScene& scene, const geometry::Box& domain, const Vec3& 
 
 std::optional<std::array<double, 2>> clipSegmentToBox(const Vec3& start, const Vec3& end,
                                                       const geometry::Box& box) {
-  double t0 = 0.0;
-  double t1 = 1.0;
-  const Vec3 delta = end - start;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (delta[axis] == 0.0) {
-      if (start[axis] < box.min[axis] || start[axis] > box.max[axis]) return std::nullopt;
-      continue;
-    }
-    double enter = (box.min[axis] - start[axis]) / delta[axis];
-    double leave = (box.max[axis] - start[axis]) / delta[axis];
-    if (enter > leave) std::swap(enter, leave);
-    t0 = std::max(t0, enter);
-    t1 = std::min(t1, leave);
-    if (t0 > t1) return std::nullopt;
-  }
-  return std::array<double, 2>{t0, t1};
+  return geometry::lineInterval(box, start, end - start, 0.0, 1.0);
 }
 
 RqdVolume computeRqdVolume(const ScanlineScene& scene, const geometry::FractureNetwork& network,
