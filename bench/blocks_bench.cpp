@@ -1,9 +1,9 @@
 // Block cutting: the density and size series of issue 3 and the disc_segments column, for
 // both cutters (plus the constant-intensity size series, FastConstP32). Each series runs alone with
 // --benchmark_filter, e.g. 'FastSize', 'ExactDensity/(10|30|100)$', 'Segments', '/100$' (both
-// cutters at 100 discs). Scenes come from blocks/disc_scenes.h, so another cutter can run the very
-// same series: add a BM_<Cutter>Density / BM_<Cutter>Size pair below that calls it. Prints Google
-// Benchmark's table, then comparisons as ratios measured in this run.
+// cutters at 100 discs). Scenes come from scenarios/disc_scenes.h, so another cutter can run the
+// very same series: add a BM_<Cutter>Density / BM_<Cutter>Size pair below that calls it. Prints
+// Google Benchmark's table, then comparisons as ratios measured in this run.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "bench/bench_support.h"
-#include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
+#include "scenarios/disc_scenes.h"
 
 namespace {
 
@@ -116,7 +116,7 @@ BENCHMARK(BM_FastSize)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-/// Constant-intensity size series (blocks/disc_scenes.h, constantIntensityScene): the cube
+/// Constant-intensity size series (scenarios/disc_scenes.h, constantIntensityScene): the cube
 /// of the size series, discs centred in the cube grown by 7 m at the same density, so P32
 /// inside the cube is the same for every n (the size series' P32 grows with n: fewer of its
 /// discs stick out of a larger cube). Work per unit volume is constant: time should grow

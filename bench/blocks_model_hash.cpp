@@ -11,8 +11,8 @@
 #include <cstring>
 #include <vector>
 
-#include "blocks/disc_scenes.h"
 #include "blocks/fast_cutter.h"
+#include "scenarios/disc_scenes.h"
 
 namespace {
 

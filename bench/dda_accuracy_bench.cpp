@@ -33,9 +33,9 @@
 
 #include <Eigen/Geometry>
 
-#include "../tests/dda3d/dda_scenes.h"
 #include "bench/bench_support.h"
 #include "dda3d/simulation.h"
+#include "scenarios/dda_scenes.h"
 
 namespace {
 

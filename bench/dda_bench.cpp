@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "../tests/dda3d/dda_scenes.h"
 #include "bench/bench_support.h"
 #include "dda3d/simulation.h"
+#include "scenarios/dda_scenes.h"
 
 namespace {
 

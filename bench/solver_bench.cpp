@@ -1,6 +1,6 @@
 // The DDA linear solve per backend: CHOLMOD supernodal Cholesky, Eigen simplicial LDL^T and
 // block-Jacobi PCG at two tolerances, on DDA-shaped systems of 100, 1000 and 5000 blocks
-// (tests/support/dda_matrices.h: 12 unknowns per unit-cube block, inertia, elastic terms, a
+// (scenarios/dda_matrices.h: 12 unknowns per unit-cube block, inertia, elastic terms, a
 // soft layer 10^3 softer, contact springs on every shared face, the bottom layer fixed).
 // Each iteration is what one open-close iteration costs: the numeric factorization (the
 // symbolic analysis is reused, as it is while the contact pattern holds) and one solve.
@@ -15,7 +15,7 @@
 
 #include "bench/bench_support.h"
 #include "dda3d/linear_solver.h"
-#include "tests/support/dda_matrices.h"
+#include "scenarios/dda_matrices.h"
 
 namespace {
 

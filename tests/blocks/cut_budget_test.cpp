@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "blocks/cut_budget.h"
-#include "blocks/disc_scenes.h"
 #include "blocks/fast_cutter.h"
+#include "scenarios/disc_scenes.h"
 #include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {

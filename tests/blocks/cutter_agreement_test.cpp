@@ -5,13 +5,13 @@
 #include <cmath>
 #include <map>
 
-#include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "blocks/prism.h"
 #include "geometry/dfn_spec.h"
 #include "geometry/orientation.h"
 #include "geometry/random.h"
+#include "scenarios/disc_scenes.h"
 
 namespace rockmass::blocks {
 namespace {

@@ -11,11 +11,11 @@
 #include <tuple>
 
 #include "blocks/convex_split.h"
-#include "blocks/disc_scenes.h"
 #include "blocks/piece_contacts.h"
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
 #include "geometry/orientation.h"
+#include "scenarios/disc_scenes.h"
 #include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {

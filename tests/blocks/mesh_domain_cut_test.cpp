@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/polyhedron.h"
+#include "scenarios/disc_scenes.h"
 
 namespace rockmass::blocks {
 namespace {

@@ -10,9 +10,9 @@
 #include <tuple>
 
 #include "blocks/block_merge.h"
-#include "blocks/disc_scenes.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/polyhedron.h"
+#include "scenarios/disc_scenes.h"
 #include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {

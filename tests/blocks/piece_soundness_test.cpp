@@ -10,10 +10,10 @@
 #include <cmath>
 
 #include "blocks/block_validation.h"
-#include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/disc.h"
+#include "scenarios/disc_scenes.h"
 #include "tests/blocks/block_test_support.h"
 
 namespace rockmass::blocks {

@@ -14,8 +14,8 @@
 #include "dda3d/broad_phase.h"
 #include "dda3d/contact_detection.h"
 #include "dda3d/simulation.h"
-#include "dda_scenes.h"
 #include "geometry/random.h"
+#include "scenarios/dda_scenes.h"
 
 namespace rockmass::dda3d {
 namespace {

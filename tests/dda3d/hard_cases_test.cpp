@@ -16,7 +16,7 @@
 #include <string>
 
 #include "dda3d/simulation.h"
-#include "dda_scenes.h"
+#include "scenarios/dda_scenes.h"
 
 namespace rockmass::dda3d {
 namespace {

@@ -15,7 +15,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "dda3d/block_jacobi_preconditioner.h"
-#include "tests/support/dda_matrices.h"
+#include "scenarios/dda_matrices.h"
 
 namespace rockmass::dda3d {
 namespace {

@@ -24,10 +24,10 @@
 #include <vector>
 
 #include "dda3d/simulation.h"
-#include "dda_scenes.h"
 #include "geometry/box.h"
 #include "geometry/polyhedron.h"
 #include "geometry/random.h"
+#include "scenarios/dda_scenes.h"
 
 namespace rockmass::dda3d {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "dda3d/simulation.h"
-#include "dda_scenes.h"
+#include "scenarios/dda_scenes.h"
 
 namespace rockmass::dda3d {
 namespace {

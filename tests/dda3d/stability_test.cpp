@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "dda3d/block_terms.h"
-#include "dda_scenes.h"
+#include "scenarios/dda_scenes.h"
 #include "tests/support/verification.h"
 
 namespace rockmass::dda3d {

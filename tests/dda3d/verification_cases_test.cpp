@@ -25,7 +25,7 @@
 
 #include "dda3d/simulation.h"
 #include "dda3d/stability.h"
-#include "dda_scenes.h"
+#include "scenarios/dda_scenes.h"
 #include "tests/support/verification.h"
 
 namespace rockmass::dda3d {

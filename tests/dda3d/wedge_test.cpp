@@ -10,7 +10,7 @@
 #include <string>
 
 #include "dda3d/simulation.h"
-#include "dda_scenes.h"
+#include "scenarios/dda_scenes.h"
 #include "tests/support/verification.h"
 
 namespace rockmass::dda3d {

@@ -10,12 +10,12 @@
 #include <map>
 #include <utility>
 
-#include "blocks/disc_scenes.h"
 #include "blocks/fast_cutter.h"
 #include "blocks/surface_check.h"
 #include "geometry/disc.h"
 #include "geometry/polyhedron.h"
 #include "io/atomic_file.h"
+#include "scenarios/disc_scenes.h"
 #include "tests/support/test_support.h"
 
 namespace rockmass::io {

@@ -11,11 +11,11 @@
 #include <set>
 #include <sstream>
 
-#include "blocks/disc_scenes.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/disc.h"
 #include "geometry/polyhedron.h"
+#include "scenarios/disc_scenes.h"
 
 namespace rockmass::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "blocks/disc_scenes.h"
+#include "scenarios/disc_scenes.h"
 
 #include <cmath>
 
