@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
 
@@ -159,67 +157,6 @@ joint_sets:
   EXPECT_NE(refused.output.find("over the limit of 100 "), std::string::npos) << refused.output;
   const Result accepted = test::runCli("dfn " + small + " -o " + (dir.path() / "s2").string());
   EXPECT_EQ(accepted.exit_code, 0) << accepted.output;
-}
-
-TEST(Cli, CtrlCStopsAtASafePointWithExit130AndAMarker) {
-  // A DDA of 10^7 static steps (hours) interrupted after 1.5 s by SIGINT, as Ctrl-C sends
-  // it: the step loop stops at its next step, the program says where and exits 130, and
-  // interrupted.json lists the files the run had completed (the fracture files are written
-  // before the DDA; summary.json is not). `timeout --preserve-status` returns its exit code.
-  TempDir dir("cli_interrupt");
-  const std::string scene = R"(version: 1
-name: interrupted
-seed: 1
-domain:
-  box: {min: [0, 0, -3], max: [2, 2, 0]}
-materials:
-  rock: {density: 2500, young: 10.0e9, poisson: 0.25}
-rock_material: rock
-joints:
-  rj: {friction: 0.6, cohesion: 0}
-default_joint: rj
-faults:
-  - {name: upper, center: [1, 1, -1], dip_direction: 0, dip: 0}
-loads:
-  gravity: 9.81
-supports:
-  fixed: [bottom]
-analysis:
-  blocks: {cutter: fast}
-  dda: {mode: static, steps: 10000000, time_step: 0.01}
-)";
-  const fs::path path = writeFile(dir.path() / "scene.yaml", scene);
-  const fs::path out = dir.path() / "out";
-  // A marker from an earlier interrupted run in the same folder is removed first.
-  fs::create_directories(out);
-  writeFile(out / "interrupted.json", "stale");
-  const std::string command = "timeout --preserve-status -s INT 1.5 " +
-                              std::string(ROCKMASS_BINARY) + " dda " + path.string() + " -o " +
-                              out.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status)) << output;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
-  EXPECT_NE(output.find("rockmass dda: interrupted by SIGINT during the DDA at t = "),
-            std::string::npos)
-      << output;
-  const nlohmann::json marker = nlohmann::json::parse(readFile(out / "interrupted.json"));
-  EXPECT_EQ(marker.at("interrupted"), true);
-  EXPECT_EQ(marker.at("signal"), "SIGINT");
-  EXPECT_EQ(marker.at("command"), "dda");
-  EXPECT_EQ(marker.at("during").get<std::string>().rfind("the DDA at t = ", 0), 0u);
-  for (const auto& file : marker.at("complete")) {
-    EXPECT_TRUE(fs::exists(out / file.get<std::string>())) << file;
-    EXPECT_NE(file.get<std::string>(), "summary.json");
-  }
-  EXPECT_FALSE(fs::exists(out / "summary.json"));
-  for (const auto& entry : fs::directory_iterator(out)) {
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
-  }
 }
 
 TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {

@@ -491,5 +491,49 @@ TEST_F(DdaCli, BadInputExitsWithTwo) {
       2);
 }
 
+TEST(DdaInterrupt, CtrlCStopsAtASafePointWithExit130AndAMarker) {
+  // The stack above with 10^7 static steps (hours), interrupted after 1.5 s by SIGINT, as
+  // Ctrl-C sends it: the step loop stops at its next step, the program says where and exits
+  // 130, and interrupted.json lists the files the run had completed (dda.pvd and the first
+  // frame; not the streamed history.csv and steps.csv, nor summary.json). `timeout
+  // --preserve-status` returns the program's exit code.
+  test::TempDir dir("dda_cli_interrupt");
+  std::string scene = kScene;
+  scene.replace(scene.find("steps: 100"), 10, "steps: 10000000");
+  const fs::path path = test::writeFile(dir.path() / "scene.yaml", scene);
+  const fs::path out = dir.path() / "out";
+  // A marker from an earlier interrupted run in the same folder is removed first.
+  fs::create_directories(out);
+  test::writeFile(out / "interrupted.json", "stale");
+  const std::string command = "timeout --preserve-status -s INT 1.5 " +
+                              std::string(ROCKMASS_BINARY) + " dda " + path.string() + " -o " +
+                              out.string() + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
+  EXPECT_NE(output.find("rockmass dda: interrupted by SIGINT during the DDA at t = "),
+            std::string::npos)
+      << output;
+  const nlohmann::json marker = nlohmann::json::parse(test::readFile(out / "interrupted.json"));
+  EXPECT_EQ(marker.at("interrupted"), true);
+  EXPECT_EQ(marker.at("signal"), "SIGINT");
+  EXPECT_EQ(marker.at("command"), "dda");
+  EXPECT_EQ(marker.at("during").get<std::string>().rfind("the DDA at t = ", 0), 0u);
+  for (const auto& file : marker.at("complete")) {
+    EXPECT_TRUE(fs::exists(out / file.get<std::string>())) << file;
+    EXPECT_NE(file.get<std::string>(), "summary.json");
+  }
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  EXPECT_FALSE(fs::exists(out / "history.csv"));
+  for (const auto& entry : fs::directory_iterator(out)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+  }
+}
+
 }  // namespace
 }  // namespace rockmass
