@@ -1,5 +1,6 @@
 #include "io/vtu.h"
 
+#include <algorithm>
 #include <bit>
 
 namespace rockmass::io {
@@ -12,9 +13,13 @@ static_assert(std::endian::native == std::endian::little,
 /// is base64-encoded on its own, then the values: VTK's reader decodes the two separately.
 void appendArray(std::string& out, const VtuArray& array) {
   const std::uint64_t size = array.bytes.size();
-  out += "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name +
-         "\" NumberOfComponents=\"" + std::to_string(array.components) +
-         "\" format=\"binary\">\n          ";
+  out += "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name + "\"";
+  // Scalars (and the cells' topology arrays) carry no NumberOfComponents, as VTK's own writer
+  // does: meshio reads a topology array that has it as a 2D table and fails.
+  if (array.components != 1) {
+    out += " NumberOfComponents=\"" + std::to_string(array.components) + "\"";
+  }
+  out += " format=\"binary\">\n          ";
   out += base64Encode(std::string_view(reinterpret_cast<const char*>(&size), sizeof size));
   out += base64Encode(array.bytes);
   out += "\n        </DataArray>\n";
@@ -26,6 +31,63 @@ void appendSection(std::string& out, const char* tag, const std::vector<VtuArray
   out += std::string("      <") + tag + ">\n";
   for (const VtuArray& array : arrays) appendArray(out, array);
   out += std::string("      </") + tag + ">\n";
+}
+
+/// The polyhedron cells of `piece` in ascending order of their point counts (stable), with
+/// their cell data: meshio (7.0) files polyhedra in blocks by point count in the order it
+/// meets them but files their cell data in ascending order of the count, so that any other
+/// order pairs the cells with the wrong data (it refuses the file, or worse). VTK and
+/// ParaView read any order. The blocks keep their relative order within a count, and every
+/// cell keeps its data (its block id, ...).
+VtuPiece polyhedraByPointCount(const VtuPiece& piece) {
+  const std::size_t n = piece.types.size();
+  std::vector<std::int64_t> count(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    count[c] = piece.offsets[c] - (c == 0 ? 0 : piece.offsets[c - 1]);
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t c = 0; c < n; ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return count[a] < count[b]; });
+  VtuPiece out;
+  out.points = piece.points;
+  out.point_data = piece.point_data;
+  for (const std::size_t c : order) {
+    const std::int64_t begin = c == 0 ? 0 : piece.offsets[c - 1];
+    out.connectivity.insert(out.connectivity.end(), piece.connectivity.begin() + begin,
+                            piece.connectivity.begin() + piece.offsets[c]);
+    out.offsets.push_back(static_cast<std::int64_t>(out.connectivity.size()));
+    out.types.push_back(piece.types[c]);
+    const std::int64_t face_begin = c == 0 ? 0 : piece.faceoffsets[c - 1];
+    out.faces.insert(out.faces.end(), piece.faces.begin() + face_begin,
+                     piece.faces.begin() + piece.faceoffsets[c]);
+    out.faceoffsets.push_back(static_cast<std::int64_t>(out.faces.size()));
+  }
+  for (const VtuArray& array : piece.cell_data) {
+    VtuArray sorted = array;
+    const std::size_t stride = n == 0 ? 0 : array.bytes.size() / n;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::copy_n(array.bytes.begin() + static_cast<std::ptrdiff_t>(order[i] * stride), stride,
+                  sorted.bytes.begin() + static_cast<std::ptrdiff_t>(i * stride));
+    }
+    out.cell_data.push_back(std::move(sorted));
+  }
+  return out;
+}
+
+/// True when every cell is a polyhedron and their point counts do not already ascend.
+bool needsPointCountOrder(const VtuPiece& piece) {
+  if (piece.faces.empty() || piece.types.empty()) return false;
+  for (const std::uint8_t type : piece.types) {
+    if (type != 42) return false;
+  }
+  std::int64_t previous = 0;
+  for (std::size_t c = 0; c < piece.types.size(); ++c) {
+    const std::int64_t count = piece.offsets[c] - (c == 0 ? 0 : piece.offsets[c - 1]);
+    if (count < previous) return true;
+    previous = count;
+  }
+  return false;
 }
 
 }  // namespace
@@ -57,7 +119,10 @@ std::string base64Encode(std::string_view bytes) {
   return out;
 }
 
-std::string formatVtu(const VtuPiece& piece) {
+std::string formatVtu(const VtuPiece& given) {
+  // Polyhedra of mixed point counts: written in ascending order of the count (meshio).
+  const VtuPiece sorted = needsPointCountOrder(given) ? polyhedraByPointCount(given) : VtuPiece{};
+  const VtuPiece& piece = needsPointCountOrder(given) ? sorted : given;
   std::string out =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "

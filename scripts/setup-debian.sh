@@ -17,6 +17,7 @@ packages=(
   libassimp-dev          # blocks, io: mesh domains and block meshes
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
   python3-matplotlib python3-numpy     # figures from the CSV outputs
+  python3-meshio         # tests: the VTU files read by meshio
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
   clang-14 libclang-rt-14-dev   # fuzz: libFuzzer targets of the input readers
