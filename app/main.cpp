@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <ctime>
 #include <exception>
@@ -33,10 +34,39 @@ int main(int argc, char** argv) {
   };
   // clang-format on
 
+  // A mistyped command or option is named, with the closest valid one.
+  std::vector<std::string> names;
+  for (const rockmass::app::Command& command : commands) names.push_back(command.cli->get_name());
+  if (argc > 1 && argv[1][0] != '-' &&
+      std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+    std::string list;
+    for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+    std::cerr << "error: unknown command '" << argv[1] << "'; expected one of: " << list
+              << rockmass::io::suggestion(argv[1], names) << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    app.exit(e);
+    for (const rockmass::app::Command& command : commands) {
+      if (!command.cli->parsed()) continue;
+      std::vector<std::string> options;
+      for (const CLI::Option* option : command.cli->get_options()) {
+        for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
+      }
+      for (int i = 2; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word.rfind("--", 0) == 0 &&
+            std::find(options.begin(), options.end(), word) == options.end()) {
+          std::cerr << "error: unknown option '" << word << "' for rockmass "
+                    << command.cli->get_name() << rockmass::io::suggestion(word, options) << "\n";
+        }
+      }
+    }
+    return 2;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace rockmass::io {
 
@@ -13,6 +15,10 @@ class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// " (did you mean 'x'?)" for the closest of `candidates` within 2 edits of `word` (and
+/// closer than its own length, so one-letter names suggest nothing), else "".
+std::string suggestion(std::string_view word, const std::vector<std::string>& candidates);
 
 /// "file:line:column: message" with 1-based line and column (column omitted when 0).
 std::string locate(const std::filesystem::path& file, int line, int column,

@@ -50,37 +50,6 @@ std::string joined(const std::vector<std::string>& items) {
   return text;
 }
 
-/// Levenshtein distance: insertions, deletions and substitutions that turn a into b.
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-/// " (did you mean 'x'?)" for the closest candidate within 2 edits of `word` (and closer than
-/// its own length, so one-letter names suggest nothing), else "".
-std::string suggestion(std::string_view word, const std::vector<std::string>& candidates) {
-  const std::string* best = nullptr;
-  std::size_t best_distance = 3;
-  for (const std::string& candidate : candidates) {
-    const std::size_t distance = editDistance(word, candidate);
-    if (distance < best_distance && distance < candidate.size()) {
-      best = &candidate;
-      best_distance = distance;
-    }
-  }
-  return best ? " (did you mean '" + *best + "'?)" : "";
-}
-
 /// The number a plain YAML scalar spells ("-0.5", "+3", "2.6e4"), if it is a finite one.
 std::optional<double> parseNumber(std::string_view text) {
   if (text.starts_with('+') && !text.starts_with("+-")) text.remove_prefix(1);

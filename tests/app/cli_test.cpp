@@ -169,6 +169,22 @@ TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
   EXPECT_EQ(version.output, "0.1.0\n");
 }
 
+TEST(Cli, MistypedCommandsAndOptionsAreNamedWithTheClosestValidOne) {
+  // CLI11 alone said "A subcommand is required" for `rockmass rn`.
+  const Result command = test::runCli("rn scene.yaml -o out");
+  EXPECT_EQ(command.exit_code, 2);
+  EXPECT_NE(command.output.find("error: unknown command 'rn'; expected one of: dfn, blocks, rqd, "
+                                "dda, overload, strength, run (did you mean 'run'?)"),
+            std::string::npos)
+      << command.output;
+  const Result option = test::runCli("dda scene.yaml -o out --solvr pcg");
+  EXPECT_EQ(option.exit_code, 2);
+  EXPECT_NE(option.output.find("error: unknown option '--solvr' for rockmass dda (did you mean "
+                               "'--solver'?)"),
+            std::string::npos)
+      << option.output;
+}
+
 TEST(Cli, UnwritableOutputIsAFailureNotACrash) {
   TempDir dir("cli_unwritable");
   writeFile(dir.path() / "scene.yaml", kScene);
