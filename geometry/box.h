@@ -2,8 +2,10 @@
 /// Axis-aligned boxes: the rock domain and bounding boxes.
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "geometry/vec.h"
 
@@ -34,6 +36,17 @@ struct Box {
     return d.norm();
   }
 };
+
+/// Axis-aligned bounding box of `points` (min +inf, max -inf when there are none).
+inline Box bounds(const std::vector<Vec3>& points) {
+  Box box{Vec3::Constant(std::numeric_limits<double>::infinity()),
+          Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Vec3& p : points) {
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
 
 /// The part [t0, t1] of [t_min, t_max] where p + t dir lies in `box` (Liang-Barsky slabs), or
 /// nothing when the line misses the box there. t0 == t1 when it only touches it.

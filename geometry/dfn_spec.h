@@ -58,6 +58,11 @@ struct FaultSpec {
   int joint = -1;                             ///< joint (strength) index (-1: none given)
 };
 
+/// The sharpest knee (deg) an interlayer profile with thickness may turn: the mitre point of
+/// its offset surfaces lies thickness / (2 cos(turn / 2)) from the knee, 3.9 thicknesses at
+/// 150 degrees.
+inline constexpr double kMaxInterlayerTurn = 150.0;
+
 /// A weak layer: a polyline profile swept across the domain.
 struct InterlayerSpec {
   std::string name;           ///< layer name, e.g. "P1"

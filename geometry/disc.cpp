@@ -185,14 +185,7 @@ std::vector<Vec3> Disc::areaOutline() const {
 }
 
 Box Disc::bounds() const {
-  if (!polygon.empty()) {
-    Box box{polygon.front(), polygon.front()};
-    for (const Vec3& p : polygon) {
-      box.min = box.min.cwiseMin(p);
-      box.max = box.max.cwiseMax(p);
-    }
-    return box;
-  }
+  if (!polygon.empty()) return geometry::bounds(polygon);
   // Half-extent along axis k of centre + a cos(s) major + b sin(s) minor.
   const Vec3 half = ((a * major).cwiseAbs2() + (b * minor()).cwiseAbs2()).cwiseSqrt();
   return {center - half, center + half};

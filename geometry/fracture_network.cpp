@@ -286,8 +286,8 @@ std::vector<Vec2> offsetPolyline(const std::vector<Vec2>& line, double distance,
     const Vec2 n2 = left_normal(i);
     const double cosine = n1.dot(n2);
     // The mitre point lies at distance / cos(half turn) along the bisector; refuse turns
-    // above 150 degrees, where it would run more than 3.9 thicknesses away.
-    if (cosine < std::cos(radians(150.0))) {
+    // above kMaxInterlayerTurn.
+    if (cosine < std::cos(radians(kMaxInterlayerTurn))) {
       throw std::invalid_argument("interlayer " + name + ": the profile turns by more than 150" +
                                   " degrees at point " + std::to_string(i + 1) +
                                   ", too sharp for its thickness");

@@ -37,14 +37,7 @@ MassProperties massProperties(const Polyhedron& polyhedron, const Vec3& referenc
 }
 
 Box bounds(const Polyhedron& polyhedron) {
-  Box box;
-  box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-  box.max = -box.min;
-  for (const Vec3& v : polyhedron.vertices) {
-    box.min = box.min.cwiseMin(v);
-    box.max = box.max.cwiseMax(v);
-  }
-  return box;
+  return bounds(polyhedron.vertices);
 }
 
 Polyhedron boxPolyhedron(const Box& box) {

@@ -30,14 +30,9 @@ std::string withErrno(std::string what) {
   return what;
 }
 
-/// Writes `content` to `temporary` and closes it; returns an empty string on success,
-/// otherwise why it failed.
-std::string writeAndClose(const std::filesystem::path& temporary, std::string_view content) {
-  errno = 0;
-  std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-  if (!stream.is_open()) return withErrno("cannot create " + temporary.string());
-  errno = 0;
-  stream.write(content.data(), static_cast<std::streamsize>(content.size()));
+/// Flushes and closes `stream`, written to `temporary` (errno cleared by the caller before its
+/// last write); returns an empty string on success, otherwise why it failed.
+std::string flushAndClose(std::ofstream& stream, const std::filesystem::path& temporary) {
   stream.flush();
   if (!stream) return withErrno("writing " + temporary.string() + " failed");
   errno = 0;
@@ -46,8 +41,39 @@ std::string writeAndClose(const std::filesystem::path& temporary, std::string_vi
   return {};
 }
 
+/// Writes `content` to `temporary` and closes it; returns an empty string on success,
+/// otherwise why it failed.
+std::string writeAndClose(const std::filesystem::path& temporary, std::string_view content) {
+  errno = 0;
+  std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
+  if (!stream.is_open()) return withErrno("cannot create " + temporary.string());
+  errno = 0;
+  stream.write(content.data(), static_cast<std::streamsize>(content.size()));
+  return flushAndClose(stream, temporary);
+}
+
 std::mutex written_mutex;
 std::vector<std::filesystem::path> written;  ///< guarded by written_mutex
+
+/// The end of every atomic write: with no `reason` to fail, renames `temporary` onto `path`
+/// and records it (filesWritten); otherwise, or when the rename fails, removes `temporary`
+/// and throws "cannot write <path>: <reason>".
+void finishAtomically(const std::filesystem::path& temporary, const std::filesystem::path& path,
+                      std::string reason) {
+  if (reason.empty()) {
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) reason = "renaming " + temporary.string() + " failed: " + error.message();
+  }
+  if (reason.empty()) {
+    const std::lock_guard<std::mutex> lock(written_mutex);
+    written.push_back(path);
+    return;
+  }
+  std::error_code ignored;
+  std::filesystem::remove(temporary, ignored);
+  throw std::runtime_error("cannot write " + path.string() + ": " + reason);
+}
 
 }  // namespace
 
@@ -70,19 +96,7 @@ void writeAtomically(const std::filesystem::path& path,
     std::filesystem::remove(temporary, ignored);
     throw;
   }
-  if (reason.empty()) {
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) reason = "renaming " + temporary.string() + " failed: " + error.message();
-  }
-  if (reason.empty()) {
-    const std::lock_guard<std::mutex> lock(written_mutex);
-    written.push_back(path);
-    return;
-  }
-  std::error_code ignored;
-  std::filesystem::remove(temporary, ignored);
-  throw std::runtime_error("cannot write " + path.string() + ": " + reason);
+  finishAtomically(temporary, path, std::move(reason));
 }
 
 StreamedFile::StreamedFile(std::filesystem::path path)
@@ -110,24 +124,9 @@ void StreamedFile::write(std::string_view text) {
 void StreamedFile::commit() {
   if (!stream_) throw std::logic_error("StreamedFile::commit twice: " + path_.string());
   errno = 0;
-  stream_->flush();
-  std::string reason;
-  if (!*stream_) reason = withErrno("writing " + temporary_.string() + " failed");
-  stream_->close();
-  if (reason.empty() && !*stream_) reason = withErrno("closing " + temporary_.string() + " failed");
+  std::string reason = flushAndClose(*stream_, temporary_);
   stream_.reset();
-  if (reason.empty()) {
-    std::error_code error;
-    std::filesystem::rename(temporary_, path_, error);
-    if (error) reason = "renaming " + temporary_.string() + " failed: " + error.message();
-  }
-  if (!reason.empty()) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
-    throw std::runtime_error("cannot write " + path_.string() + ": " + reason);
-  }
-  const std::lock_guard<std::mutex> lock(written_mutex);
-  written.push_back(path_);
+  finishAtomically(temporary_, path_, std::move(reason));
 }
 
 /// Writes to a temporary file beside `path`, checks the stream, then renames it onto `path`.

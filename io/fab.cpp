@@ -109,13 +109,13 @@ bool isMetre(std::string_view unit) {
   return false;
 }
 
-/// Reads FAB text line by line and turns every problem into an InputError at file:line.
 /// Largest coordinate of a FAB vertex (m).
 constexpr double kLargestCoordinate = 1e12;
 /// Largest distance of a FAB polygon's vertex from its plane, in polygon sizes (bounding-box
 /// diagonals): FAB files from other tools round their coordinates to 6 or more digits.
 constexpr double kPlanarity = 1e-2;
 
+/// Reads FAB text line by line and turns every problem into an InputError at file:line.
 class FabParser {
  public:
   /// Parses `text`, which came from `file` (used in messages only).
@@ -276,12 +276,7 @@ class FabParser {
   /// that crosses itself into lobes of opposite turn (a bow-tie: no net area), or one whose
   /// vertices lie off its plane by more than kPlanarity of its size is refused at its header.
   void checkPolygon(const std::vector<Vec3>& vertices, const std::string& name, int line) {
-    geometry::Box box{vertices.front(), vertices.front()};
-    for (const Vec3& v : vertices) {
-      box.min = box.min.cwiseMin(v);
-      box.max = box.max.cwiseMax(v);
-    }
-    const double size = box.size().norm();
+    const double size = geometry::bounds(vertices).size().norm();
     // The fan's triangles summed without sign: zero only when the vertices are collinear.
     double unsigned_area = 0.0;
     for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {

@@ -444,12 +444,12 @@ std::vector<std::string> namesOf(const std::vector<T>& items) {
   return names;
 }
 
-/// Index of the name at `c` among `names`; `noun` ("joint") words the error.
 /// Where `c` is, kept for messages raised after the scene is read.
 KeyLocation locationOf(const Cursor& c) {
   return {c.path(), c.line(), c.column()};
 }
 
+/// Index of the name at `c` among `names`; `noun` ("joint") words the error.
 int lookupName(const Cursor& c, const std::vector<std::string>& names, const std::string& noun) {
   const std::string name = c.string();
   const auto found = std::find(names.begin(), names.end(), name);
@@ -842,8 +842,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   dda.deformable = m.valueOr("kinematics", dda.deformable, [](const Cursor& v) {
     return v.choice("kinematics", {"deformable", "rigid"}) == 0;
   });
-  // At most 1e7 steps: the history of every step is kept in memory (~16 MB/s of run on a
-  // small model), and 1e9 steps ran the machine out of memory after 8 minutes.
+  // At most 1e7 steps: hours on a small model (the histories go to disk as the run goes and
+  // summary.json keeps at most 1e5 step records, so memory does not grow with the steps).
   dda.steps = m.integerOr("steps", dda.steps, closed(1, 1e7));
   dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
   if (const auto step = m.get("time_step");
@@ -1171,19 +1171,19 @@ class SceneReader {
     layer.sweep = readSweep(m.at("sweep"));
     std::tie(layer.thickness, layer.material) = readSlab(m, "an interlayer");
     if (layer.thickness > 0.0) {
-      // The slab's surfaces are the profile offset by half the thickness, with mitred
-      // knees; a knee turning by more than 150 degrees would put its mitre point more than
-      // 3.9 thicknesses away (geometry::generateInterlayer refuses it too).
+      // The slab's surfaces are the profile offset by half the thickness, with mitred knees:
+      // geometry::kMaxInterlayerTurn, which generateInterlayer also refuses.
       const std::vector<Cursor> points = m.at("profile").items();
       for (std::size_t i = 1; i + 1 < layer.profile.size(); ++i) {
         const Vec2 d1 = (layer.profile[i] - layer.profile[i - 1]).normalized();
         const Vec2 d2 = (layer.profile[i + 1] - layer.profile[i]).normalized();
-        if (d1.dot(d2) < std::cos(150.0 * std::numbers::pi / 180.0)) {
+        if (d1.dot(d2) < std::cos(geometry::kMaxInterlayerTurn * std::numbers::pi / 180.0)) {
           const double turn =
               std::acos(std::clamp(d1.dot(d2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
           points[i].fail("the profile turns by " + formatDouble(std::round(turn * 10.0) / 10.0) +
-                         " degrees at point " + std::to_string(i + 1) +
-                         ", more than the 150 an interlayer with thickness can turn");
+                         " degrees at point " + std::to_string(i + 1) + ", more than the " +
+                         formatDouble(geometry::kMaxInterlayerTurn) +
+                         " an interlayer with thickness can turn");
         }
       }
     }
@@ -1321,7 +1321,6 @@ void checkUtf8(const std::string& text, const fs::path& file) {
   }
 }
 
-/// The single YAML document of `text`, or an InputError for invalid YAML.
 /// Sees where each document of a YAML stream starts, nothing else.
 class DocumentStarts : public YAML::EventHandler {
  public:
@@ -1340,11 +1339,14 @@ class DocumentStarts : public YAML::EventHandler {
   void OnMapEnd() override {}
 };
 
+/// The single YAML document of `text`, or an InputError for invalid YAML.
 YAML::Node loadDocument(const std::string& text, const fs::path& file) {
   checkUtf8(text, file);
+  const auto at = [&](const YAML::Mark& mark, const std::string& what) {
+    return InputError(locate(file, std::max(mark.line, 0) + 1, std::max(mark.column, 0) + 1, what));
+  };
   const auto invalid = [&](const YAML::Mark& mark, const std::string& what) {
-    return InputError(locate(file, std::max(mark.line, 0) + 1, std::max(mark.column, 0) + 1,
-                             "invalid YAML: " + what));
+    return at(mark, "invalid YAML: " + what);
   };
   try {
     // The documents are counted first, at most two, with the parser alone: yaml-cpp 0.7's
@@ -1363,8 +1365,7 @@ YAML::Node loadDocument(const std::string& text, const fs::path& file) {
       if (second.pos == first.pos) {
         throw invalid(second, "a ',' outside a flow collection ([ ] or { })");
       }
-      throw InputError(locate(file, std::max(second.line, 0) + 1, std::max(second.column, 0) + 1,
-                              "expected one YAML document; a second one starts here"));
+      throw at(second, "expected one YAML document; a second one starts here");
     }
     return documents.starts.empty() ? YAML::Node() : YAML::Load(text);
   } catch (const YAML::Exception& error) {

@@ -33,6 +33,16 @@ void appendSection(std::string& out, const char* tag, const std::vector<VtuArray
   out += std::string("      </") + tag + ">\n";
 }
 
+/// Where cell `c` starts in an array indexed by the cells' end offsets (connectivity, faces).
+std::int64_t cellBegin(const std::vector<std::int64_t>& offsets, std::size_t c) {
+  return c == 0 ? 0 : offsets[c - 1];
+}
+
+/// The number of points of cell `c`.
+std::int64_t pointCount(const VtuPiece& piece, std::size_t c) {
+  return piece.offsets[c] - cellBegin(piece.offsets, c);
+}
+
 /// The polyhedron cells of `piece` in ascending order of their point counts (stable), with
 /// their cell data: meshio (7.0) files polyhedra in blocks by point count in the order it
 /// meets them but files their cell data in ascending order of the count, so that any other
@@ -41,25 +51,21 @@ void appendSection(std::string& out, const char* tag, const std::vector<VtuArray
 /// cell keeps its data (its block id, ...).
 VtuPiece polyhedraByPointCount(const VtuPiece& piece) {
   const std::size_t n = piece.types.size();
-  std::vector<std::int64_t> count(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    count[c] = piece.offsets[c] - (c == 0 ? 0 : piece.offsets[c - 1]);
-  }
   std::vector<std::size_t> order(n);
   for (std::size_t c = 0; c < n; ++c) order[c] = c;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return count[a] < count[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return pointCount(piece, a) < pointCount(piece, b);
+  });
   VtuPiece out;
   out.points = piece.points;
   out.point_data = piece.point_data;
   for (const std::size_t c : order) {
-    const std::int64_t begin = c == 0 ? 0 : piece.offsets[c - 1];
-    out.connectivity.insert(out.connectivity.end(), piece.connectivity.begin() + begin,
+    out.connectivity.insert(out.connectivity.end(),
+                            piece.connectivity.begin() + cellBegin(piece.offsets, c),
                             piece.connectivity.begin() + piece.offsets[c]);
     out.offsets.push_back(static_cast<std::int64_t>(out.connectivity.size()));
     out.types.push_back(piece.types[c]);
-    const std::int64_t face_begin = c == 0 ? 0 : piece.faceoffsets[c - 1];
-    out.faces.insert(out.faces.end(), piece.faces.begin() + face_begin,
+    out.faces.insert(out.faces.end(), piece.faces.begin() + cellBegin(piece.faceoffsets, c),
                      piece.faces.begin() + piece.faceoffsets[c]);
     out.faceoffsets.push_back(static_cast<std::int64_t>(out.faces.size()));
   }
@@ -81,11 +87,8 @@ bool needsPointCountOrder(const VtuPiece& piece) {
   for (const std::uint8_t type : piece.types) {
     if (type != 42) return false;
   }
-  std::int64_t previous = 0;
-  for (std::size_t c = 0; c < piece.types.size(); ++c) {
-    const std::int64_t count = piece.offsets[c] - (c == 0 ? 0 : piece.offsets[c - 1]);
-    if (count < previous) return true;
-    previous = count;
+  for (std::size_t c = 1; c < piece.types.size(); ++c) {
+    if (pointCount(piece, c) < pointCount(piece, c - 1)) return true;
   }
   return false;
 }
@@ -121,8 +124,9 @@ std::string base64Encode(std::string_view bytes) {
 
 std::string formatVtu(const VtuPiece& given) {
   // Polyhedra of mixed point counts: written in ascending order of the count (meshio).
-  const VtuPiece sorted = needsPointCountOrder(given) ? polyhedraByPointCount(given) : VtuPiece{};
-  const VtuPiece& piece = needsPointCountOrder(given) ? sorted : given;
+  const bool reorder = needsPointCountOrder(given);
+  const VtuPiece sorted = reorder ? polyhedraByPointCount(given) : VtuPiece{};
+  const VtuPiece& piece = reorder ? sorted : given;
   std::string out =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
