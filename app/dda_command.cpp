@@ -178,6 +178,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     const dda3d::PhaseTimings before = sim.timings();
     const dda3d::StepReport report = sim.step();
     ++step;
+    summary.late_contacts += report.late_contacts;
     last = stepRecord(step, report, sim, phaseSeconds(before, sim.timings()));
     stage.steps_csv->write(io::formatStepsRow(last));
     for (const auto& [name, seconds] : last.phase_seconds) {

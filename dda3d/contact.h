@@ -38,6 +38,11 @@ struct Contact {
   geometry::Vec3 normal = geometry::Vec3::UnitZ();  ///< unit, pointing out of block j
   double gap0 = 0.0;  ///< d0 = n . (P - P0) at the start of the step (m), < 0: penetration
   double area = 0.0;  ///< tributary area for cohesion and tension (m2)
+  /// Depth the detection found too late (m, >= 0): an entry first seen penetrating deeper
+  /// than the allowed penetration has gap0 raised by this much, so its spring resists only
+  /// further penetration; carried over while the entry lasts, it shrinks as the blocks part
+  /// (Simulation::detectContacts).
+  double overlap = 0.0;
   /// Joint of the contact (index into DdaModel::joints), from the faces it lies on; -1: the
   /// model's default joint.
   int joint = -1;

@@ -61,6 +61,9 @@ struct DdaRunSummary {
   std::vector<DdaStepRecord> steps;
   int step_stride = 1;
   int steps_taken = -1;  ///< accepted steps (-1: steps.size())
+  /// Contacts first found deeper than the allowed penetration over the run (a miss of the
+  /// detection; their depth is not pushed back: dda3d::Contact::overlap).
+  int late_contacts = 0;
   /// Seconds per phase over every step (empty: summed from `steps`).
   std::vector<std::pair<std::string, double>> phase_totals;
   /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).

@@ -179,10 +179,6 @@ TEST_P(VerificationTrain, PairSlidesWhenTheSumOfDrivingForcesExceedsTheSumOfResi
   constexpr double kPsi = 30.0, kFront = 35.0, kRear = 10.0;
   const double a = pairAcceleration(kPsi, kFront, kRear);
   ASSERT_GT(a, 0.0);
-  if (GetParam() == Kinematics::Deformable) {
-    GTEST_SKIP() << "known failure: the deformable pair accelerates at 1.208 m/s2, 2.3 % above "
-                    "the hand value 1.182 (the rigid pair is within 2 %); open in issue 15";
-  }
   DdaSettings settings;
   settings.kinematics = GetParam();
   settings.time_step = 1e-3;
@@ -245,6 +241,52 @@ INSTANTIATE_TEST_SUITE_P(Kinematics, VerificationTrain,
                          [](const ::testing::TestParamInfo<Kinematics>& info) {
                            return std::string(info.param == Kinematics::Rigid ? "Rigid"
                                                                               : "Deformable");
+                         });
+
+struct TrainSetting {
+  Kinematics kinematics;
+  double time_step;       ///< s
+  double penalty_factor;  ///< DdaSettings::penalty_factor
+};
+
+class VerificationTrainSettings : public ::testing::TestWithParam<TrainSetting> {};
+
+TEST_P(VerificationTrainSettings, PairAccelerationDoesNotDependOnTheTimeStepOrThePenalty) {
+  // The pushed pair of PairSlidesWhenTheSumOfDrivingForcesExceedsTheSumOfResistances, over
+  // the time steps and penalties a user may choose. Before the contact fixes this checks,
+  // the rigid pair slid 17 % too fast at 160 E l0 (a frictionless joint held 250 N of shear
+  // per contact by the round-off allowance, moving weight from the front block to the rear
+  // one), and the deformable pair lost 40-50 % at dt = 2.5e-4 s (its vibrating corners
+  // closed 4e-6 m deep, the spring then threw the blocks: 113 J in one step).
+  constexpr double kPsi = 30.0, kFront = 35.0, kRear = 10.0;
+  const double a = pairAcceleration(kPsi, kFront, kRear);
+  DdaSettings settings;
+  settings.kinematics = GetParam().kinematics;
+  settings.time_step = GetParam().time_step;
+  settings.penalty_factor = GetParam().penalty_factor;
+  Simulation sim(trainOfTwo(kPsi, kFront, kRear), settings);
+  sim.runUntil(0.5);
+  const double t = sim.time();
+  const double front = sim.centroidDisplacement(1).x(), rear = sim.centroidDisplacement(2).x();
+  // The 2 % of the issue; measured within 0.7 % over the whole range.
+  EXPECT_NEAR(2.0 * front / (t * t), a, 0.02 * a);
+  EXPECT_NEAR(rear, front, 1e-4);  // together, on the contact springs
+}
+
+INSTANTIATE_TEST_SUITE_P(Range, VerificationTrainSettings,
+                         ::testing::Values(TrainSetting{Kinematics::Rigid, 1e-3, 10.0},
+                                           TrainSetting{Kinematics::Rigid, 1e-3, 160.0},
+                                           TrainSetting{Kinematics::Rigid, 2.5e-4, 160.0},
+                                           TrainSetting{Kinematics::Deformable, 2e-3, 40.0},
+                                           TrainSetting{Kinematics::Deformable, 1e-3, 160.0},
+                                           TrainSetting{Kinematics::Deformable, 2.5e-4, 10.0},
+                                           TrainSetting{Kinematics::Deformable, 2.5e-4, 160.0}),
+                         [](const ::testing::TestParamInfo<TrainSetting>& info) {
+                           const TrainSetting& p = info.param;
+                           return std::string(p.kinematics == Kinematics::Rigid ? "Rigid"
+                                                                                : "Deformable") +
+                                  "_dt" + std::to_string(std::lround(p.time_step * 1e6)) +
+                                  "us_penalty" + std::to_string(static_cast<int>(p.penalty_factor));
                          });
 
 // ---------------------------------------------------------------------------------------
@@ -437,15 +479,14 @@ double waterForce(const std::vector<Vec3>& polygon, double level) {
 /// FS = 1.5 with water standing at z = 0.8 m in both joints (the wedge is 1 m high: the upper
 /// part of each face dry). With `wet` the water's pressure is applied to the two faces;
 /// returns the hand FS of the model as run (with U_A = U_B = 0 when dry) and the critical SRF
-/// that strength reduction finds (static, rigid: the mode the stability docs recommend; with
-/// damped dynamic runs the wet wedge is not at rest above SRF 1.16, a known failure of the
-/// water applied at once, docs/stability.md "Known limits").
+/// that strength reduction finds with runs of `mode` (damped dynamic: dynamic ratio 0.95).
 struct WedgeWaterRun {
   double hand_fs = 0.0;
   double critical = 0.0;  ///< 0 when not bracketed
   double phi = 0.0;       ///< deg
 };
-WedgeWaterRun wedgeWithWater(bool wet) {
+WedgeWaterRun wedgeWithWater(bool wet, AnalysisMode mode = AnalysisMode::Static,
+                             Kinematics kinematics = Kinematics::Rigid) {
   constexpr double kLevel = 0.8;
   const Vec3 g = kG * Vec3(std::sin(radians(35.0)), 0.0, -std::cos(radians(35.0)));
   scenes::Wedge wedge = scenes::vGrooveWedge(50.0, 35.0, 30.0, g);
@@ -484,8 +525,9 @@ WedgeWaterRun wedgeWithWater(bool wet) {
     run.hand_fs = mass * (t.n_a + t.n_b) * tan_phi / (mass * t.drive);  // 2.14
   }
   DdaSettings settings;
-  settings.kinematics = Kinematics::Rigid;
-  settings.mode = AnalysisMode::Static;
+  settings.kinematics = kinematics;
+  settings.mode = mode;
+  if (mode == AnalysisMode::Dynamic) settings.dynamic_ratio = 0.95;
   settings.time_step = 1e-3;
   FactorSearch search;
   search.factors = {1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.2, 2.4, 2.6};
@@ -497,18 +539,33 @@ WedgeWaterRun wedgeWithWater(bool wet) {
   return run;
 }
 
-TEST(VerificationWedge, WaterInTheJointsLowersTheFactorOfSafetyByTheUpliftForces) {
+struct WedgeRunMode {
+  AnalysisMode mode;
+  Kinematics kinematics;
+};
+
+class VerificationWetWedge : public ::testing::TestWithParam<WedgeRunMode> {};
+
+TEST_P(VerificationWetWedge, WaterInTheJointsLowersTheFactorOfSafetyByTheUpliftForces) {
   // The pressure pushes normal to each face, so the water forces U_A, U_B reduce the normal
   // forces and leave the driving force: FS = ((N_A - U_A) + (N_B - U_B)) tan phi / |w . s|
   // (Hoek & Bray 1981, ch. 7, a wedge with water pressure on its joints; Wyllie & Mah 2004,
   // ch. 7). U_A, U_B integrated exactly here (waterForce), not with the engine's rule.
-  // Strength reduction must find FS within 3 %, as for the dry wedge.
-  const WedgeWaterRun run = wedgeWithWater(true);
+  // Strength reduction must find FS within 3 %, as for the dry wedge, in static and damped
+  // dynamic runs (the water applied at once), rigid or deformable.
+  const WedgeRunMode p = GetParam();
+  const WedgeWaterRun run = wedgeWithWater(true, p.mode, p.kinematics);
   EXPECT_NEAR(run.critical, run.hand_fs, 0.03 * run.hand_fs);
+  const bool rigid_static = p.mode == AnalysisMode::Static && p.kinematics == Kinematics::Rigid;
   test::recordVerification(
       {.group = "Wedges",
-       .name = "wedge 50/35 deg flanks, 35 deg plunge, phi 48.2 deg, water at 0.8 of its height "
-               "in both joints: strength-reduction factor",
+       .name =
+           "wedge 50/35 deg flanks, 35 deg plunge, phi 48.2 deg, water at 0.8 of its height "
+           "in both joints: strength-reduction factor" +
+           (rigid_static
+                ? std::string()
+                : std::string(", ") + (p.kinematics == Kinematics::Rigid ? "rigid" : "deformable") +
+                      (p.mode == AnalysisMode::Static ? ", static" : ", damped dynamic")),
        .source = "FS = ((N_A - U_A) tan phi_A + (N_B - U_B) tan phi_B) / |w.s|, U exact "
                  "integrals of the pressure (Hoek & Bray 1981, ch. 7; Wyllie & Mah 2004, ch. 7)",
        .expected = run.hand_fs,
@@ -517,6 +574,17 @@ TEST(VerificationWedge, WaterInTheJointsLowersTheFactorOfSafetyByTheUpliftForces
        .relative = true,
        .unit = "-"});
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    Modes, VerificationWetWedge,
+    ::testing::Values(WedgeRunMode{AnalysisMode::Static, Kinematics::Rigid},
+                      WedgeRunMode{AnalysisMode::Dynamic, Kinematics::Rigid},
+                      WedgeRunMode{AnalysisMode::Static, Kinematics::Deformable},
+                      WedgeRunMode{AnalysisMode::Dynamic, Kinematics::Deformable}),
+    [](const ::testing::TestParamInfo<WedgeRunMode>& info) {
+      return std::string(info.param.kinematics == Kinematics::Rigid ? "Rigid" : "Deformable") +
+             (info.param.mode == AnalysisMode::Static ? "Static" : "DampedDynamic");
+    });
 
 TEST(VerificationWedge, DryWedgeWithTheSameFrictionAngle) {
   // The same wedge and phi (48.2 deg) without water: FS = (N_A + N_B) tan phi / |w . s| =
