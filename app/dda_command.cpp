@@ -115,8 +115,9 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
   std::vector<io::DdaContactRecord> out;
   for (const dda3d::Contact& c : sim.contacts()) {
     io::DdaContactRecord r;
-    r.kind = c.kind == dda3d::ContactKind::VertexFace ? io::ContactKind::VertexFace
-                                                      : io::ContactKind::EdgeEdge;
+    r.kind = c.kind == dda3d::ContactKind::VertexFace  ? io::ContactKind::VertexFace
+             : c.kind == dda3d::ContactKind::FacePoint ? io::ContactKind::FacePoint
+                                                       : io::ContactKind::EdgeEdge;
     r.state = c.state == dda3d::ContactState::Open      ? io::ContactState::Open
               : c.state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
                                                         : io::ContactState::Locked;

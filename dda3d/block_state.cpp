@@ -1,6 +1,7 @@
 #include "dda3d/block_state.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <utility>
@@ -91,6 +92,86 @@ Vec3 movedPoint(const Vec3& x, const Vec3& centroid, const BlockVector& d) {
             0.5 * d[10], 0.5 * d[9], d[8];
   // clang-format on
   return centroid + d.head<3>() + rotationMatrix(d.segment<3>(3)) * arm + strain * arm;
+}
+
+std::vector<FacePoint> facePoints(const geometry::Polyhedron& piece, double spacing,
+                                  int max_per_face) {
+  std::vector<FacePoint> out;
+  if (!(spacing > 0.0)) return out;
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+    const std::vector<int>& face = piece.faces[f];
+    if (face.size() < 3) continue;
+    const Vec3 n = geometry::faceNormal(piece, static_cast<int>(f));
+    // The face's 2D frame: u along its longest edge, w = n x u.
+    Vec3 u = Vec3::Zero();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const Vec3 e = piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] -
+                     piece.vertices[static_cast<std::size_t>(face[k])];
+      if (e.squaredNorm() > u.squaredNorm()) u = e;
+    }
+    if (!(u.squaredNorm() > 0.0)) continue;
+    u.normalize();
+    const Vec3 w = n.cross(u).normalized();
+    const Vec3 origin = piece.vertices[static_cast<std::size_t>(face[0])];
+    std::vector<Eigen::Vector2d> polygon;
+    Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector2d high = -low;
+    for (int v : face) {
+      const Vec3 x = piece.vertices[static_cast<std::size_t>(v)] - origin;
+      polygon.emplace_back(x.dot(u), x.dot(w));
+      low = low.cwiseMin(polygon.back());
+      high = high.cwiseMax(polygon.back());
+    }
+    const Eigen::Vector2d size = high - low;
+    int nu = static_cast<int>(std::ceil(size.x() / spacing - 1e-9));
+    int nw = static_cast<int>(std::ceil(size.y() / spacing - 1e-9));
+    if (nu < 2 || nw < 2) continue;
+    while (nu * nw > max_per_face) {
+      nu = std::max(2, (nu + 1) / 2);
+      nw = std::max(2, (nw + 1) / 2);
+    }
+    // Each cell clipped to the face (convex: Sutherland-Hodgman against its edges, taken
+    // counter-clockwise about n).
+    for (int i = 0; i < nu; ++i) {
+      for (int j = 0; j < nw; ++j) {
+        const Eigen::Vector2d c0 = low + Eigen::Vector2d(size.x() * i / nu, size.y() * j / nw);
+        const Eigen::Vector2d c1 =
+            low + Eigen::Vector2d(size.x() * (i + 1) / nu, size.y() * (j + 1) / nw);
+        std::vector<Eigen::Vector2d> cell{c0, {c1.x(), c0.y()}, c1, {c0.x(), c1.y()}};
+        for (std::size_t k = 0; k < polygon.size() && cell.size() >= 3; ++k) {
+          const Eigen::Vector2d& p = polygon[k];
+          const Eigen::Vector2d edge = polygon[(k + 1) % polygon.size()] - p;
+          const auto inside = [&](const Eigen::Vector2d& x) {
+            const Eigen::Vector2d r = x - p;
+            return edge.x() * r.y() - edge.y() * r.x();  // >= 0: left of the edge
+          };
+          std::vector<Eigen::Vector2d> next;
+          for (std::size_t m = 0; m < cell.size(); ++m) {
+            const Eigen::Vector2d& a = cell[m];
+            const Eigen::Vector2d& b = cell[(m + 1) % cell.size()];
+            const double da = inside(a), db = inside(b);
+            if (da >= 0.0) next.push_back(a);
+            if ((da >= 0.0) != (db >= 0.0)) next.push_back(a + (b - a) * (da / (da - db)));
+          }
+          cell = std::move(next);
+        }
+        if (cell.size() < 3) continue;
+        double area = 0.0;
+        Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+        for (std::size_t m = 0; m < cell.size(); ++m) {
+          const Eigen::Vector2d& a = cell[m];
+          const Eigen::Vector2d& b = cell[(m + 1) % cell.size()];
+          const double cross = a.x() * b.y() - a.y() * b.x();
+          area += 0.5 * cross;
+          centroid += cross * (a + b);
+        }
+        if (!(area > 1e-12 * size.x() * size.y())) continue;
+        centroid /= 6.0 * area;
+        out.push_back({origin + centroid.x() * u + centroid.y() * w, static_cast<int>(f), area});
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace rockmass::dda3d

@@ -30,6 +30,22 @@ struct PieceTopology {
 /// Edges, vertex neighbours and vertex faces of a polyhedron given by its faces.
 PieceTopology pieceTopology(const geometry::Polyhedron& piece);
 
+/// A sub-contact point: a material point inside a face of a piece, with its share of the
+/// face's area (docs/stability.md, "Contact points").
+struct FacePoint {
+  geometry::Vec3 position = geometry::Vec3::Zero();  ///< m, current
+  int face = -1;                                     ///< face of the piece it lies in
+  double area = 0.0;                                 ///< m2, its cell of the face
+};
+
+/// The sub-contact points of `piece`: each face cut into a grid of cells of about `spacing`
+/// (m) along the face's two longest directions (cells clipped to the face), a point at the
+/// centroid of each cell carrying the cell's area. A face narrower than two cells either way
+/// gets none (its corners carry it). At most `max_per_face` points per face (the grid is
+/// coarsened to fit).
+std::vector<FacePoint> facePoints(const geometry::Polyhedron& piece, double spacing,
+                                  int max_per_face = 1024);
+
 /// The state of one block.
 struct BlockState {
   std::vector<geometry::Polyhedron> pieces;  ///< current geometry (m)
@@ -48,7 +64,9 @@ struct BlockState {
   BlockVector last_displacement = BlockVector::Zero();  ///< D of the last accepted step
   VoigtVector stress = VoigtVector::Zero();             ///< Pa, Voigt order
   VoigtVector strain = VoigtVector::Zero();             ///< accumulated strain (-), Voigt order
-  double size = 0.0;                                    ///< bounding-box diagonal (m)
+  /// Sub-contact points of each piece (empty without DdaSettings::contact_point_spacing).
+  std::vector<std::vector<FacePoint>> face_points;
+  double size = 0.0;  ///< bounding-box diagonal (m)
 
   /// Recomputes volume, centroid, second moments and size from the current pieces.
   void updateMassProperties();

@@ -11,6 +11,9 @@ namespace rockmass::dda3d {
 enum class ContactKind : std::uint8_t {
   VertexFace,  ///< a vertex of piece i near or in a face of piece j
   EdgeEdge,    ///< crossing edges of piece i and piece j
+  /// a sub-contact point of a face of piece i (FacePoint) against the face of piece j
+  /// facing it; `vertex` is the point's index among the piece's face points
+  FacePoint,
 };
 
 /// Open-close state of a contact.

@@ -83,6 +83,8 @@ struct PieceView {
   int piece = -1;
   const Polyhedron* shape = nullptr;
   const PieceTopology* topology = nullptr;
+  const std::vector<FacePoint>* points = nullptr;  ///< sub-contact points (may be empty)
+  std::vector<int> face_points;                    ///< how many sub-contact points each face has
   std::vector<Plane> planes;
   Box box;
   Vec3 centroid = Vec3::Zero();
@@ -94,10 +96,18 @@ PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& v : shape.vertices) centroid += v;
   centroid /= static_cast<double>(shape.vertices.size());
+  const std::vector<FacePoint>* points =
+      b.face_points.empty() ? nullptr : &b.face_points[static_cast<std::size_t>(piece)];
+  std::vector<int> face_points(shape.faces.size(), 0);
+  if (points) {
+    for (const FacePoint& p : *points) ++face_points[static_cast<std::size_t>(p.face)];
+  }
   return {block,
           piece,
           &shape,
           &b.topology[static_cast<std::size_t>(piece)],
+          points,
+          std::move(face_points),
           facePlanes(shape),
           geometry::bounds(shape),
           centroid};
@@ -536,12 +546,44 @@ std::vector<double> cornerWeights(const std::vector<Point2>& polygon, double are
   return exact;
 }
 
+/// The sub-contact points of face `fa` of piece `a` against face `fb` of piece `b` facing it:
+/// a FacePoint entry for each point whose foot lies in fb and whose gap is within the range,
+/// with the point's area.
+void facePointsToFace(const PieceView& a, std::size_t fa, const PieceView& b, std::size_t fb,
+                      const Range& range, double tolerance, std::vector<Contact>& out) {
+  const Plane& plane = b.planes[fb];
+  for (std::size_t k = 0; k < a.points->size(); ++k) {
+    const FacePoint& point = (*a.points)[k];
+    if (point.face != static_cast<int>(fa)) continue;
+    const double gap = plane.normal.dot(point.position) - plane.offset;
+    if (gap > range.gap || gap < -range.depth) continue;
+    const Vec3 foot = point.position - gap * plane.normal;
+    if (!insideFace(*b.shape, b.shape->faces[fb], plane.normal, foot, tolerance)) continue;
+    Contact c;
+    c.kind = ContactKind::FacePoint;
+    c.block_i = a.block;
+    c.piece_i = a.piece;
+    c.block_j = b.block;
+    c.piece_j = b.piece;
+    c.vertex = static_cast<int>(k);
+    c.face = static_cast<int>(fb);
+    c.point = point.position;
+    c.normal = plane.normal;
+    c.gap0 = gap;
+    c.foot = foot;
+    c.area = point.area;
+    out.push_back(c);
+  }
+}
+
 /// The contact area between pieces a and b, as weighted points: for every face of a and face
 /// of b that face each other (opposite normals within kAreaCosine, each piece on the other's
 /// outer side), their overlap polygon in b's face plane, clipped to where a's face lies within
-/// the gap and depth range of b's, split among its corners (cornerWeights).
+/// the gap and depth range of b's, split among its corners (cornerWeights). Where the smaller
+/// of the two faces has sub-contact points, those carry the contact instead (FacePoint
+/// entries with their own areas, facePointsToFace) and the corners no area.
 void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
-                  std::vector<AreaSample>& out) {
+                  std::vector<AreaSample>& out, std::vector<Contact>& contacts) {
   for (std::size_t fb = 0; fb < b.planes.size(); ++fb) {
     const Plane& pb = b.planes[fb];
     if (pb.area <= 0.0 || pb.normal.dot(a.centroid) - pb.offset <= -tolerance) continue;
@@ -559,6 +601,22 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
         high = std::max(high, h);
       }
       if (low > range.gap + tolerance || high < -range.depth - tolerance) continue;
+      // Sub-contact points: those of the face that has them; of the smaller face when both
+      // have (its points lie on the larger one, most of the larger's would miss it), the
+      // lower block first when equal. The points of a face larger than the other that miss
+      // it are no contact: the overlap is resolved by the grid.
+      const int points_a = a.face_points[fa], points_b = b.face_points[fb];
+      if (points_a > 0 || points_b > 0) {
+        const bool a_smaller = pa.area < pb.area * (1.0 - 1e-9) ||
+                               (pa.area <= pb.area * (1.0 + 1e-9) &&
+                                std::pair{a.block, a.piece} < std::pair{b.block, b.piece});
+        if (points_b == 0 || (points_a > 0 && a_smaller)) {
+          facePointsToFace(a, fa, b, fb, range, tolerance, contacts);
+        } else {
+          facePointsToFace(b, fb, a, fa, range, tolerance, contacts);
+        }
+        continue;
+      }
       // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
       // b) stays counter-clockwise; a's face, seen from the other side, is reversed.
       const Vec3& n = pb.normal;
@@ -750,7 +808,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   std::vector<std::size_t> by_pair(contacts.size());
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     by_pair[k] = k;
-    contacts[k].area = 0.0;
+    if (contacts[k].kind != ContactKind::FacePoint) contacts[k].area = 0.0;
   }
   std::sort(by_pair.begin(), by_pair.end(), [&](std::size_t x, std::size_t y) {
     return std::pair{contactKey(contacts[x]), x} < std::pair{contactKey(contacts[y]), y};
@@ -776,6 +834,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     nearest_distance = std::numeric_limits<double>::infinity();
     for (auto it = begin; it != end; ++it) {
       Contact& c = contacts[*it];
+      if (c.kind == ContactKind::FacePoint) continue;  // carries its own area
       const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
       if (normal.dot(sample.normal) < kAreaCosine) continue;
       if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) continue;
@@ -887,7 +946,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
         (of_a ? entries.a : entries.b)[static_cast<std::size_t>(out[e].vertex)] = 1;
       }
       edgeToEdge(a, b, range, tolerance, entries, out);
-      overlapAreas(a, b, range, tolerance, areas[chunk]);
+      overlapAreas(a, b, range, tolerance, areas[chunk], out);
     }
   });
   std::vector<Contact> contacts = withoutDuplicates(joined(std::move(found)));

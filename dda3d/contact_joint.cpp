@@ -103,6 +103,11 @@ int contactJoint(const DdaModel& model, const std::vector<BlockState>& blocks, c
     face_j = c.face;
     face_i =
         mostAligned(pi, ti.vertex_faces.at(static_cast<std::size_t>(c.vertex)), c.normal, -1.0);
+  } else if (c.kind == ContactKind::FacePoint) {
+    face_j = c.face;
+    face_i = bi.face_points.at(static_cast<std::size_t>(c.piece_i))
+                 .at(static_cast<std::size_t>(c.vertex))
+                 .face;
   } else {
     face_j = mostAligned(pj, edgeFaces(tj, c.edge_j), c.normal, 1.0);
     face_i = mostAligned(pi, edgeFaces(ti, c.edge_i), c.normal, -1.0);

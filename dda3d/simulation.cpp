@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -44,6 +45,9 @@ struct ContactKeyHash {
 ContactKey keyOf(const Contact& c) {
   if (c.kind == ContactKind::VertexFace) {
     return {0, c.block_i, c.piece_i, c.vertex, c.block_j, c.piece_j, -1};
+  }
+  if (c.kind == ContactKind::FacePoint) {
+    return {2, c.block_i, c.piece_i, c.vertex, c.block_j, c.piece_j, c.face};
   }
   return {1, c.block_i, c.piece_i, c.edge_i, c.block_j, c.piece_j, c.edge_j};
 }
@@ -241,6 +245,8 @@ ActiveTerms& ActiveTerms::operator|=(const ActiveTerms& o) {
 
 Simulation::Simulation(DdaModel model, DdaSettings settings)
     : model_(std::move(model)), settings_(settings) {
+  if (const char* ct = std::getenv("ROCKMASS_TMP_CT"))
+    settings_.close_threshold_ratio = std::atof(ct);
   if (model_.materials.empty()) throw std::invalid_argument("the DDA model has no material");
   if (model_.joints.empty()) model_.joints.push_back(DdaJoint{});
   if (model_.default_joint < 0 || model_.default_joint >= static_cast<int>(model_.joints.size())) {
@@ -287,6 +293,7 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
                                     " has a piece with fewer than 4 vertices or faces");
       }
       s.topology.push_back(pieceTopology(p));
+      s.face_points.push_back(facePoints(p, settings_.contact_point_spacing));
       const geometry::Box box = geometry::bounds(p);
       all.min = all.min.cwiseMin(box.min);
       all.max = all.max.cwiseMax(box.max);
@@ -521,10 +528,9 @@ void Simulation::detectContacts() {
   // and was never at rest below the limit load (K 12 % below f W / H on a block on a plane).
   // A contact that slid farther is sliding: stuck for a trial, a moving block would pivot on
   // its base springs.
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (Contact& c : contacts_) {
     if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) continue;
-    const double stretch = shearStrength(c, jointOf(c)) / ks;
+    const double stretch = shearStrength(c, jointOf(c)) / shearPenalty(c);
     if (!(c.slip_length <= stretch)) continue;
     c.state = ContactState::Locked;
     c.shear = stretch * c.slide_direction;
@@ -603,10 +609,11 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
   const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
   const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
-  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0);
+  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, contactPenalty(c),
+                     c.gap0);
   active_.contact_normal = true;
   if (c.state == ContactState::Locked) {
-    const double ks = penalty_ / settings_.shear_penalty_ratio;
+    const double ks = shearPenalty(c);
     Vec3 t[2];
     tangents(c.normal, t[0], t[1]);
     for (const Vec3& tk : t) {
@@ -630,8 +637,7 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
     // slips of a static step that over-corrects and grows by ~ -3 per step. Capped at the
     // shear spring (a locked contact resists no more); rigid parts, as the direction. Only
     // once a slip is known: a tangent about a guessed direction would hold a wrong one.
-    applied.transverse_stiffness =
-        std::min(penalty_ / settings_.shear_penalty_ratio, friction / c.slip_length);
+    applied.transverse_stiffness = std::min(shearPenalty(c), friction / c.slip_length);
     applied.across = c.normal.cross(c.slide_direction).normalized();
     DisplacementMatrix ri = ti, rj = tj;
     ri.rightCols<kVoigtSize>().setZero();
@@ -664,7 +670,6 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& s
 Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& solution) {
   const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
   const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
   // A sliding contact sticks only when its slip reverses by more than round-off: at a tiny
   // time step (or at rest) the rigid slip is ~1e-13 m in a random direction, and reading its
   // sign locked and released thousands of contacts of the Xiangjiaba model in turn, so that
@@ -674,6 +679,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   StateChanges changes;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     Contact& c = contacts_[k];
+    const double kn = contactPenalty(c), ks = shearPenalty(c);
     const Vec3 relative = relativeDisplacement(c, solution);
     const double d = c.gap0 + c.normal.dot(relative);
     const Vec3 slip = tangential(relative, c.normal);
@@ -709,7 +715,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       }
     } else {
       const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
-      c.normal_force = -penalty_ * d;
+      c.normal_force = -kn * d;
       // A contact that opened and closed again in this step stays closed while its pull is
       // below kHoldWeights times the lighter block's weight: it sits where neither state is
       // consistent (solved closed it pulls by ~1e-7 m, solved open it penetrates past the
@@ -719,8 +725,8 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       // between its blocks. A larger pull is a contact really opening: held there, it fought
       // a neighbouring contact with forces of 100 weights, and their work created energy
       // (random piles, docs/dda3d.md "Robustness tests"; none at 12 weights in 200 piles).
-      const bool stays_closed = c.toggles >= 2 && penalty_ * d <= holdLimit(c);
-      if (!stays_closed && d > tension / penalty_ + open_tolerance) {
+      const bool stays_closed = c.toggles >= 2 && kn * d <= holdLimit(c);
+      if (!stays_closed && d > tension / kn + open_tolerance) {
         ++c.toggles;
         // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
         c.state = ContactState::Open;
@@ -956,12 +962,11 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // numerical dissipation instead of being counted as a change.
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::Open) continue;
-    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * penalty_ * c.gap0 * c.gap0;
+    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * contactPenalty(c) * c.gap0 * c.gap0;
     if (c.state == ContactState::Locked) {
-      springs_start += 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
+      springs_start += 0.5 * shearPenalty(c) * tangential(c.shear, c.normal).squaredNorm();
     }
   }
   contact_changes_ += springs_start - springs_after_step_;
@@ -1024,6 +1029,9 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     block_work_[b] += work;
     for (geometry::Polyhedron& piece : block.pieces) {
       for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
+    }
+    for (std::vector<FacePoint>& points : block.face_points) {
+      for (FacePoint& p : points) p.position = movedPoint(p.position, block.centroid, d);
     }
     const Eigen::Matrix3d rotation = rotationMatrix(d.segment<3>(3));
     if (settings_.kinematics == Kinematics::Deformable) {
@@ -1094,8 +1102,9 @@ std::string Simulation::blockText(int b) const {
 }
 
 std::string Simulation::contactText(const Contact& c) const {
-  return (c.kind == ContactKind::VertexFace ? "the vertex-face contact of "
-                                            : "the edge-edge contact of ") +
+  return (c.kind == ContactKind::VertexFace  ? "the vertex-face contact of "
+          : c.kind == ContactKind::FacePoint ? "the face-point contact of "
+                                             : "the edge-edge contact of ") +
          blockText(c.block_i) + " on " + blockText(c.block_j) + " at " + pointText(c.point) +
          " (gap " + numberText(c.gap) + " m)";
 }
@@ -1306,11 +1315,10 @@ EnergyAccount Simulation::energy() const {
 
 double Simulation::springEnergy() const {
   double energy = pointSpringEnergy();
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::Open) continue;
-    energy += 0.5 * penalty_ * c.gap * c.gap;
-    if (c.state == ContactState::Locked) energy += 0.5 * ks * c.shear.squaredNorm();
+    energy += 0.5 * contactPenalty(c) * c.gap * c.gap;
+    if (c.state == ContactState::Locked) energy += 0.5 * shearPenalty(c) * c.shear.squaredNorm();
   }
   return energy;
 }

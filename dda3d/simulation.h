@@ -86,6 +86,13 @@ struct DdaSettings {
   /// stiff penalty pull with k_n * 2e-7 l0 (~10^5 N here) before opening, which glues a
   /// wedge to a plane it should leave; 1e-10 keeps only a round-off margin.
   double open_threshold_ratio = 1e-10;
+  /// Sub-contact points (m): 0 = the corners of each face carry its contact (their area
+  /// weights spread cohesion over the overlap of the faces); > 0 = every face at least two
+  /// cells of this size wide both ways is cut into cells of about this size, and a point at
+  /// each cell's centroid, carrying the cell's area, is a contact of its own against the
+  /// face facing it (docs/stability.md, "Contact points"). Needed where a face contact opens
+  /// in part: a base whose heel lifts keeps its cohesion on the compressed part only.
+  double contact_point_spacing = 0.0;
   /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
   double half_domain_size = 0.0;
   /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
@@ -309,6 +316,12 @@ class Simulation {
     int closed = 0;    ///< of them, contacts that were open
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
+  /// Normal penalty of contact c (N/m): every contact point is one penalty spring.
+  double contactPenalty(const Contact& /*c*/) const { return penalty_; }
+  /// Shear penalty of contact c (N/m).
+  double shearPenalty(const Contact& c) const {
+    return contactPenalty(c) / settings_.shear_penalty_ratio;
+  }
   /// Largest pull (N) of a contact held closed for the rest of the step.
   double holdLimit(const Contact& c) const;
   /// Shear strength of a closed contact now (N): f N, plus c A while it keeps its cohesion.

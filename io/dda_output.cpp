@@ -18,7 +18,15 @@ std::string csvVector(const geometry::Vec3& v) {
 }
 
 const char* contactKindName(ContactKind kind) {
-  return kind == ContactKind::VertexFace ? "vertex-face" : "edge-edge";
+  switch (kind) {
+    case ContactKind::VertexFace:
+      return "vertex-face";
+    case ContactKind::FacePoint:
+      return "face-point";
+    case ContactKind::EdgeEdge:
+      break;
+  }
+  return "edge-edge";
 }
 
 const char* contactStateName(ContactState state) {

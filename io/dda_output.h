@@ -99,7 +99,7 @@ class DdaFrameWriter {
 // Debug dump of one step
 
 /// How a contact was found.
-enum class ContactKind { VertexFace, EdgeEdge };
+enum class ContactKind { VertexFace, EdgeEdge, FacePoint };
 /// Open-close state of a contact.
 enum class ContactState { Open, Sliding, Locked };
 

@@ -834,7 +834,7 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
   const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
                           "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
-                          "region", "min_time_step"});
+                          "region", "min_time_step", "contact_point_spacing"});
   DdaAnalysis dda;
   dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
     return v.choice("mode", {"dynamic", "static"}) == 0;
@@ -868,6 +868,9 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
   dda.open_close_tolerance = m.numberOr("open_close_tolerance", dda.open_close_tolerance,
                                         {.low = 0, .high = 1, .high_open = true});
+  if (const auto spacing = m.get("contact_point_spacing")) {
+    dda.contact_point_spacing = spacing->number(kNonNegative);
+  }
   if (const auto region = m.get("region")) {
     if (mesh_domain) region->fail("a DDA region needs a box domain (domain.box)");
     const geometry::Box read = readBox(*region);

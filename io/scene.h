@@ -151,6 +151,9 @@ struct DdaAnalysis {
   /// Share of the contacts that may still change state in the last open-close iteration of
   /// a settled step (dda3d::DdaSettings::open_close_tolerance); 0 is the classic rule.
   double open_close_tolerance = 1e-4;
+  /// m: sub-contact points on every face at least twice this wide both ways
+  /// (dda3d::DdaSettings::contact_point_spacing; none or 0: the corners only).
+  std::optional<double> contact_point_spacing;
   /// region {min, max}: the box the DDA (and the overload and strength reduction) runs on,
   /// inside the domain box. Its blocks are cut from the same network and structures with the
   /// region as the domain, so supports and `domain_top` loads act on the region's faces.

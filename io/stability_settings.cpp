@@ -27,6 +27,7 @@ dda3d::DdaSettings ddaSettings(const DdaAnalysis& dda) {
   settings.integration = dda.bossak ? dda3d::TimeIntegration::Bossak : dda3d::TimeIntegration::Shi;
   settings.spectral_radius = dda.spectral_radius;
   settings.open_close_tolerance = dda.open_close_tolerance;
+  settings.contact_point_spacing = dda.contact_point_spacing.value_or(0.0);
   settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
   return settings;
 }

@@ -161,6 +161,50 @@ double wedgeFactor(double cohesion) {
   return ((r[0] + r[1]) * std::tan(25.0 * kPi / 180.0) + cohesion * (area_a + area_b)) / -r[2];
 }
 
+TEST_F(LimitEquilibriumCli, CrackedCohesiveBaseKeepsItsCohesionOnTheCompressedPartOnly) {
+  // The block above with c = 200 kPa on its base: at K_s the resultant lies 6.3 m from the
+  // base centre, beyond the middle third, so the heel lifts and only the compressed length
+  // L_c = 3 (L/2 - e) keeps its cohesion (the cracked-base analysis of gravity dams: USACE
+  // EM 1110-2-2200, ch. 4; USBR, Design of Small Dams, ch. 8), on a no-tension base of
+  // uniform stiffness: K = (f W + 1.5 c B L) / (H (1 + 3 c B h / W)) = 3.477 (h = 25/3 m, the
+  // thrust's height). With the base's corners alone the heel never lifts (two rows of springs
+  // unload only when the resultant leaves the base) and K_s is the uncracked (f W + c A) / H
+  // = 4.05, 16 % high (docs/stability.md, "Contact points"); sub-contact points 1.25 m apart
+  // (16 along the base) resolve the crack.
+  const double weight = 24.0e3 * 20.0 * 20.0 * 30.0;
+  const double thrust = 10.0e3 * 25.0 * 25.0 / 2.0 * 20.0;
+  const double c = 200.0e3, b = 20.0, l = 20.0, h = 25.0 / 3.0;
+  const double expected =
+      (0.6 * weight + 1.5 * c * b * l) / (thrust * (1.0 + 3.0 * c * b * h / weight));
+  const double eccentricity = expected * thrust * h / weight;
+  ASSERT_GT(eccentricity, l / 6.0);  // the premise: the heel lifts
+  std::string scene = blockOnBase();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  };
+  replace("joint: {friction: 0.6, cohesion: 0}", "joint: {friction: 0.6, cohesion: 200.0e3}");
+  replace("time_step: 0.002}", "time_step: 0.002, contact_point_spacing: 1.25}");
+  replace("factors: [1, 2, 2.5, 3, 3.5]", "factors: [1, 2, 3, 3.5, 4, 4.5]");
+  const nlohmann::json s = summaryOf("overload", "cracked", scene);
+  ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
+  // Issue 15: within 2 % (bisection to 0.01).
+  EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
+  test::recordVerification(
+      {.group = "Dams",
+       .name = "block 20 x 20 x 30 m, f = 0.6, c = 200 kPa, water 25 m deep upstream, heel "
+               "lifting (resultant 0.31 L off centre), sub-contact points 1.25 m apart: overload "
+               "factor K_s",
+       .source = "cracked base: K = (f W + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM 1110-2-2200, "
+                 "ch. 4; USBR, Design of Small Dams, ch. 8)",
+       .expected = expected,
+       .measured = s["safety_factor"].get<double>(),
+       .tolerance = 0.02,
+       .relative = true,
+       .unit = "-"});
+}
+
 TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
   const double with_cohesion = wedgeFactor(10.0e3);  // 1.689
   const double frictional = wedgeFactor(0.0);        // 1.159

@@ -208,6 +208,95 @@ TEST(SearchDistance, AStepThatWouldOutrunTheReachIsRedone) {
   EXPECT_GT(sim.contactCounts().total - sim.contactCounts().open, 0);
 }
 
+/// Area of face f of p (Newell).
+double faceArea(const geometry::Polyhedron& p, int f) {
+  const std::vector<int>& face = p.faces[static_cast<std::size_t>(f)];
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    sum += p.vertices[static_cast<std::size_t>(face[k])].cross(
+        p.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])]);
+  }
+  return 0.5 * sum.norm();
+}
+
+TEST(FacePoints, CellsTileEveryFaceWideEnoughAndSumToItsArea) {
+  // A 4 x 2 x 1 m box with spacing 0.5 m: its 4 x 2 faces get 8 x 4 cells, its 4 x 1 faces
+  // 8 x 2, its 2 x 1 faces 4 x 2, each of 0.25 m2; a triangular prism's faces are cut by the
+  // same rule and clipped, the cells' areas summing to each face's area (round-off).
+  const geometry::Polyhedron box = geometry::boxPolyhedron({Vec3(0, 0, 0), Vec3(4, 2, 1)});
+  const std::vector<FacePoint> points = facePoints(box, 0.5);
+  std::vector<int> count(box.faces.size(), 0);
+  std::vector<double> area(box.faces.size(), 0.0);
+  for (const FacePoint& p : points) {
+    ++count[static_cast<std::size_t>(p.face)];
+    area[static_cast<std::size_t>(p.face)] += p.area;
+    EXPECT_NEAR(p.area, 0.25, 1e-12);
+    // On its face's plane, inside the box's faces.
+    const Vec3 n = geometry::faceNormal(box, p.face);
+    const Vec3& v0 =
+        box.vertices[static_cast<std::size_t>(box.faces[static_cast<std::size_t>(p.face)][0])];
+    EXPECT_NEAR(n.dot(p.position - v0), 0.0, 1e-12);
+    EXPECT_TRUE((p.position.array() > -1e-12).all() &&
+                (p.position.array() < Vec3(4, 2, 1).array() + 1e-12).all());
+  }
+  std::vector<int> sorted = count;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, (std::vector<int>{8, 8, 16, 16, 32, 32}));
+  for (std::size_t f = 0; f < box.faces.size(); ++f) {
+    EXPECT_NEAR(area[f], faceArea(box, static_cast<int>(f)), 1e-12);
+  }
+  const DdaBlock prism = scenes::prismBlock({{0, 0}, {3, 0}, {0, 2}}, 0.0, 2.0, 0, false);
+  const geometry::Polyhedron& p = prism.pieces[0];
+  const std::vector<FacePoint> prism_points = facePoints(p, 0.4);
+  std::vector<double> prism_area(p.faces.size(), 0.0);
+  for (const FacePoint& q : prism_points) prism_area[static_cast<std::size_t>(q.face)] += q.area;
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    EXPECT_NEAR(prism_area[f], faceArea(p, static_cast<int>(f)), 1e-9) << "face " << f;
+  }
+  // A face narrower than two cells either way gets none (its corners carry it).
+  EXPECT_TRUE(facePoints(box, 1.5).size() < points.size());
+  for (const FacePoint& q : facePoints(box, 1.5)) {
+    EXPECT_GE(faceArea(box, q.face), 2.0);  // only the 4 x 2 and 4 x 1 faces
+  }
+  EXPECT_TRUE(facePoints(box, 0.0).empty());
+}
+
+TEST(FacePoints, ABlockOnASlabRestsOnItsPointsWithTheirAreasAndJoint) {
+  // A 2 x 2 x 1 m block on a slab, spacing 0.5 m: its base carries 16 face-point contacts,
+  // 0.25 m2 each (4 m2 in all, the corners none), with the slab's face joint; together they
+  // carry the block's weight, and the block rests.
+  DdaModel model;
+  model.materials = {DdaMaterial{2600.0, 10e9, 0.25}};
+  model.joints = {DdaJoint{0.6, 1e5, 0.0}, DdaJoint{0.3, 2e4, 0.0}};
+  model.blocks.push_back(scenes::boxBlock({-3, -3, -1}, {3, 3, 0}, 0, true));
+  model.blocks.push_back(scenes::boxBlock({-1, -1, 0}, {1, 1, 1}, 0, false));
+  model.blocks[0].face_joints = {std::vector<int>(6, 1)};  // the slab's faces: joint 1
+  model.gravity = Vec3(0, 0, -9.81);
+  DdaSettings settings;
+  settings.kinematics = Kinematics::Rigid;
+  settings.contact_point_spacing = 0.5;
+  Simulation sim(model, settings);
+  for (int k = 0; k < 20; ++k) sim.step();
+  int points = 0;
+  double area = 0.0, normal = 0.0;
+  for (const Contact& c : sim.contacts()) {
+    if (c.kind == ContactKind::FacePoint) {
+      ++points;
+      area += c.area;
+      EXPECT_EQ(c.joint, 1);
+      EXPECT_EQ(c.block_i, 1);  // the block's face is the smaller one: its points
+    } else {
+      EXPECT_EQ(c.area, 0.0);
+    }
+    normal += c.normal_force;
+  }
+  EXPECT_EQ(points, 16);
+  EXPECT_NEAR(area, 4.0, 1e-12);
+  const double weight = 2600.0 * 9.81 * 4.0;
+  EXPECT_NEAR(normal, weight, 1e-6 * weight);
+  EXPECT_LT(sim.centroidDisplacement(1).norm(), 1e-6);
+}
+
 }  // namespace
 }  // namespace rockmass::dda3d
 
