@@ -245,8 +245,6 @@ ActiveTerms& ActiveTerms::operator|=(const ActiveTerms& o) {
 
 Simulation::Simulation(DdaModel model, DdaSettings settings)
     : model_(std::move(model)), settings_(settings) {
-  if (const char* ct = std::getenv("ROCKMASS_TMP_CT"))
-    settings_.close_threshold_ratio = std::atof(ct);
   if (model_.materials.empty()) throw std::invalid_argument("the DDA model has no material");
   if (model_.joints.empty()) model_.joints.push_back(DdaJoint{});
   if (model_.default_joint < 0 || model_.default_joint >= static_cast<int>(model_.joints.size())) {
