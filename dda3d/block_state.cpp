@@ -94,42 +94,79 @@ Vec3 movedPoint(const Vec3& x, const Vec3& centroid, const BlockVector& d) {
   return centroid + d.head<3>() + rotationMatrix(d.segment<3>(3)) * arm + strain * arm;
 }
 
+namespace {
+
+/// A face in its own 2D frame (u along its longest edge, w = n x u, from its first vertex)
+/// and the grid of cells facePoints cuts it into (nu x nw; none when nu or nw < 2).
+struct FaceGrid {
+  Vec3 origin = Vec3::Zero(), u = Vec3::Zero(), w = Vec3::Zero();
+  std::vector<Eigen::Vector2d> polygon;
+  Eigen::Vector2d low = Eigen::Vector2d::Zero(), size = Eigen::Vector2d::Zero();
+  int nu = 0, nw = 0;
+};
+
+FaceGrid faceGrid(const geometry::Polyhedron& piece, std::size_t f, double spacing,
+                  int max_per_face) {
+  FaceGrid grid;
+  const std::vector<int>& face = piece.faces[f];
+  if (face.size() < 3 || !(spacing > 0.0)) return grid;
+  const Vec3 n = geometry::faceNormal(piece, static_cast<int>(f));
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Vec3 e = piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] -
+                   piece.vertices[static_cast<std::size_t>(face[k])];
+    if (e.squaredNorm() > grid.u.squaredNorm()) grid.u = e;
+  }
+  if (!(grid.u.squaredNorm() > 0.0)) return grid;
+  grid.u.normalize();
+  grid.w = n.cross(grid.u).normalized();
+  grid.origin = piece.vertices[static_cast<std::size_t>(face[0])];
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d high = -low;
+  for (int v : face) {
+    const Vec3 x = piece.vertices[static_cast<std::size_t>(v)] - grid.origin;
+    grid.polygon.emplace_back(x.dot(grid.u), x.dot(grid.w));
+    low = low.cwiseMin(grid.polygon.back());
+    high = high.cwiseMax(grid.polygon.back());
+  }
+  grid.low = low;
+  grid.size = high - low;
+  // Counted in doubles first: a spacing far below the face's size must not overflow.
+  const double cu = std::ceil(grid.size.x() / spacing - 1e-9);
+  const double cw = std::ceil(grid.size.y() / spacing - 1e-9);
+  if (!(cu >= 2.0 && cw >= 2.0)) return grid;
+  double nu = cu, nw = cw;
+  while (nu * nw > max_per_face) {
+    nu = std::max(2.0, std::ceil(nu / 2.0));
+    nw = std::max(2.0, std::ceil(nw / 2.0));
+  }
+  grid.nu = static_cast<int>(nu);
+  grid.nw = static_cast<int>(nw);
+  return grid;
+}
+
+}  // namespace
+
+std::size_t facePointBound(const geometry::Polyhedron& piece, double spacing, int max_per_face) {
+  std::size_t count = 0;
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
+    count += static_cast<std::size_t>(grid.nu) * static_cast<std::size_t>(grid.nw);
+  }
+  return count;
+}
+
 std::vector<FacePoint> facePoints(const geometry::Polyhedron& piece, double spacing,
                                   int max_per_face) {
   std::vector<FacePoint> out;
   if (!(spacing > 0.0)) return out;
   for (std::size_t f = 0; f < piece.faces.size(); ++f) {
-    const std::vector<int>& face = piece.faces[f];
-    if (face.size() < 3) continue;
-    const Vec3 n = geometry::faceNormal(piece, static_cast<int>(f));
-    // The face's 2D frame: u along its longest edge, w = n x u.
-    Vec3 u = Vec3::Zero();
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const Vec3 e = piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] -
-                     piece.vertices[static_cast<std::size_t>(face[k])];
-      if (e.squaredNorm() > u.squaredNorm()) u = e;
-    }
-    if (!(u.squaredNorm() > 0.0)) continue;
-    u.normalize();
-    const Vec3 w = n.cross(u).normalized();
-    const Vec3 origin = piece.vertices[static_cast<std::size_t>(face[0])];
-    std::vector<Eigen::Vector2d> polygon;
-    Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector2d high = -low;
-    for (int v : face) {
-      const Vec3 x = piece.vertices[static_cast<std::size_t>(v)] - origin;
-      polygon.emplace_back(x.dot(u), x.dot(w));
-      low = low.cwiseMin(polygon.back());
-      high = high.cwiseMax(polygon.back());
-    }
-    const Eigen::Vector2d size = high - low;
-    int nu = static_cast<int>(std::ceil(size.x() / spacing - 1e-9));
-    int nw = static_cast<int>(std::ceil(size.y() / spacing - 1e-9));
+    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
+    const int nu = grid.nu, nw = grid.nw;
     if (nu < 2 || nw < 2) continue;
-    while (nu * nw > max_per_face) {
-      nu = std::max(2, (nu + 1) / 2);
-      nw = std::max(2, (nw + 1) / 2);
-    }
+    const std::vector<Eigen::Vector2d>& polygon = grid.polygon;
+    const Eigen::Vector2d& low = grid.low;
+    const Eigen::Vector2d& size = grid.size;
+    const Vec3 &origin = grid.origin, &u = grid.u, &w = grid.w;
     // Each cell clipped to the face (convex: Sutherland-Hodgman against its edges, taken
     // counter-clockwise about n).
     for (int i = 0; i < nu; ++i) {

@@ -45,6 +45,10 @@ struct FacePoint {
 /// coarsened to fit).
 std::vector<FacePoint> facePoints(const geometry::Polyhedron& piece, double spacing,
                                   int max_per_face = 1024);
+/// How many points facePoints(piece, spacing, max_per_face) gives at most (the cells of each
+/// face's grid before clipping), without making them.
+std::size_t facePointBound(const geometry::Polyhedron& piece, double spacing,
+                           int max_per_face = 1024);
 
 /// The state of one block.
 struct BlockState {

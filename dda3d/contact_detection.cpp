@@ -113,6 +113,18 @@ PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
           centroid};
 }
 
+/// A contact entry of `kind` between piece a (the point's) and piece b (the face's), its
+/// geometry still to set.
+Contact pairContact(ContactKind kind, const PieceView& a, const PieceView& b) {
+  Contact c;
+  c.kind = kind;
+  c.block_i = a.block;
+  c.piece_i = a.piece;
+  c.block_j = b.block;
+  c.piece_j = b.piece;
+  return c;
+}
+
 /// Lowest and highest height n . (v - origin) of `vertices` (m).
 std::pair<double, double> heightRange(const std::vector<Vec3>& vertices, const Vec3& n,
                                       const Vec3& origin) {
@@ -354,12 +366,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     }
     if (best < 0) continue;
     const Plane& plane = b.planes[static_cast<std::size_t>(best)];
-    Contact c;
-    c.kind = ContactKind::VertexFace;
-    c.block_i = a.block;
-    c.piece_i = a.piece;
-    c.block_j = b.block;
-    c.piece_j = b.piece;
+    Contact c = pairContact(ContactKind::VertexFace, a, b);
     c.vertex = static_cast<int>(v);
     c.face = best;
     c.point = p;
@@ -435,12 +442,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
         }
         if (heightRange(a.shape->vertices, n, pc).first < -tolerance) continue;
       }
-      Contact c;
-      c.kind = ContactKind::EdgeEdge;
-      c.block_i = a.block;
-      c.piece_i = a.piece;
-      c.block_j = b.block;
-      c.piece_j = b.piece;
+      Contact c = pairContact(ContactKind::EdgeEdge, a, b);
       c.edge_i = static_cast<int>(ea);
       c.edge_j = static_cast<int>(eb);
       c.point = pc;
@@ -559,12 +561,7 @@ void facePointsToFace(const PieceView& a, std::size_t fa, const PieceView& b, st
     if (gap > range.gap || gap < -range.depth) continue;
     const Vec3 foot = point.position - gap * plane.normal;
     if (!insideFace(*b.shape, b.shape->faces[fb], plane.normal, foot, tolerance)) continue;
-    Contact c;
-    c.kind = ContactKind::FacePoint;
-    c.block_i = a.block;
-    c.piece_i = a.piece;
-    c.block_j = b.block;
-    c.piece_j = b.piece;
+    Contact c = pairContact(ContactKind::FacePoint, a, b);
     c.vertex = static_cast<int>(k);
     c.face = static_cast<int>(fb);
     c.point = point.position;

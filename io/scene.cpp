@@ -870,6 +870,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
                                         {.low = 0, .high = 1, .high_open = true});
   if (const auto spacing = m.get("contact_point_spacing")) {
     dda.contact_point_spacing = spacing->number(kNonNegative);
+    dda.contact_point_spacing_line = spacing->line();
   }
   if (const auto region = m.get("region")) {
     if (mesh_domain) region->fail("a DDA region needs a box domain (domain.box)");

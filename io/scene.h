@@ -154,6 +154,7 @@ struct DdaAnalysis {
   /// m: sub-contact points on every face at least twice this wide both ways
   /// (dda3d::DdaSettings::contact_point_spacing; none or 0: the corners only).
   std::optional<double> contact_point_spacing;
+  int contact_point_spacing_line = 0;  ///< line of `contact_point_spacing` (messages)
   /// region {min, max}: the box the DDA (and the overload and strength reduction) runs on,
   /// inside the domain box. Its blocks are cut from the same network and structures with the
   /// region as the domain, so supports and `domain_top` loads act on the region's faces.

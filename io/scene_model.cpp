@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dda3d/block_state.h"
 #include "geometry/disc.h"
 #include "geometry/point_in_polyhedron.h"
 #include "io/atomic_file.h"
@@ -13,6 +14,10 @@
 
 namespace rockmass::io {
 namespace {
+
+/// Most sub-contact points a model may have (analysis.dda.contact_point_spacing): 5e6 points
+/// hold about 200 MB and are each a contact candidate every step.
+constexpr std::size_t kMaxContactPoints = 5'000'000;
 
 /// A face of the domain box: the axis it is normal to, which end, and its box face id
 /// (blocks::FaceKind::Boundary ids 0..5: x_min, x_max, y_min, y_max, z_min, z_max).
@@ -399,6 +404,26 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
   }
   for (const WaterLoad& water : scene.loads.water) {
     addWaterLoad(scene, water, blocks, owner, members, model);
+  }
+  // Sub-contact points: refused before any is made when they would pass kMaxContactPoints
+  // (each is a material point moved every step and a contact candidate).
+  if (scene.analysis.dda && scene.analysis.dda->contact_point_spacing.value_or(0.0) > 0.0) {
+    const double spacing = *scene.analysis.dda->contact_point_spacing;
+    std::size_t points = 0;
+    for (const dda3d::DdaBlock& block : model.blocks) {
+      for (const geometry::Polyhedron& piece : block.pieces) {
+        points += dda3d::facePointBound(piece, spacing);
+      }
+    }
+    if (points > kMaxContactPoints) {
+      throw InputError(locate(scene.file, scene.analysis.dda->contact_point_spacing_line, 0,
+                              "analysis.dda.contact_point_spacing: " + formatDouble(spacing) +
+                                  " m gives up to " + std::to_string(points) +
+                                  " sub-contact points on the faces of the DDA's blocks, more "
+                                  "than " +
+                                  std::to_string(kMaxContactPoints) +
+                                  "; expected a larger spacing"));
+    }
   }
   return model;
 }

@@ -5,11 +5,14 @@
 // stops with a message instead of running for ever.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
@@ -203,6 +206,39 @@ TEST_F(LimitEquilibriumCli, CrackedCohesiveBaseKeepsItsCohesionOnTheCompressedPa
        .tolerance = 0.02,
        .relative = true,
        .unit = "-"});
+}
+
+TEST_F(LimitEquilibriumCli, ASubContactSpacingThatWouldMakeTooManyPointsIsRefusedAtItsLine) {
+  // The rock box of the block above cut by three orthogonal persistent sets 2.5 m apart
+  // (about 2 500 blocks, 15 000 faces) with points 1 mm apart: each face's grid is coarsened
+  // to 1024 cells at most, and the model's ~1.5e7 points pass the 5e6 limit. Refused before
+  // any point is made, at the key's line, exit 2.
+  std::string scene = blockOnBase();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  };
+  std::string sets = "joint_sets:\n";
+  for (const auto& [direction, dip] : {std::pair{0, 90}, std::pair{90, 90}, std::pair{0, 0}}) {
+    sets += "  - name: S" + std::to_string(direction + dip) +
+            "\n    dip_direction: {distribution: constant, mean: " + std::to_string(direction) +
+            "}\n    dip: {distribution: constant, mean: " + std::to_string(dip) +
+            "}\n    spacing: {distribution: constant, mean: 2.5}\n"
+            "    trace_length: {distribution: constant, mean: 300}\n";
+  }
+  replace("materials:\n", sets + "materials:\n");
+  replace("time_step: 0.002}", "time_step: 0.002,\n    contact_point_spacing: 0.001}");
+  const int line =
+      1 +
+      static_cast<int>(std::count(
+          scene.begin(),
+          scene.begin() + static_cast<std::ptrdiff_t>(scene.find("contact_point_spacing")), '\n'));
+  std::string output;
+  EXPECT_EQ(test::runOnScene("overload", dir.path(), "too-fine", scene, &output), 2) << output;
+  EXPECT_NE(output.find(":" + std::to_string(line) + ":"), std::string::npos) << output;
+  EXPECT_NE(output.find("contact_point_spacing: 0.001 m gives up to"), std::string::npos) << output;
+  EXPECT_NE(output.find("expected a larger spacing"), std::string::npos) << output;
 }
 
 TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
