@@ -38,17 +38,15 @@ struct FacePoint {
   double area = 0.0;                                 ///< m2, its cell of the face
 };
 
-/// The sub-contact points of `piece`: each face cut into a grid of cells of about `spacing`
-/// (m) along the face's two longest directions (cells clipped to the face), a point at the
-/// centroid of each cell carrying the cell's area. A face narrower than two cells either way
-/// gets none (its corners carry it). At most `max_per_face` points per face (the grid is
-/// coarsened to fit).
-std::vector<FacePoint> facePoints(const geometry::Polyhedron& piece, double spacing,
-                                  int max_per_face = 1024);
-/// How many points facePoints(piece, spacing, max_per_face) gives at most (the cells of each
-/// face's grid before clipping), without making them.
-std::size_t facePointBound(const geometry::Polyhedron& piece, double spacing,
-                           int max_per_face = 1024);
+/// The sub-contact points of a piece, face by face (made by dda3d::facePoints).
+struct FacePoints {
+  std::vector<FacePoint> points;
+  /// The points of face f are points[first[f]] .. points[first[f + 1] - 1]; empty when the
+  /// piece has none.
+  std::vector<int> first;
+  /// How many points face f has.
+  int count(std::size_t f) const { return first.empty() ? 0 : first[f + 1] - first[f]; }
+};
 
 /// The state of one block.
 struct BlockState {
@@ -69,7 +67,7 @@ struct BlockState {
   VoigtVector stress = VoigtVector::Zero();             ///< Pa, Voigt order
   VoigtVector strain = VoigtVector::Zero();             ///< accumulated strain (-), Voigt order
   /// Sub-contact points of each piece (empty without DdaSettings::contact_point_spacing).
-  std::vector<std::vector<FacePoint>> face_points;
+  std::vector<FacePoints> face_points;
   double size = 0.0;  ///< bounding-box diagonal (m)
 
   /// Recomputes volume, centroid, second moments and size from the current pieces.

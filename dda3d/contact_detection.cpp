@@ -83,8 +83,7 @@ struct PieceView {
   int piece = -1;
   const Polyhedron* shape = nullptr;
   const PieceTopology* topology = nullptr;
-  const std::vector<FacePoint>* points = nullptr;  ///< sub-contact points (may be empty)
-  std::vector<int> face_points;                    ///< how many sub-contact points each face has
+  const FacePoints* points = nullptr;  ///< sub-contact points (none: nullptr)
   std::vector<Plane> planes;
   Box box;
   Vec3 centroid = Vec3::Zero();
@@ -96,18 +95,13 @@ PieceView view(const std::vector<BlockState>& blocks, int block, int piece) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& v : shape.vertices) centroid += v;
   centroid /= static_cast<double>(shape.vertices.size());
-  const std::vector<FacePoint>* points =
+  const FacePoints* points =
       b.face_points.empty() ? nullptr : &b.face_points[static_cast<std::size_t>(piece)];
-  std::vector<int> face_points(shape.faces.size(), 0);
-  if (points) {
-    for (const FacePoint& p : *points) ++face_points[static_cast<std::size_t>(p.face)];
-  }
   return {block,
           piece,
           &shape,
           &b.topology[static_cast<std::size_t>(piece)],
           points,
-          std::move(face_points),
           facePlanes(shape),
           geometry::bounds(shape),
           centroid};
@@ -511,6 +505,17 @@ double polygonArea(const std::vector<Point2>& polygon) {
   return 0.5 * twice;
 }
 
+/// Centroid of a polygon of (signed) area `area`.
+Point2 polygonCentroid(const std::vector<Point2>& polygon, double area) {
+  Point2 centroid = Point2::Zero();
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Point2& p = polygon[k];
+    const Point2& q = polygon[(k + 1) % polygon.size()];
+    centroid += cross2(p, q) * (p + q);
+  }
+  return centroid / (6.0 * area);
+}
+
 /// Weights of the corners of a convex polygon of area `area` that carry its area: each corner
 /// takes half of the two triangles it shares with the centroid (lumped, symmetric for
 /// symmetric polygons), corrected by the least change that makes the weights integrate every
@@ -518,13 +523,7 @@ double polygonArea(const std::vector<Point2>& polygon) {
 /// polygon's), unless that would make a weight negative. Equal for a rectangle.
 std::vector<double> cornerWeights(const std::vector<Point2>& polygon, double area) {
   const std::size_t n = polygon.size();
-  Point2 centroid = Point2::Zero();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Point2& p = polygon[k];
-    const Point2& q = polygon[(k + 1) % n];
-    centroid += cross2(p, q) * (p + q);
-  }
-  centroid /= 6.0 * area;
+  const Point2 centroid = polygonCentroid(polygon, area);
   std::vector<double> weight(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
     const double half = 0.25 * cross2(polygon[k] - centroid, polygon[(k + 1) % n] - centroid);
@@ -554,15 +553,14 @@ std::vector<double> cornerWeights(const std::vector<Point2>& polygon, double are
 void facePointsToFace(const PieceView& a, std::size_t fa, const PieceView& b, std::size_t fb,
                       const Range& range, double tolerance, std::vector<Contact>& out) {
   const Plane& plane = b.planes[fb];
-  for (std::size_t k = 0; k < a.points->size(); ++k) {
-    const FacePoint& point = (*a.points)[k];
-    if (point.face != static_cast<int>(fa)) continue;
+  for (int k = a.points->first[fa]; k < a.points->first[fa + 1]; ++k) {
+    const FacePoint& point = a.points->points[static_cast<std::size_t>(k)];
     const double gap = plane.normal.dot(point.position) - plane.offset;
     if (gap > range.gap || gap < -range.depth) continue;
     const Vec3 foot = point.position - gap * plane.normal;
     if (!insideFace(*b.shape, b.shape->faces[fb], plane.normal, foot, tolerance)) continue;
     Contact c = pairContact(ContactKind::FacePoint, a, b);
-    c.vertex = static_cast<int>(k);
+    c.vertex = k;
     c.face = static_cast<int>(fb);
     c.point = point.position;
     c.normal = plane.normal;
@@ -602,7 +600,8 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       // have (its points lie on the larger one, most of the larger's would miss it), the
       // lower block first when equal. The points of a face larger than the other that miss
       // it are no contact: the overlap is resolved by the grid.
-      const int points_a = a.face_points[fa], points_b = b.face_points[fb];
+      const int points_a = a.points ? a.points->count(fa) : 0;
+      const int points_b = b.points ? b.points->count(fb) : 0;
       if (points_a > 0 || points_b > 0) {
         const bool a_smaller = pa.area < pb.area * (1.0 - 1e-9) ||
                                (pa.area <= pb.area * (1.0 + 1e-9) &&
@@ -658,12 +657,102 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
   }
 }
 
+/// A face in its own 2D frame (u along its longest edge, w = n x u, from its first vertex)
+/// and the grid of cells facePoints cuts it into (nu x nw; none when nu or nw < 2).
+struct FaceGrid {
+  Vec3 origin = Vec3::Zero(), u = Vec3::Zero(), w = Vec3::Zero();
+  std::vector<Point2> polygon;
+  Point2 low = Point2::Zero(), size = Point2::Zero();
+  int nu = 0, nw = 0;
+};
+
+FaceGrid faceGrid(const geometry::Polyhedron& piece, std::size_t f, double spacing,
+                  int max_per_face) {
+  FaceGrid grid;
+  const std::vector<int>& face = piece.faces[f];
+  if (face.size() < 3 || !(spacing > 0.0)) return grid;
+  const Vec3 n = geometry::faceNormal(piece, static_cast<int>(f));
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Vec3 e = piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] -
+                   piece.vertices[static_cast<std::size_t>(face[k])];
+    if (e.squaredNorm() > grid.u.squaredNorm()) grid.u = e;
+  }
+  if (!(grid.u.squaredNorm() > 0.0)) return grid;
+  grid.u.normalize();
+  grid.w = n.cross(grid.u).normalized();
+  grid.origin = piece.vertices[static_cast<std::size_t>(face[0])];
+  Point2 low = Point2::Constant(std::numeric_limits<double>::infinity());
+  Point2 high = -low;
+  for (int v : face) {
+    const Vec3 x = piece.vertices[static_cast<std::size_t>(v)] - grid.origin;
+    grid.polygon.emplace_back(x.dot(grid.u), x.dot(grid.w));
+    low = low.cwiseMin(grid.polygon.back());
+    high = high.cwiseMax(grid.polygon.back());
+  }
+  grid.low = low;
+  grid.size = high - low;
+  // Counted in doubles first: a spacing far below the face's size must not overflow.
+  const double cu = std::ceil(grid.size.x() / spacing - 1e-9);
+  const double cw = std::ceil(grid.size.y() / spacing - 1e-9);
+  if (!(cu >= 2.0 && cw >= 2.0)) return grid;
+  double nu = cu, nw = cw;
+  while (nu * nw > max_per_face) {
+    nu = std::max(2.0, std::ceil(nu / 2.0));
+    nw = std::max(2.0, std::ceil(nw / 2.0));
+  }
+  grid.nu = static_cast<int>(nu);
+  grid.nw = static_cast<int>(nw);
+  return grid;
+}
+
 }  // namespace
 
 void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   t1 = n.cross(helper).normalized();
   t2 = n.cross(t1);
+}
+
+std::size_t facePointBound(const Polyhedron& piece, double spacing, int max_per_face) {
+  std::size_t count = 0;
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
+    count += static_cast<std::size_t>(grid.nu) * static_cast<std::size_t>(grid.nw);
+  }
+  return count;
+}
+
+FacePoints facePoints(const Polyhedron& piece, double spacing, int max_per_face) {
+  FacePoints out;
+  if (!(spacing > 0.0)) return out;
+  out.first.push_back(0);
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
+    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
+    for (int i = 0; i < grid.nu && grid.nw >= 2; ++i) {
+      for (int j = 0; j < grid.nw; ++j) {
+        const Point2 c0 =
+            grid.low + Point2(grid.size.x() * i / grid.nu, grid.size.y() * j / grid.nw);
+        const Point2 c1 =
+            grid.low + Point2(grid.size.x() * (i + 1) / grid.nu, grid.size.y() * (j + 1) / grid.nw);
+        // The cell clipped to the face (convex, counter-clockwise about its normal).
+        std::vector<Point2> cell{c0, {c1.x(), c0.y()}, c1, {c0.x(), c1.y()}};
+        for (std::size_t k = 0; k < grid.polygon.size() && cell.size() >= 3; ++k) {
+          const Point2& p = grid.polygon[k];
+          const Point2 edge = grid.polygon[(k + 1) % grid.polygon.size()] - p;
+          cell = clipped(cell, [&](const Point2& x) { return -cross2(edge, x - p); });
+        }
+        if (cell.size() < 3) continue;
+        const double area = polygonArea(cell);
+        if (!(area > 1e-12 * grid.size.x() * grid.size.y())) continue;
+        const Point2 centroid = polygonCentroid(cell, area);
+        out.points.push_back({grid.origin + centroid.x() * grid.u + centroid.y() * grid.w,
+                              static_cast<int>(f), area});
+      }
+    }
+    out.first.push_back(static_cast<int>(out.points.size()));
+  }
+  if (out.points.empty()) out.first.clear();
+  return out;
 }
 
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {

@@ -23,6 +23,16 @@ void tangents(const geometry::Vec3& n, geometry::Vec3& t1, geometry::Vec3& t2);
 /// (chord <= arc), so a step checked against it never moves farther.
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d);
 
+/// The sub-contact points of `piece`: each face cut into a grid of cells of about `spacing`
+/// (m) along the face's longest edge and across it (cells clipped to the face), a point at
+/// the centroid of each cell carrying the cell's area. A face narrower than two cells either
+/// way gets none (its corners carry it). At most `max_per_face` points per face (the grid
+/// is coarsened to fit).
+FacePoints facePoints(const geometry::Polyhedron& piece, double spacing, int max_per_face = 1024);
+/// How many points facePoints(piece, spacing, max_per_face) gives at most (the cells of each
+/// face's grid before clipping), without making them.
+std::size_t facePointBound(const geometry::Polyhedron& piece, double spacing,
+                           int max_per_face = 1024);
 /// Limits of a block's step reach (m), from the step control (formulation, "Step control":
 /// a step moves no vertex farther than g2 l0).
 struct ReachLimits {

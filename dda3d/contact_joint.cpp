@@ -106,7 +106,7 @@ int contactJoint(const DdaModel& model, const std::vector<BlockState>& blocks, c
   } else if (c.kind == ContactKind::FacePoint) {
     face_j = c.face;
     face_i = bi.face_points.at(static_cast<std::size_t>(c.piece_i))
-                 .at(static_cast<std::size_t>(c.vertex))
+                 .points.at(static_cast<std::size_t>(c.vertex))
                  .face;
   } else {
     face_j = mostAligned(pj, edgeFaces(tj, c.edge_j), c.normal, 1.0);

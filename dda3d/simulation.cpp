@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -454,7 +453,7 @@ const DdaJoint& Simulation::jointOf(const Contact& c) const {
   return model_.joints.at(static_cast<std::size_t>(c.joint >= 0 ? c.joint : model_.default_joint));
 }
 
-void Simulation::detectContacts() {
+int Simulation::detectContacts() {
   const PreviousContacts previous(blocks_, contacts_);
   const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
     return previous.face(bi, pi, v, bj, pj);
@@ -472,6 +471,7 @@ void Simulation::detectContacts() {
   std::vector<Contact> detected =
       findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face);
   std::vector<std::pair<int, int>> pairs;
+  int late = 0;
   const double late_depth = settings_.allowed_penetration_ratio * half_domain_;
   for (Contact& c : detected) {
     const int found = previous.find(c);
@@ -493,7 +493,7 @@ void Simulation::detectContacts() {
       // a pile of nine boxes whose fall had released 8.6e4 J, and threw the pile apart. The
       // overlap is removed as the blocks part; `late_contacts` counts these.
       c.overlap = -c.gap0;
-      ++late_contacts_;
+      ++late;
     }
     c.gap0 += c.overlap;
     if (found < 0) {
@@ -526,14 +526,16 @@ void Simulation::detectContacts() {
   // and was never at rest below the limit load (K 12 % below f W / H on a block on a plane).
   // A contact that slid farther is sliding: stuck for a trial, a moving block would pivot on
   // its base springs.
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (Contact& c : contacts_) {
     if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) continue;
-    const double stretch = shearStrength(c, jointOf(c)) / shearPenalty(c);
+    const double stretch = shearStrength(c, jointOf(c)) / ks;
     if (!(c.slip_length <= stretch)) continue;
     c.state = ContactState::Locked;
     c.shear = stretch * c.slide_direction;
   }
   if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
+  return late;
 }
 
 void Simulation::assembleBlockTerms(double dt) {
@@ -607,11 +609,10 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
   const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
   const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
-  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, contactPenalty(c),
-                     c.gap0);
+  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0);
   active_.contact_normal = true;
   if (c.state == ContactState::Locked) {
-    const double ks = shearPenalty(c);
+    const double ks = penalty_ / settings_.shear_penalty_ratio;
     Vec3 t[2];
     tangents(c.normal, t[0], t[1]);
     for (const Vec3& tk : t) {
@@ -635,7 +636,8 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
     // slips of a static step that over-corrects and grows by ~ -3 per step. Capped at the
     // shear spring (a locked contact resists no more); rigid parts, as the direction. Only
     // once a slip is known: a tangent about a guessed direction would hold a wrong one.
-    applied.transverse_stiffness = std::min(shearPenalty(c), friction / c.slip_length);
+    applied.transverse_stiffness =
+        std::min(penalty_ / settings_.shear_penalty_ratio, friction / c.slip_length);
     applied.across = c.normal.cross(c.slide_direction).normalized();
     DisplacementMatrix ri = ti, rj = tj;
     ri.rightCols<kVoigtSize>().setZero();
@@ -668,6 +670,7 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& s
 Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& solution) {
   const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
   const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
   // A sliding contact sticks only when its slip reverses by more than round-off: at a tiny
   // time step (or at rest) the rigid slip is ~1e-13 m in a random direction, and reading its
   // sign locked and released thousands of contacts of the Xiangjiaba model in turn, so that
@@ -677,7 +680,6 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   StateChanges changes;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     Contact& c = contacts_[k];
-    const double kn = contactPenalty(c), ks = shearPenalty(c);
     const Vec3 relative = relativeDisplacement(c, solution);
     const double d = c.gap0 + c.normal.dot(relative);
     const Vec3 slip = tangential(relative, c.normal);
@@ -713,7 +715,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       }
     } else {
       const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
-      c.normal_force = -kn * d;
+      c.normal_force = -penalty_ * d;
       // A contact that opened and closed again in this step stays closed while its pull is
       // below kHoldWeights times the lighter block's weight: it sits where neither state is
       // consistent (solved closed it pulls by ~1e-7 m, solved open it penetrates past the
@@ -723,8 +725,8 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       // between its blocks. A larger pull is a contact really opening: held there, it fought
       // a neighbouring contact with forces of 100 weights, and their work created energy
       // (random piles, docs/dda3d.md "Robustness tests"; none at 12 weights in 200 piles).
-      const bool stays_closed = c.toggles >= 2 && kn * d <= holdLimit(c);
-      if (!stays_closed && d > tension / kn + open_tolerance) {
+      const bool stays_closed = c.toggles >= 2 && penalty_ * d <= holdLimit(c);
+      if (!stays_closed && d > tension / penalty_ + open_tolerance) {
         ++c.toggles;
         // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
         c.state = ContactState::Open;
@@ -960,11 +962,12 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // numerical dissipation instead of being counted as a change.
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::Open) continue;
-    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * contactPenalty(c) * c.gap0 * c.gap0;
+    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * penalty_ * c.gap0 * c.gap0;
     if (c.state == ContactState::Locked) {
-      springs_start += 0.5 * shearPenalty(c) * tangential(c.shear, c.normal).squaredNorm();
+      springs_start += 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
     }
   }
   contact_changes_ += springs_start - springs_after_step_;
@@ -1028,8 +1031,8 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     for (geometry::Polyhedron& piece : block.pieces) {
       for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
     }
-    for (std::vector<FacePoint>& points : block.face_points) {
-      for (FacePoint& p : points) p.position = movedPoint(p.position, block.centroid, d);
+    for (FacePoints& points : block.face_points) {
+      for (FacePoint& p : points.points) p.position = movedPoint(p.position, block.centroid, d);
     }
     const Eigen::Matrix3d rotation = rotationMatrix(d.segment<3>(3));
     if (settings_.kinematics == Kinematics::Deformable) {
@@ -1146,9 +1149,7 @@ StepReport Simulation::step() {
   Clock::time_point start = Clock::now();
   const int patterns_before = pattern_changes_;
   solver_iterations_ = 0;
-  const long late_before = late_contacts_;
-  detectContacts();
-  report.late_contacts = static_cast<int>(late_contacts_ - late_before);
+  report.late_contacts = detectContacts();
   timings_.detect_contacts += secondsSince(start);
   const std::vector<Contact> at_start = contacts_;
   const double allowed = settings_.allowed_penetration_ratio * half_domain_;
@@ -1313,10 +1314,11 @@ EnergyAccount Simulation::energy() const {
 
 double Simulation::springEnergy() const {
   double energy = pointSpringEnergy();
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::Open) continue;
-    energy += 0.5 * contactPenalty(c) * c.gap * c.gap;
-    if (c.state == ContactState::Locked) energy += 0.5 * shearPenalty(c) * c.shear.squaredNorm();
+    energy += 0.5 * penalty_ * c.gap * c.gap;
+    if (c.state == ContactState::Locked) energy += 0.5 * ks * c.shear.squaredNorm();
   }
   return energy;
 }

@@ -289,7 +289,9 @@ class Simulation {
     geometry::Vec3 direction = geometry::Vec3::Zero();
   };
 
-  void detectContacts();
+  /// Finds the step's contacts, carrying states over; returns how many were found late
+  /// (first seen deeper than the allowed penetration, Contact::overlap).
+  int detectContacts();
   void assembleBlockTerms(double dt);
   int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
   /// Friction of one sliding contact in one assembly: the force -f N s on block i (N) and
@@ -316,12 +318,6 @@ class Simulation {
     int closed = 0;    ///< of them, contacts that were open
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
-  /// Normal penalty of contact c (N/m): every contact point is one penalty spring.
-  double contactPenalty(const Contact& /*c*/) const { return penalty_; }
-  /// Shear penalty of contact c (N/m).
-  double shearPenalty(const Contact& c) const {
-    return contactPenalty(c) / settings_.shear_penalty_ratio;
-  }
   /// Largest pull (N) of a contact held closed for the rest of the step.
   double holdLimit(const Contact& c) const;
   /// Shear strength of a closed contact now (N): f N, plus c A while it keeps its cohesion.
@@ -380,7 +376,6 @@ class Simulation {
   ActiveTerms active_;
   PhaseTimings timings_;
   int pattern_changes_ = 0;
-  long late_contacts_ = 0;     ///< contacts first found deeper than the allowed penetration
   int solver_iterations_ = 0;  ///< PCG iterations of the current step
   StateChanges last_changes_;  ///< of the last open-close update (for StepFailure's message)
   int steps_at_min_ = 0;       ///< accepted steps in a row at min_time_step

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "dda3d/block_state.h"
+#include "dda3d/contact_detection.h"
 #include "geometry/disc.h"
 #include "geometry/point_in_polyhedron.h"
 #include "io/atomic_file.h"

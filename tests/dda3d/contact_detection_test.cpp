@@ -224,7 +224,7 @@ TEST(FacePoints, CellsTileEveryFaceWideEnoughAndSumToItsArea) {
   // 8 x 2, its 2 x 1 faces 4 x 2, each of 0.25 m2; a triangular prism's faces are cut by the
   // same rule and clipped, the cells' areas summing to each face's area (round-off).
   const geometry::Polyhedron box = geometry::boxPolyhedron({Vec3(0, 0, 0), Vec3(4, 2, 1)});
-  const std::vector<FacePoint> points = facePoints(box, 0.5);
+  const std::vector<FacePoint> points = facePoints(box, 0.5).points;
   std::vector<int> count(box.faces.size(), 0);
   std::vector<double> area(box.faces.size(), 0.0);
   for (const FacePoint& p : points) {
@@ -247,18 +247,18 @@ TEST(FacePoints, CellsTileEveryFaceWideEnoughAndSumToItsArea) {
   }
   const DdaBlock prism = scenes::prismBlock({{0, 0}, {3, 0}, {0, 2}}, 0.0, 2.0, 0, false);
   const geometry::Polyhedron& p = prism.pieces[0];
-  const std::vector<FacePoint> prism_points = facePoints(p, 0.4);
+  const std::vector<FacePoint> prism_points = facePoints(p, 0.4).points;
   std::vector<double> prism_area(p.faces.size(), 0.0);
   for (const FacePoint& q : prism_points) prism_area[static_cast<std::size_t>(q.face)] += q.area;
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
     EXPECT_NEAR(prism_area[f], faceArea(p, static_cast<int>(f)), 1e-9) << "face " << f;
   }
   // A face narrower than two cells either way gets none (its corners carry it).
-  EXPECT_TRUE(facePoints(box, 1.5).size() < points.size());
-  for (const FacePoint& q : facePoints(box, 1.5)) {
+  EXPECT_TRUE(facePoints(box, 1.5).points.size() < points.size());
+  for (const FacePoint& q : facePoints(box, 1.5).points) {
     EXPECT_GE(faceArea(box, q.face), 2.0);  // only the 4 x 2 and 4 x 1 faces
   }
-  EXPECT_TRUE(facePoints(box, 0.0).empty());
+  EXPECT_TRUE(facePoints(box, 0.0).points.empty());
 }
 
 TEST(FacePoints, ABlockOnASlabRestsOnItsPointsWithTheirAreasAndJoint) {
