@@ -41,6 +41,11 @@ struct Contact {
   geometry::Vec3 normal = geometry::Vec3::UnitZ();  ///< unit, pointing out of block j
   double gap0 = 0.0;  ///< d0 = n . (P - P0) at the start of the step (m), < 0: penetration
   double area = 0.0;  ///< tributary area for cohesion and tension (m2)
+  /// Share of its face a sub-contact point stands for (its cell's area over the face's); 1
+  /// for the other kinds. The round-off margins of the state changes are forces of k times a
+  /// round-off distance: a face of n points, each with the full penalty, would sum n of them
+  /// (Simulation::updateContactStates), so each point takes its share.
+  double share = 1.0;
   /// Depth the detection found too late (m, >= 0): an entry first seen penetrating deeper
   /// than the allowed penetration has gap0 raised by this much, so its spring resists only
   /// further penetration; carried over while the entry lasts, it shrinks as the blocks part

@@ -547,6 +547,10 @@ std::vector<double> cornerWeights(const std::vector<Point2>& polygon, double are
   return exact;
 }
 
+/// Fewest sub-contact points that carry a face pair; with fewer, the corners of the overlap
+/// carry it (three points resist the tilt of the face both ways).
+constexpr std::size_t kMinFacePoints = 3;
+
 /// The sub-contact points of face `fa` of piece `a` against face `fb` of piece `b` facing it:
 /// a FacePoint entry for each point whose foot lies in fb and whose gap is within the range,
 /// with the point's area.
@@ -567,6 +571,7 @@ void facePointsToFace(const PieceView& a, std::size_t fa, const PieceView& b, st
     c.gap0 = gap;
     c.foot = foot;
     c.area = point.area;
+    c.share = std::min(1.0, point.area / a.planes[fa].area);
     out.push_back(c);
   }
 }
@@ -575,7 +580,8 @@ void facePointsToFace(const PieceView& a, std::size_t fa, const PieceView& b, st
 /// of b that face each other (opposite normals within kAreaCosine, each piece on the other's
 /// outer side), their overlap polygon in b's face plane, clipped to where a's face lies within
 /// the gap and depth range of b's, split among its corners (cornerWeights). Where the smaller
-/// of the two faces has sub-contact points, those carry the contact instead (FacePoint
+/// of the two faces has sub-contact points (or only the larger one has, and at least
+/// kMinFacePoints of them land on the smaller), those carry the contact instead (FacePoint
 /// entries with their own areas, facePointsToFace) and the corners no area.
 void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
                   std::vector<AreaSample>& out, std::vector<Contact>& contacts) {
@@ -606,12 +612,16 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
         const bool a_smaller = pa.area < pb.area * (1.0 - 1e-9) ||
                                (pa.area <= pb.area * (1.0 + 1e-9) &&
                                 std::pair{a.block, a.piece} < std::pair{b.block, b.piece});
+        const std::size_t before = contacts.size();
         if (points_b == 0 || (points_a > 0 && a_smaller)) {
           facePointsToFace(a, fa, b, fb, range, tolerance, contacts);
         } else {
           facePointsToFace(b, fb, a, fa, range, tolerance, contacts);
         }
-        continue;
+        // Fewer than kMinFacePoints on the other face (a small rock face under a structure's
+        // grid, a sliver of overlap): the grid does not resolve the overlap, its corners do.
+        if (contacts.size() - before >= kMinFacePoints) continue;
+        contacts.resize(before);
       }
       // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
       // b) stays counter-clockwise; a's face, seen from the other side, is reversed.

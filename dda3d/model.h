@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,10 @@ struct DdaBlock {
   /// discontinuity (an internal face between pieces, the domain boundary). Empty: every face
   /// -1. A contact takes the joint of the faces it lies on (dda3d/contact_joint.h).
   std::vector<std::vector<int>> face_joints;
+  /// Sub-contact point spacing (m) of this block's faces (0: the corners only); none: the
+  /// run's DdaSettings::contact_point_spacing. The scene gives a structure's blocks their
+  /// own (io::StructureSpec::contact_point_spacing).
+  std::optional<double> contact_point_spacing;
   /// Initial stress (Pa) in Voigt order (sx, sy, sz, tyz, tzx, txy), compression negative.
   Eigen::Matrix<double, 6, 1> initial_stress = Eigen::Matrix<double, 6, 1>::Zero();
   /// Initial velocity (m/s) of the centroid and angular velocity (rad/s) about it.

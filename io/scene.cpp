@@ -1197,7 +1197,7 @@ class SceneReader {
 
   /// A `structures` entry; an inline joint map is appended to the scene's joints.
   StructureSpec readStructure(const Cursor& c) {
-    const Cursor m = c.map({"name", "prism", "mesh", "material", "joint"});
+    const Cursor m = c.map({"name", "prism", "mesh", "material", "joint", "contact_point_spacing"});
     StructureSpec structure;
     structure.name = structure_names_.claimName(m);
     if (m.oneOf("prism", "mesh") == 0) {
@@ -1219,6 +1219,13 @@ class SceneReader {
       scene_.joints.push_back(readJoint(*contact, structure.name + ".joint"));
     } else {
       structure.joint = jointOf(m);
+    }
+    if (const auto spacing = m.get("contact_point_spacing")) {
+      structure.contact_point_spacing_line = spacing->line();
+      if (!spacing->is("auto")) {
+        if (!spacing->isNumber()) spacing->failExpected("'auto' or a number >= 0 (m)");
+        structure.contact_point_spacing = spacing->number(kNonNegative);
+      }
     }
     return structure;
   }

@@ -47,8 +47,12 @@ struct StructureSpec {
   std::filesystem::path mesh;       ///< closed mesh instead of a prism (absolute path)
   int material = 0;                 ///< material index
   int joint = -1;                   ///< joint index of the structure-rock contact (-1: none)
-  int profile_line = 0;             ///< line of prism.profile in the scene file (messages)
-  int profile_column = 0;           ///< its column
+  /// Sub-contact point spacing of the structure's faces (m; 0: corners only); none: `auto`,
+  /// a sixteenth of the structure's smallest extent (docs/stability.md, "Contact points").
+  std::optional<double> contact_point_spacing;
+  int contact_point_spacing_line = 0;  ///< its line (messages; 0: not given)
+  int profile_line = 0;                ///< line of prism.profile in the scene file (messages)
+  int profile_column = 0;              ///< its column
 };
 
 /// Plan-view region (m); missing bounds are open.

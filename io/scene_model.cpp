@@ -18,6 +18,10 @@ namespace {
 /// Most sub-contact points a model may have (analysis.dda.contact_point_spacing): 5e6 points
 /// hold about 200 MB and are each a contact candidate every step.
 constexpr std::size_t kMaxContactPoints = 5'000'000;
+/// Cells of a structure's `auto` sub-contact grid across its smallest extent: on a 20 m
+/// base loaded beyond its middle third, 16 put the overload factor within 0.6 % of the
+/// cracked-base factor, 8 within 2.6 %, 4 within 2.2 % (bench/contact_points_bench).
+constexpr double kAutoPointCells = 16.0;
 
 /// A face of the domain box: the axis it is normal to, which end, and its box face id
 /// (blocks::FaceKind::Boundary ids 0..5: x_min, x_max, y_min, y_max, z_min, z_max).
@@ -186,6 +190,74 @@ bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int
     }
   }
   return false;
+}
+
+/// Sub-contact points: a structure's blocks get the structure's spacing (`auto`: a sixteenth
+/// of its smallest extent where its joint has cohesion or tension, so that a base whose heel
+/// lifts keeps its cohesion on the compressed part only; docs/stability.md, "Contact
+/// points"), the rock blocks the run's.
+/// Refused before any is made when they would pass kMaxContactPoints (each is a material
+/// point moved every step and a contact candidate), at the line of the spacing that adds most.
+void setContactPointSpacings(const Scene& scene, const blocks::BlockModel& blocks,
+                             const Members& members, dda3d::DdaModel& model) {
+  const double run =
+      scene.analysis.dda ? scene.analysis.dda->contact_point_spacing.value_or(0.0) : 0.0;
+  struct Source {
+    std::string key;
+    int line = 0;
+    double spacing = 0.0;
+    std::size_t points = 0;
+  };
+  std::vector<Source> sources;
+  sources.push_back({"analysis.dda.contact_point_spacing",
+                     scene.analysis.dda ? scene.analysis.dda->contact_point_spacing_line : 0, run});
+  for (const int b : members[0]) {
+    for (const geometry::Polyhedron& piece : model.blocks[static_cast<std::size_t>(b)].pieces) {
+      sources[0].points += dda3d::facePointBound(piece, run);
+    }
+  }
+  for (std::size_t s = 0; s < scene.structures.size(); ++s) {
+    const StructureSpec& spec = scene.structures[s];
+    const std::vector<int>& own = members[s + 1];
+    if (own.empty()) continue;
+    geometry::Box box = blocks.blocks[static_cast<std::size_t>(own[0])].bounds;
+    for (const int b : own) {
+      const geometry::Box& bb = blocks.blocks[static_cast<std::size_t>(b)].bounds;
+      box.min = box.min.cwiseMin(bb.min);
+      box.max = box.max.cwiseMax(bb.max);
+    }
+    // `auto`: points where the structure's joint has cohesion or tension, whose force spreads
+    // with the compressed area; a frictional joint's strength f N does not depend on how N
+    // spreads over the face, and its corners carry it.
+    const int j = spec.joint >= 0 ? spec.joint : scene.default_joint;
+    const bool bonded =
+        j >= 0 && (scene.joints[static_cast<std::size_t>(j)].cohesion > 0.0 ||
+                   scene.joints[static_cast<std::size_t>(j)].tensile_strength > 0.0);
+    const double spacing = spec.contact_point_spacing.value_or(
+        bonded ? (box.max - box.min).minCoeff() / kAutoPointCells : 0.0);
+    Source source{"structures." + spec.name + ".contact_point_spacing",
+                  spec.contact_point_spacing_line, spacing};
+    for (const int b : own) {
+      dda3d::DdaBlock& block = model.blocks[static_cast<std::size_t>(b)];
+      block.contact_point_spacing = spacing;
+      for (const geometry::Polyhedron& piece : block.pieces) {
+        source.points += dda3d::facePointBound(piece, spacing);
+      }
+    }
+    sources.push_back(source);
+  }
+  std::size_t total = 0;
+  for (const Source& source : sources) total += source.points;
+  if (total <= kMaxContactPoints) return;
+  const Source& worst =
+      *std::max_element(sources.begin(), sources.end(),
+                        [](const Source& a, const Source& b) { return a.points < b.points; });
+  throw InputError(locate(scene.file, worst.line, 0,
+                          worst.key + ": " + formatDouble(worst.spacing) + " m gives up to " +
+                              std::to_string(worst.points) +
+                              " sub-contact points on the faces of the DDA's blocks (" +
+                              std::to_string(total) + " in all), more than " +
+                              std::to_string(kMaxContactPoints) + "; expected a larger spacing"));
 }
 
 /// Pressure entries of one water load: every outer piece face it wets (see buildDdaModel).
@@ -405,26 +477,7 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
   for (const WaterLoad& water : scene.loads.water) {
     addWaterLoad(scene, water, blocks, owner, members, model);
   }
-  // Sub-contact points: refused before any is made when they would pass kMaxContactPoints
-  // (each is a material point moved every step and a contact candidate).
-  if (scene.analysis.dda && scene.analysis.dda->contact_point_spacing.value_or(0.0) > 0.0) {
-    const double spacing = *scene.analysis.dda->contact_point_spacing;
-    std::size_t points = 0;
-    for (const dda3d::DdaBlock& block : model.blocks) {
-      for (const geometry::Polyhedron& piece : block.pieces) {
-        points += dda3d::facePointBound(piece, spacing);
-      }
-    }
-    if (points > kMaxContactPoints) {
-      throw InputError(locate(scene.file, scene.analysis.dda->contact_point_spacing_line, 0,
-                              "analysis.dda.contact_point_spacing: " + formatDouble(spacing) +
-                                  " m gives up to " + std::to_string(points) +
-                                  " sub-contact points on the faces of the DDA's blocks, more "
-                                  "than " +
-                                  std::to_string(kMaxContactPoints) +
-                                  "; expected a larger spacing"));
-    }
-  }
+  setContactPointSpacings(scene, blocks, members, model);
   return model;
 }
 

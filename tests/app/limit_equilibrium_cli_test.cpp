@@ -172,8 +172,9 @@ TEST_F(LimitEquilibriumCli, CrackedCohesiveBaseKeepsItsCohesionOnTheCompressedPa
   // uniform stiffness: K = (f W + 1.5 c B L) / (H (1 + 3 c B h / W)) = 3.477 (h = 25/3 m, the
   // thrust's height). With the base's corners alone the heel never lifts (two rows of springs
   // unload only when the resultant leaves the base) and K_s is the uncracked (f W + c A) / H
-  // = 4.05, 16 % high (docs/stability.md, "Contact points"); sub-contact points 1.25 m apart
-  // (16 along the base) resolve the crack.
+  // = 4.05, 16 % high (docs/stability.md, "Contact points"). The scene names no spacing: a
+  // structure whose joint has cohesion gets sub-contact points a sixteenth of its smallest
+  // extent apart (`auto`: 1.25 m, 16 along the base), which resolve the crack.
   const double weight = 24.0e3 * 20.0 * 20.0 * 30.0;
   const double thrust = 10.0e3 * 25.0 * 25.0 / 2.0 * 20.0;
   const double c = 200.0e3, b = 20.0, l = 20.0, h = 25.0 / 3.0;
@@ -188,17 +189,24 @@ TEST_F(LimitEquilibriumCli, CrackedCohesiveBaseKeepsItsCohesionOnTheCompressedPa
     scene.replace(at, from.size(), to);
   };
   replace("joint: {friction: 0.6, cohesion: 0}", "joint: {friction: 0.6, cohesion: 200.0e3}");
-  replace("time_step: 0.002}", "time_step: 0.002, contact_point_spacing: 1.25}");
   replace("factors: [1, 2, 2.5, 3, 3.5]", "factors: [1, 2, 3, 3.5, 4, 4.5]");
   const nlohmann::json s = summaryOf("overload", "cracked", scene);
   ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
   // Issue 15: within 2 % (bisection to 0.01).
   EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
+  // The same structure on its corners alone (contact_point_spacing: 0) cannot crack: it
+  // keeps the whole base's cohesion, (f W + c A) / H = 4.045, within the 0.01 bisection.
+  replace("joint: {friction: 0.6, cohesion: 200.0e3}",
+          "joint: {friction: 0.6, cohesion: 200.0e3}\n    contact_point_spacing: 0");
+  const nlohmann::json corners = summaryOf("overload", "corners", scene);
+  ASSERT_TRUE(corners["safety_factor"].is_number()) << corners.dump(2);
+  const double uncracked = (0.6 * weight + c * b * l) / thrust;
+  EXPECT_NEAR(corners["safety_factor"].get<double>(), uncracked, 0.01 * uncracked);
   test::recordVerification(
       {.group = "Dams",
        .name = "block 20 x 20 x 30 m, f = 0.6, c = 200 kPa, water 25 m deep upstream, heel "
-               "lifting (resultant 0.31 L off centre), sub-contact points 1.25 m apart: overload "
-               "factor K_s",
+               "lifting (resultant 0.31 L off centre), default (auto) sub-contact points: "
+               "overload factor K_s",
        .source = "cracked base: K = (f W + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM 1110-2-2200, "
                  "ch. 4; USBR, Design of Small Dams, ch. 8)",
        .expected = expected,

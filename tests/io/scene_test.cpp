@@ -528,6 +528,35 @@ TEST(SceneErrors, ZeroFacingVector) {
             "bad.yaml:9:51: loads.water[0].on.facing: expected a nonzero vector");
 }
 
+// A structure's sub-contact points: `auto` (the default, none stored), a spacing, 0 (the
+// corners only); anything else refused at its line.
+TEST(SceneStructures, ContactPointSpacingIsAutoANumberOrZero) {
+  const std::string head =
+      valid_head +
+      "materials: {c: {density: 2400, young: 2e10, poisson: 0.2}}\n"
+      "structures:\n"
+      "  - name: dam\n"
+      "    prism: {profile: [[0, 0], [1, 0], [0, 1]], sweep: x, from: 0, to: 1}\n"
+      "    material: c\n";
+  EXPECT_FALSE(parseScene(head, "ok.yaml").structures[0].contact_point_spacing.has_value());
+  const Scene automatic = parseScene(head + "    contact_point_spacing: auto\n", "ok.yaml");
+  EXPECT_FALSE(automatic.structures[0].contact_point_spacing.has_value());
+  EXPECT_EQ(automatic.structures[0].contact_point_spacing_line, 8);
+  EXPECT_EQ(parseScene(head + "    contact_point_spacing: 0.5\n", "ok.yaml")
+                .structures[0]
+                .contact_point_spacing,
+            0.5);
+  EXPECT_EQ(parseScene(head + "    contact_point_spacing: 0\n", "ok.yaml")
+                .structures[0]
+                .contact_point_spacing,
+            0.0);
+  EXPECT_EQ(errorOf(head + "    contact_point_spacing: fine\n"),
+            "bad.yaml:8:28: structures[0].contact_point_spacing: expected 'auto' or a number >= 0 "
+            "(m), got 'fine'");
+  EXPECT_EQ(errorOf(head + "    contact_point_spacing: -1\n"),
+            "bad.yaml:8:28: structures[0].contact_point_spacing: expected a number >= 0, got -1");
+}
+
 // Every discontinuity carries its own joint (the DDA takes a contact's joint from the faces
 // it lies on, not from the materials of its blocks): two structures of one material with
 // different joints to the rock, a fault zone and an interlayer of one material with different
