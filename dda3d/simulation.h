@@ -292,6 +292,9 @@ class Simulation {
   /// Finds the step's contacts, carrying states over; returns how many were found late
   /// (first seen deeper than the allowed penetration, Contact::overlap).
   int detectContacts();
+  /// Static mode: the factor on a block's mass matrix in its inertia term (kStaticInertiaRatio,
+  /// at the run's time step).
+  double staticMassScale(const BlockState& block) const;
   void assembleBlockTerms(double dt);
   int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
   /// Friction of one sliding contact in one assembly: the force -f N s on block i (N) and

@@ -249,6 +249,78 @@ TEST_F(LimitEquilibriumCli, ASubContactSpacingThatWouldMakeTooManyPointsIsRefuse
   EXPECT_NE(output.find("expected a larger spacing"), std::string::npos) << output;
 }
 
+/// The Xiangjiaba dam's section (base 120 m, 162 m high, 8 m crest, a 20 m slice, Table 2
+/// concrete) on an unjointed rock box, reservoir at 158 m on its vertical upstream face, the
+/// box on rollers, static rigid runs, strength reduction bisected to 0.02; `joint` is the
+/// dam-rock joint.
+std::string bigDamScene(const std::string& joint) {
+  return R"(version: 1
+name: big-dam
+seed: 1
+domain:
+  box: {min: [0, 0, -60], max: [240, 20, 0]}
+materials:
+  concrete: {unit_weight: 24.0e3, young: 17.6e9, poisson: 0.167}
+  rock: {unit_weight: 26.0e3, young: 7.0e9, poisson: 0.25}
+rock_material: rock
+joints:
+  rj: {friction: 0.86, cohesion: 0.8e6}
+default_joint: rj
+structures:
+  - name: dam
+    prism: {profile: [[60, 0], [180, 0], [68, 162], [60, 162]], sweep: y, from: 0, to: 20}
+    material: concrete
+    joint: )" + joint + R"(
+loads:
+  gravity: 9.81
+  water:
+    - {level: 158.0, on: {structure: dam, facing: [-1, 0, 0]}}
+supports:
+  fixed: [bottom]
+  rollers: [west, east, south, north]
+monitors:
+  - {name: D1, point: [100, 10, 20]}
+analysis:
+  blocks: {cutter: fast}
+  dda: {mode: static, kinematics: rigid, steps: 200, time_step: 0.002}
+  strength_reduction: {factors: [1, 2, 3, 3.5, 4, 4.5], tolerance: 0.02}
+)";
+}
+
+TEST_F(LimitEquilibriumCli, AMassiveDamSlidesAtItsShearFrictionFactorInStaticRuns) {
+  // Sliding of the dam on its base: SRF = (f W + c A) / H (USBR, Design of Small Dams,
+  // ch. 8), the base resultant 6 m downstream of the centre (inside the middle third, no
+  // crack). The dam weighs 5e8 kg: at dt = 2 ms its static inertia term was 5.7 contact
+  // penalties, each step relieved 15 % of the out-of-balance force, and the heel corners
+  // crept at their limit until the dam walked sideways: 2.20 against 2.44 without cohesion
+  // (docs/stability.md, "Static runs of massive blocks").
+  const double area = 0.5 * (120.0 + 8.0) * 162.0;  // m2, the section
+  const double weight = 24.0e3 * area * 20.0;
+  const double thrust = 0.5 * 9810.0 * 158.0 * 158.0 * 20.0;
+  for (const auto& [joint, cohesion] :
+       {std::pair<std::string, double>{"{friction: 1.2, cohesion: 0}", 0.0},
+        std::pair<std::string, double>{"{friction: 1.2, cohesion: 1.4e6}", 1.4e6}}) {
+    const double expected = (1.2 * weight + cohesion * 120.0 * 20.0) / thrust;  // 2.439, 3.811
+    const nlohmann::json s =
+        summaryOf("strength", cohesion > 0 ? "big-dam-c" : "big-dam", bigDamScene(joint));
+    ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
+    // Issue 15: within 3 % (a strength reduction bisected to 0.02).
+    EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.03 * expected) << joint;
+    test::recordVerification(
+        {.group = "Dams",
+         .name = std::string("Xiangjiaba dam section (120 m base, 162 m high) on a rock box, "
+                             "f = 1.2, ") +
+                 (cohesion > 0 ? "c = 1.4 MPa (auto sub-contact points)" : "c = 0") +
+                 ", static, dt 2 ms: critical SRF",
+         .source = "shear friction SRF = (f W + c A) / H (USBR, Design of Small Dams, ch. 8)",
+         .expected = expected,
+         .measured = s["safety_factor"].get<double>(),
+         .tolerance = 0.03,
+         .relative = true,
+         .unit = "-"});
+  }
+}
+
 TEST_F(LimitEquilibriumCli, CohesiveWedgeFailsAtTheBlockTheoryFactor) {
   const double with_cohesion = wedgeFactor(10.0e3);  // 1.689
   const double frictional = wedgeFactor(0.0);        // 1.159
