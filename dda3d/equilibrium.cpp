@@ -80,18 +80,23 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     result.redone_displacement += report.redo_displacement;
     result.redone_penetration += report.redo_penetration;
     const double free_fall = 0.5 * g * report.time_step * report.time_step;
-    const double all_increment =
-        report.displacement_ratio * sim.settings().max_displacement_ratio * sim.halfDomainSize();
+    // The step's displacement of each block, at its vertices (the blocks have moved; the field
+    // is affine, so its largest value is at a vertex), times its inertia scale: a block whose
+    // static inertia term was scaled down moves farther for the same out-of-balance force, and
+    // the ratio measures that force against the weight (docs/stability.md, "Static runs of
+    // massive blocks").
+    const auto weighedMotion = [&](int b) {
+      const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
+      return largestVertexDisplacement(block, block.last_displacement) * sim.inertiaScale(b);
+    };
+    const double all_increment = report.unbalanced_displacement;
     result.all_blocks_ratio = all_increment / free_fall;
     result.increment = all_increment;
     if (!every_block) {
-      // The step's displacement field of each watched block, at its vertices (the blocks have
-      // moved; the field is affine, so its largest value is at a vertex).
       result.increment = 0.0;
       result.watched = {};
       for (const int b : watched) {
-        const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
-        const double moved = largestVertexDisplacement(block, block.last_displacement);
+        const double moved = weighedMotion(b);
         if (moved > result.increment) {
           result.increment = moved;
           result.watched = movedBlock(sim, b);

@@ -939,24 +939,29 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
   return settings_.max_open_close_iterations;
 }
 
-double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest) const {
+double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest,
+                                        double* weighed) const {
   double largest = 0.0;
+  double largest_weighed = 0.0;
   int largest_block = -1;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     const BlockState& block = blocks_[b];
     if (block.fixed) continue;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    double block_largest = 0.0;
     for (const geometry::Polyhedron& piece : block.pieces) {
       for (const Vec3& v : piece.vertices) {
-        const double moved = (movedPoint(v, block.centroid, d) - v).norm();
-        if (moved > largest) {
-          largest = moved;
-          largest_block = static_cast<int>(b);
-        }
+        block_largest = std::max(block_largest, (movedPoint(v, block.centroid, d) - v).norm());
       }
     }
+    if (block_largest > largest) {
+      largest = block_largest;
+      largest_block = static_cast<int>(b);
+    }
+    largest_weighed = std::max(largest_weighed, block_largest * staticMassScale(block));
   }
   if (fastest) *fastest = largest_block;
+  if (weighed) *weighed = largest_weighed;
   return largest / (settings_.max_displacement_ratio * half_domain_);
 }
 
@@ -1218,7 +1223,8 @@ StepReport Simulation::step() {
           "DDA step failed: the system is singular at t = " + std::to_string(time_) + " s");
     }
     start = Clock::now();
-    report.displacement_ratio = maxDisplacementRatio(solution, &report.fastest_block);
+    report.displacement_ratio =
+        maxDisplacementRatio(solution, &report.fastest_block, &report.unbalanced_displacement);
     report.max_penetration = maxPenetration();
     const double reach_ratio = reachRatio(blocks_, *system_, solution, reach_);
     timings_.update_states += secondsSince(start);

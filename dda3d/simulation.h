@@ -168,9 +168,13 @@ struct StepReport {
   int late_contacts = 0;
   double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
   int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
-  double max_penetration = 0.0;     ///< m, deepest penetration after the step (>= 0)
-  double penalty = 0.0;             ///< N/m, normal penalty used
-  int pattern_changes = 0;          ///< symbolic analyses redone
+  /// m: the largest vertex displacement of a block times its inertia scale
+  /// (Simulation::inertiaScale); the same as the displacement unless a massive block's static
+  /// inertia was scaled down. The equilibrium's unbalanced ratio is this over g dt^2 / 2.
+  double unbalanced_displacement = 0.0;
+  double max_penetration = 0.0;  ///< m, deepest penetration after the step (>= 0)
+  double penalty = 0.0;          ///< N/m, normal penalty used
+  int pattern_changes = 0;       ///< symbolic analyses redone
   /// Iterative-solver (PCG) iterations summed over every solve of the step, redone attempts
   /// included (0 for direct solvers).
   int solver_iterations = 0;
@@ -242,7 +246,11 @@ class Simulation {
     return b < block_work_.size() ? block_work_[b] : 0.0;
   }
   double halfDomainSize() const { return half_domain_; }  ///< l0 (m)
-  int dofsPerBlock() const { return dofs_; }              ///< 12 or 6
+  /// The factor on block `b`'s mass in its inertia term: below 1 for a massive block in
+  /// static mode (staticMassScale), else 1. A step moves such a block 1 / this times farther
+  /// for the same out-of-balance force (dda3d::runToEquilibrium weighs its motion by it).
+  double inertiaScale(int b) const { return staticMassScale(blocks_[static_cast<std::size_t>(b)]); }
+  int dofsPerBlock() const { return dofs_; }  ///< 12 or 6
   const DdaModel& model() const { return model_; }
   const DdaSettings& settings() const { return settings_; }
 
@@ -329,7 +337,9 @@ class Simulation {
   StateChanges updateContactStates(const Eigen::VectorXd& solution);
   /// Largest vertex displacement of `solution` over g2 l0; `fastest` (when given) gets the
   /// movable block it belongs to (-1 when none moved).
-  double maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest = nullptr) const;
+  /// `weighed`: the largest vertex displacement times its block's inertia scale (m).
+  double maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest = nullptr,
+                              double* weighed = nullptr) const;
   double maxPenetration() const;
   void updateBlocks(const Eigen::VectorXd& solution, double dt);
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;

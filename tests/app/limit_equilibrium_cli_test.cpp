@@ -270,7 +270,8 @@ structures:
   - name: dam
     prism: {profile: [[60, 0], [180, 0], [68, 162], [60, 162]], sweep: y, from: 0, to: 20}
     material: concrete
-    joint: )" + joint + R"(
+    joint: )" +
+         joint + R"(
 loads:
   gravity: 9.81
   water:
