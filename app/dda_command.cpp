@@ -76,16 +76,14 @@ void recordMonitors(const dda3d::Simulation& sim, const std::vector<std::string>
   }
 }
 
-/// Seconds per phase spent between two cumulative readings.
-std::vector<std::pair<std::string, double>> phaseSeconds(const dda3d::PhaseTimings& before,
-                                                         const dda3d::PhaseTimings& after) {
-  return {{"detect_contacts", after.detect_contacts - before.detect_contacts},
-          {"assemble_block_terms", after.assemble_block_terms - before.assemble_block_terms},
-          {"assemble_contacts", after.assemble_contacts - before.assemble_contacts},
-          {"factorize", after.factorize - before.factorize},
-          {"solve", after.solve - before.solve},
-          {"update_states", after.update_states - before.update_states},
-          {"update_blocks", after.update_blocks - before.update_blocks}};
+/// Seconds per phase of one step, by the phases' output names.
+std::vector<std::pair<std::string, double>> phaseSeconds(const dda3d::StepProfile& profile) {
+  std::vector<std::pair<std::string, double>> out;
+  for (int k = 0; k < dda3d::kStepPhases; ++k) {
+    const auto phase = static_cast<dda3d::StepPhase>(k);
+    out.emplace_back(dda3d::StepProfile::name(phase), profile[phase]);
+  }
+  return out;
 }
 
 /// The summary's record of one step.
@@ -176,11 +174,10 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   // large model may take minutes per 10 %).
   auto last_report = std::chrono::steady_clock::now();
   while (sim.time() < end) {
-    const dda3d::PhaseTimings before = sim.timings();
     const dda3d::StepReport report = sim.step();
     ++step;
     summary.late_contacts += report.late_contacts;
-    last = stepRecord(step, report, sim, phaseSeconds(before, sim.timings()));
+    last = stepRecord(step, report, sim, phaseSeconds(report.profile));
     stage.steps_csv->write(io::formatStepsRow(last));
     for (const auto& [name, seconds] : last.phase_seconds) {
       const auto at = std::find_if(phase_totals.begin(), phase_totals.end(),

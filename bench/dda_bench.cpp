@@ -99,14 +99,15 @@ DdaSettings pileSettings() {
 /// Counters with each phase's share of the engine's own timers: contact detection,
 /// assembly (block terms and contact terms), factorization (PCG: preconditioner set-up),
 /// solve, open-close (contact state updates and step checks), block update.
-void setPhaseShares(benchmark::State& state, const PhaseTimings& t) {
+void setPhaseShares(benchmark::State& state, const StepProfile& t) {
   const double total = t.total();
-  state.counters["detect"] = t.detect_contacts / total;
-  state.counters["assemble"] = (t.assemble_block_terms + t.assemble_contacts) / total;
-  state.counters["factorize"] = t.factorize / total;
-  state.counters["solve"] = t.solve / total;
-  state.counters["open_close"] = t.update_states / total;
-  state.counters["update"] = t.update_blocks / total;
+  state.counters["detect"] = t[StepPhase::DetectContacts] / total;
+  state.counters["assemble"] =
+      (t[StepPhase::AssembleBlockTerms] + t[StepPhase::AssembleContacts]) / total;
+  state.counters["factorize"] = t[StepPhase::Factorize] / total;
+  state.counters["solve"] = t[StepPhase::Solve] / total;
+  state.counters["open_close"] = t[StepPhase::UpdateStates] / total;
+  state.counters["update"] = t[StepPhase::UpdateBlocks] / total;
 }
 
 /// One pile run: warm_up_steps untimed, then kTimedSteps timed. Counters: block-steps/s,
@@ -116,23 +117,18 @@ void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
   DdaSettings settings = pileSettings();
   settings.solver = solver;
   int steps = 0, iterations = 0;
-  PhaseTimings timings;
+  StepProfile timings;
   for (auto _ : state) {
     state.PauseTiming();
     Simulation sim(pile(blocks), settings);
     for (int k = 0; k < warm_up_steps; ++k) sim.step();
-    const PhaseTimings before = sim.timings();
     state.ResumeTiming();
-    for (int k = 0; k < kTimedSteps; ++k) iterations += sim.step().iterations;
+    for (int k = 0; k < kTimedSteps; ++k) {
+      const StepReport report = sim.step();
+      iterations += report.iterations;
+      timings += report.profile;
+    }
     steps += kTimedSteps;
-    const PhaseTimings& t = sim.timings();
-    timings.detect_contacts += t.detect_contacts - before.detect_contacts;
-    timings.assemble_block_terms += t.assemble_block_terms - before.assemble_block_terms;
-    timings.assemble_contacts += t.assemble_contacts - before.assemble_contacts;
-    timings.factorize += t.factorize - before.factorize;
-    timings.solve += t.solve - before.solve;
-    timings.update_states += t.update_states - before.update_states;
-    timings.update_blocks += t.update_blocks - before.update_blocks;
     state.counters["contacts"] = sim.contactCounts().total;
   }
   state.counters["block_steps_per_s"] =
@@ -153,7 +149,7 @@ void pileSettling(benchmark::State& state, const SolverOptions& solver, int bloc
   settings.dynamic_ratio = kSettlingDynamicRatio;
   int steps = 0, iterations = 0;
   double peak_speed = 0.0, final_speed = 0.0;
-  PhaseTimings timings;
+  StepProfile timings;
   for (auto _ : state) {
     state.PauseTiming();
     Simulation sim(pile(blocks, kSettlingGap), settings);

@@ -76,4 +76,9 @@ struct Contact {
   bool held = false;
 };
 
+/// The part of `v` in the plane normal to the unit vector `n` (a contact's shear plane).
+inline geometry::Vec3 tangential(const geometry::Vec3& v, const geometry::Vec3& n) {
+  return v - n * n.dot(v);
+}
+
 }  // namespace rockmass::dda3d

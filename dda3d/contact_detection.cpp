@@ -1,5 +1,7 @@
 #include "dda3d/contact_detection.h"
 
+#include "dda3d/polygon2d.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -472,50 +474,6 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
   }
 }
 
-/// A point of the plane with 2D coordinates in a face's basis.
-using Point2 = Eigen::Vector2d;
-
-/// The part of the convex polygon `polygon` where the affine function value(x) <= 0
-/// (Sutherland-Hodgman against one half-plane).
-template <class Value>
-std::vector<Point2> clipped(const std::vector<Point2>& polygon, const Value& value) {
-  std::vector<Point2> out;
-  out.reserve(polygon.size() + 1);
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Point2& p = polygon[k];
-    const Point2& q = polygon[(k + 1) % polygon.size()];
-    const double vp = value(p), vq = value(q);
-    if (vp <= 0.0) out.push_back(p);
-    if ((vp < 0.0 && vq > 0.0) || (vp > 0.0 && vq < 0.0))
-      out.push_back(p + (vp / (vp - vq)) * (q - p));
-  }
-  return out;
-}
-
-double cross2(const Point2& a, const Point2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-/// Area of the counter-clockwise polygon (m2).
-double polygonArea(const std::vector<Point2>& polygon) {
-  double twice = 0.0;
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    twice += cross2(polygon[k], polygon[(k + 1) % polygon.size()]);
-  }
-  return 0.5 * twice;
-}
-
-/// Centroid of a polygon of (signed) area `area`.
-Point2 polygonCentroid(const std::vector<Point2>& polygon, double area) {
-  Point2 centroid = Point2::Zero();
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Point2& p = polygon[k];
-    const Point2& q = polygon[(k + 1) % polygon.size()];
-    centroid += cross2(p, q) * (p + q);
-  }
-  return centroid / (6.0 * area);
-}
-
 /// Weights of the corners of a convex polygon of area `area` that carry its area: each corner
 /// takes half of the two triangles it shares with the centroid (lumped, symmetric for
 /// symmetric polygons), corrected by the least change that makes the weights integrate every
@@ -667,128 +625,12 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
   }
 }
 
-/// A face in its own 2D frame (u along its longest edge, w = n x u, from its first vertex)
-/// and the grid of cells facePoints cuts it into (nu x nw; none when nu or nw < 2).
-struct FaceGrid {
-  Vec3 origin = Vec3::Zero(), u = Vec3::Zero(), w = Vec3::Zero();
-  std::vector<Point2> polygon;
-  Point2 low = Point2::Zero(), size = Point2::Zero();
-  int nu = 0, nw = 0;
-};
-
-FaceGrid faceGrid(const geometry::Polyhedron& piece, std::size_t f, double spacing,
-                  int max_per_face) {
-  FaceGrid grid;
-  const std::vector<int>& face = piece.faces[f];
-  if (face.size() < 3 || !(spacing > 0.0)) return grid;
-  const Vec3 n = geometry::faceNormal(piece, static_cast<int>(f));
-  for (std::size_t k = 0; k < face.size(); ++k) {
-    const Vec3 e = piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])] -
-                   piece.vertices[static_cast<std::size_t>(face[k])];
-    if (e.squaredNorm() > grid.u.squaredNorm()) grid.u = e;
-  }
-  if (!(grid.u.squaredNorm() > 0.0)) return grid;
-  grid.u.normalize();
-  grid.w = n.cross(grid.u).normalized();
-  grid.origin = piece.vertices[static_cast<std::size_t>(face[0])];
-  Point2 low = Point2::Constant(std::numeric_limits<double>::infinity());
-  Point2 high = -low;
-  for (int v : face) {
-    const Vec3 x = piece.vertices[static_cast<std::size_t>(v)] - grid.origin;
-    grid.polygon.emplace_back(x.dot(grid.u), x.dot(grid.w));
-    low = low.cwiseMin(grid.polygon.back());
-    high = high.cwiseMax(grid.polygon.back());
-  }
-  grid.low = low;
-  grid.size = high - low;
-  // Counted in doubles first: a spacing far below the face's size must not overflow.
-  const double cu = std::ceil(grid.size.x() / spacing - 1e-9);
-  const double cw = std::ceil(grid.size.y() / spacing - 1e-9);
-  if (!(cu >= 2.0 && cw >= 2.0)) return grid;
-  double nu = cu, nw = cw;
-  while (nu * nw > max_per_face) {
-    nu = std::max(2.0, std::ceil(nu / 2.0));
-    nw = std::max(2.0, std::ceil(nw / 2.0));
-  }
-  grid.nu = static_cast<int>(nu);
-  grid.nw = static_cast<int>(nw);
-  return grid;
-}
-
 }  // namespace
 
 void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   t1 = n.cross(helper).normalized();
   t2 = n.cross(t1);
-}
-
-std::size_t facePointBound(const Polyhedron& piece, double spacing, int max_per_face) {
-  std::size_t count = 0;
-  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
-    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
-    count += static_cast<std::size_t>(grid.nu) * static_cast<std::size_t>(grid.nw);
-  }
-  return count;
-}
-
-FacePoints facePoints(const Polyhedron& piece, double spacing, int max_per_face) {
-  FacePoints out;
-  if (!(spacing > 0.0)) return out;
-  out.first.push_back(0);
-  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
-    const FaceGrid grid = faceGrid(piece, f, spacing, max_per_face);
-    for (int i = 0; i < grid.nu && grid.nw >= 2; ++i) {
-      for (int j = 0; j < grid.nw; ++j) {
-        const Point2 c0 =
-            grid.low + Point2(grid.size.x() * i / grid.nu, grid.size.y() * j / grid.nw);
-        const Point2 c1 =
-            grid.low + Point2(grid.size.x() * (i + 1) / grid.nu, grid.size.y() * (j + 1) / grid.nw);
-        // The cell clipped to the face (convex, counter-clockwise about its normal).
-        std::vector<Point2> cell{c0, {c1.x(), c0.y()}, c1, {c0.x(), c1.y()}};
-        for (std::size_t k = 0; k < grid.polygon.size() && cell.size() >= 3; ++k) {
-          const Point2& p = grid.polygon[k];
-          const Point2 edge = grid.polygon[(k + 1) % grid.polygon.size()] - p;
-          cell = clipped(cell, [&](const Point2& x) { return -cross2(edge, x - p); });
-        }
-        if (cell.size() < 3) continue;
-        const double area = polygonArea(cell);
-        if (!(area > 1e-12 * grid.size.x() * grid.size.y())) continue;
-        const Point2 centroid = polygonCentroid(cell, area);
-        out.points.push_back({grid.origin + centroid.x() * grid.u + centroid.y() * grid.w,
-                              static_cast<int>(f), area});
-      }
-    }
-    out.first.push_back(static_cast<int>(out.points.size()));
-  }
-  if (out.points.empty()) out.first.clear();
-  return out;
-}
-
-double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
-  // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
-  const Vec3 at_centroid = displacementMatrix(block.centroid, block.centroid) * d;
-  Eigen::Matrix3d jacobian;
-  for (int k = 0; k < 3; ++k) {
-    jacobian.col(k) =
-        displacementMatrix(block.centroid + Vec3::Unit(k), block.centroid) * d - at_centroid;
-  }
-  double largest = 0.0;
-  for (const Polyhedron& piece : block.pieces) {
-    for (const Vec3& v : piece.vertices) {
-      largest = std::max(largest, (at_centroid + jacobian * (v - block.centroid)).squaredNorm());
-    }
-  }
-  return std::sqrt(largest);
-}
-
-double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits) {
-  if (block.fixed) return 0.0;
-  const double by_velocity =
-      largestVertexDisplacement(block, block.velocity) * dt + 0.5 * limits.acceleration * dt * dt;
-  const double by_last_step = largestVertexDisplacement(block, block.last_displacement) *
-                              (last_dt > 0.0 ? dt / last_dt : 1.0);
-  return std::min(limits.cap, std::max(limits.floor, 2.0 * std::max(by_velocity, by_last_step)));
 }
 
 std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,

@@ -1,8 +1,11 @@
 // The 3D DDA engine: one Simulation advances a DdaModel step by step (Shi's method in 3D,
-// formulation in docs dda3d-formulation.md). Each step runs a fixed sequence of named
-// phases: detectContacts, assembleBlockTerms, openCloseIterate (assemble contacts,
-// factorize, solve, update states), checkStep (redo with a smaller dt or a stiffer
-// penalty), updateBlocks (exact rotation, stresses, velocities, contact shear).
+// formulation in docs dda3d-formulation.md). Each step runs the phases of StepPhase in order:
+// detectContacts (contact_detection.cpp, contact_persistence.cpp), assembleBlockTerms,
+// openCloseIterate (assembleSystem, factorize, solveSystem, updateContactStates in
+// contact_states.cpp), checkStep (redo with a smaller dt or a stiffer penalty; messages in
+// step_messages.cpp), acceptStep (updateBlocks: exact rotation, stresses, velocities, contact
+// shear; the energy account in energy_account.cpp). Each phase's time is in
+// StepReport::profile.
 #pragma once
 
 #include <memory>
@@ -15,212 +18,13 @@
 #include "dda3d/block_system.h"
 #include "dda3d/block_terms.h"
 #include "dda3d/contact.h"
+#include "dda3d/energy_account.h"
 #include "dda3d/linear_solver.h"
 #include "dda3d/model.h"
+#include "dda3d/simulation_settings.h"
+#include "dda3d/step_report.h"
 
 namespace rockmass::dda3d {
-
-/// Dynamic (velocities carried between steps) or static (velocities reset every step).
-enum class AnalysisMode { Dynamic, Static };
-/// Deformable blocks (12 unknowns) or rigid blocks (6).
-enum class Kinematics { Deformable, Rigid };
-/// How the inertia term is integrated in time (docs/dda3d.md, "Time integration").
-enum class TimeIntegration {
-  /// Bossak alpha scheme (Newmark with a weighted inertia), second-order accurate, damping
-  /// the stiff contact modes by the spectral radius DdaSettings::spectral_radius.
-  Bossak,
-  /// Shi's scheme of the formulation doc (Newmark beta = 1/2, gamma = 1): first order, no
-  /// damping of stiff modes (a velocity that flips sign every step on contact springs).
-  Shi,
-};
-
-/// Settings of a run (scene: analysis.dda). Defaults follow the 2D reference lineage.
-struct DdaSettings {
-  AnalysisMode mode = AnalysisMode::Dynamic;
-  Kinematics kinematics = Kinematics::Deformable;
-  /// Share of the velocity (and acceleration) carried to the next step in dynamic mode (1
-  /// fully dynamic). Below 1 it is an extra, non-physical velocity damping.
-  double dynamic_ratio = 1.0;
-  TimeIntegration integration = TimeIntegration::Bossak;
-  /// Bossak: spectral radius rho_inf of the scheme for modes much stiffer than M / dt^2 (the
-  /// contact springs), in [0, 1]. 0 removes them within two steps; 1 keeps them undamped.
-  double spectral_radius = 0.0;
-  double time_step = 1e-3;  ///< s, the largest step; shrunk and regrown automatically
-  /// s, the smallest step the step control may cut to. A step that fails its checks at this
-  /// dt stops the run (StepFailure), and so does a run whose accepted steps stay at it for
-  /// `max_steps_at_min_time_step` steps in a row (it cannot progress).
-  double min_time_step = 1e-9;
-  int max_steps_at_min_time_step = 1000;
-  /// g2: largest displacement of any vertex in a step as a share of half the domain size.
-  double max_displacement_ratio = 0.01;
-  /// g3: allowed penetration as a share of half the domain size.
-  double allowed_penetration_ratio = 4e-4;
-  /// Normal contact penalty (N/m); 0 = automatic: penalty_factor * E_max * block size.
-  double penalty = 0.0;
-  double penalty_factor = 40.0;      ///< - (automatic penalty)
-  double shear_penalty_ratio = 2.5;  ///< k_n / k_s
-  /// Fixed points' spring (N/m) as a multiple of the normal contact penalty.
-  double fixed_point_penalty_ratio = 10.0;
-  /// Per attempt (the 2D reference allows 6 + 2). A pile of 1000 cubes landing on its base
-  /// opens and closes a thousand contacts in one step and settles in 20-30 iterations, the
-  /// changes falling off as a cascade; with 20 it redid such steps at 0.3 dt, to 6e-5 s.
-  int max_open_close_iterations = 40;
-  /// The open-close iteration has settled when no contact closed and at most this share of
-  /// the contacts opened or changed between locked and sliding in its last update (rounded
-  /// down: below 1 / this many contacts, none may change, the classic rule). Among the 2e5 contacts
-  /// of a large model a few always sit at a round-off gap where closing pushes them open and
-  /// opening lets them close; with no allowance every step then failed its 20 iterations and cut dt
-  /// by 0.3, down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
-  /// new state for the next step; one that closed always takes another iteration.
-  double open_close_tolerance = 1e-4;
-  double iteration_time_step_factor = 0.3;  ///< dt multiplier when the iteration fails
-  int max_step_attempts = 40;               ///< redo limit per step
-  /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a
-  /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
-  /// blocks. A contact closed at that depth starts with 1/2 k_n d^2 in its spring, which the
-  /// step gives back as motion: at 1e-6 l0 the vibrating corners of two deformable cubes
-  /// closed 4e-6 m deep, 113 J in one step against 1 J of kinetic energy, and the pair
-  /// bounced apart at dt = 2.5e-4 s. 1e-8 keeps the hysteresis above round-off.
-  double close_threshold_ratio = 1e-8;
-  /// A closed contact opens when d > T A / k_n + this * l0. The 2D reference's 2e-7 lets a
-  /// stiff penalty pull with k_n * 2e-7 l0 (~10^5 N here) before opening, which glues a
-  /// wedge to a plane it should leave; 1e-10 keeps only a round-off margin.
-  double open_threshold_ratio = 1e-10;
-  /// Sub-contact points (m): 0 = the corners of each face carry its contact (their area
-  /// weights spread cohesion over the overlap of the faces); > 0 = every face at least two
-  /// cells of this size wide both ways is cut into cells of about this size, and a point at
-  /// each cell's centroid, carrying the cell's area, is a contact of its own against the
-  /// face facing it (docs/stability.md, "Contact points"). Needed where a face contact opens
-  /// in part: a base whose heel lifts keeps its cohesion on the compressed part only.
-  double contact_point_spacing = 0.0;
-  /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
-  double half_domain_size = 0.0;
-  /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
-  /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
-  SolverOptions solver{.kind = SolverKind::Auto};
-};
-
-/// The relative residual |K d - F| / |F| that SolverKind::Auto gives PCG. The displacement
-/// error it leaves must be a small share of the allowed penetration g3 l0 while a step moves
-/// vertices by up to g2 l0: a relative error of 1e-2 g3 / g2 in d, divided by 1e3 for the
-/// condition number of the block-Jacobi preconditioned K (the residual bounds the error only
-/// up to it). 4e-7 with the default g2 = 0.01, g3 = 4e-4.
-double autoPcgTolerance(const DdaSettings& settings);
-/// The solver options a run with these settings and `movable` movable blocks uses (Auto
-/// resolved; block size set from the kinematics).
-SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable);
-
-/// Which sub-matrices were assembled (cumulative over the run, or for one step).
-struct ActiveTerms {
-  bool elastic = false;
-  bool initial_stress = false;
-  bool inertia = false;
-  bool body_force = false;
-  bool point_loads = false;
-  bool surface_pressure = false;
-  bool fixed_points = false;
-  bool rollers = false;  ///< fixed points held along one direction only
-  bool fixed_blocks = false;
-  bool contact_normal = false;
-  bool contact_shear = false;
-  bool friction = false;
-  bool bolts = false;
-  /// Names of the active terms, in the order above ("elastic", "inertia", ...).
-  std::vector<std::string> names() const;
-  ActiveTerms& operator|=(const ActiveTerms& other);
-};
-
-/// Seconds spent per phase (cumulative).
-struct PhaseTimings {
-  double detect_contacts = 0.0;
-  double assemble_block_terms = 0.0;
-  double assemble_contacts = 0.0;  ///< inside openCloseIterate
-  double factorize = 0.0;          ///< inside openCloseIterate
-  double solve = 0.0;              ///< inside openCloseIterate
-  double update_states = 0.0;      ///< contact state update and checks
-  double update_blocks = 0.0;
-  double total() const {
-    return detect_contacts + assemble_block_terms + assemble_contacts + factorize + solve +
-           update_states + update_blocks;
-  }
-};
-
-/// Contact counts by state.
-struct ContactCounts {
-  int total = 0;
-  int open = 0;
-  int sliding = 0;
-  int locked = 0;
-  int edge_edge = 0;  ///< of the total, the edge-to-edge entries
-};
-
-/// Account of one accepted step.
-struct StepReport {
-  double time = 0.0;          ///< s, simulated time at the end of the step
-  double time_step = 0.0;     ///< s, the accepted dt
-  int iterations = 0;         ///< open-close iterations of the accepted attempt
-  int attempts = 1;           ///< 1 + redos
-  int redo_iterations = 0;    ///< redos because the open-close iteration did not settle
-  int redo_displacement = 0;  ///< redos because of the displacement ratio
-  int redo_penetration = 0;   ///< redos with a stiffer penalty
-  /// Contacts the step's detection found first deeper than the allowed penetration: a miss
-  /// of the detection, their depth then not pushed back (Contact::overlap).
-  int late_contacts = 0;
-  double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
-  int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
-  /// m: the largest vertex displacement of a block times its inertia scale
-  /// (Simulation::inertiaScale); the same as the displacement unless a massive block's static
-  /// inertia was scaled down. The equilibrium's unbalanced ratio is this over g dt^2 / 2.
-  double unbalanced_displacement = 0.0;
-  double max_penetration = 0.0;  ///< m, deepest penetration after the step (>= 0)
-  double penalty = 0.0;          ///< N/m, normal penalty used
-  int pattern_changes = 0;       ///< symbolic analyses redone
-  /// Iterative-solver (PCG) iterations summed over every solve of the step, redone attempts
-  /// included (0 for direct solvers).
-  int solver_iterations = 0;
-  ContactCounts contacts;
-};
-
-/// Energies (J), for checking that nothing grows beyond the work of the loads.
-/// Balance: stored() + dissipated() = work_of_loads, up to the energy of contact state
-/// changes between steps (a contact that closes, a shear spring that starts at the friction
-/// force), the geometric non-linearity of a step (exact rotation, moving contact frames) and
-/// the solver's residual (docs/dda3d.md, "Energy account").
-struct EnergyAccount {
-  double kinetic = 0.0;        ///< 1/2 V^T M V
-  double strain = 0.0;         ///< 1/2 V eps^T E eps of the accumulated strain
-  double springs = 0.0;        ///< contact, fixed-point and bolt springs
-  double work_of_loads = 0.0;  ///< cumulative work of body forces, point loads, pressure
-  /// Cumulative work done against the friction forces of sliding contacts, f N s . slip
-  /// (>= 0 step by step: s is the direction of the slip).
-  double friction = 0.0;
-  /// Cumulative energy the time integration removed: per step 1/2 d^T K d (forces taken at
-  /// the end of the step) + d^T M ((1 - alpha_m) a1 + alpha_m a0) - (T1 - T0), plus the
-  /// kinetic energy removed by a dynamic ratio below 1 or by static mode.
-  double numerical = 0.0;
-  /// Cumulative energy the springs gained between steps (signed): contacts detected, closed
-  /// or opened, shear springs restarted, penalty raised. A contact that closes on a moving
-  /// block adds here what the end-of-step spring force then removes in `numerical`.
-  double contact_changes = 0.0;
-  double stored() const { return kinetic + strain + springs; }
-  double dissipated() const { return friction + numerical; }
-};
-
-/// A monitored point: displacement since time 0 and current velocity.
-struct MonitorState {
-  std::string name;
-  geometry::Vec3 position = geometry::Vec3::Zero();      ///< m
-  geometry::Vec3 displacement = geometry::Vec3::Zero();  ///< m
-  geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< m/s
-};
-
-/// A step that cannot be completed: the time step is at its minimum (or the attempts are used
-/// up) and the step still fails a check of the step control. what() names the time, the time
-/// step, the check, and the block or contact that failed it.
-class StepFailure : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// A DDA run.
 class Simulation {
@@ -278,7 +82,8 @@ class Simulation {
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.
   const ActiveTerms& activeTerms() const { return active_; }
-  const PhaseTimings& timings() const { return timings_; }
+  /// Seconds per phase, summed over the run's steps.
+  const StepProfile& timings() const { return timings_; }
   EnergyAccount energy() const;
   /// Name of the linear solver backend.
   std::string solverName() const;
@@ -304,7 +109,23 @@ class Simulation {
   /// at the run's time step).
   double staticMassScale(const BlockState& block) const;
   void assembleBlockTerms(double dt);
+  /// The system of one open-close iteration: the block terms, every contact's springs or
+  /// friction, the bolts.
+  void assembleSystem();
+  void addBoltTerms();
+  /// Solves the assembled system; the guess of an iterative solver is `previous` (later
+  /// iterations) or the last step's solution scaled to dt (the first).
+  Eigen::VectorXd solveSystem(double dt, int iteration, const Eigen::VectorXd& previous);
   int openCloseIterate(double dt, Eigen::VectorXd& solution, bool& settled);
+  /// What the step control does with an attempt's solution.
+  enum class StepCheck { Accept, Redo };
+  /// The step control (docs/dda3d.md, "Step control"): redo with a smaller dt (the
+  /// iteration did not settle, a vertex moved too far) or a stiffer penalty (too deep), or
+  /// accept; throws StepFailure when nothing is left to try.
+  StepCheck checkStep(const Eigen::VectorXd& solution, bool settled, bool last_chance, double& dt,
+                      StepReport& report);
+  /// Moves the blocks by the accepted solution and chooses the next dt.
+  void acceptStep(const Eigen::VectorXd& solution, double dt, StepReport& report);
   /// Friction of one sliding contact in one assembly: the force -f N s on block i (N) and
   /// the transverse tangent spring (stiffness N/m along the unit `across`, rigid parts).
   struct AppliedFriction {
@@ -351,6 +172,10 @@ class Simulation {
   std::string blockText(int b) const;
   std::string contactText(const Contact& c) const;
   /// Why step() cannot complete the step at `dt` (StepFailure).
+  /// The message of a step whose matrix is not positive definite at `dt`.
+  std::string singularMatrixMessage(double dt) const;
+  /// The message of a run that spent max_steps_at_min_time_step steps at min_time_step.
+  std::string stalledMessage(const StepReport& report) const;
   std::string stepFailureMessage(double dt, int attempts, bool settled, const StepReport& report,
                                  double allowed) const;
   /// u_i(P) - u_j(P') for the solution; with `rigid_part`, of the first 6 unknowns only.
@@ -387,7 +212,8 @@ class Simulation {
   std::vector<BlockVector> base_f_;
   std::vector<BlockVector> load_f_;  // external loads per movable block (for the work)
   ActiveTerms active_;
-  PhaseTimings timings_;
+  StepProfile timings_;       ///< summed over the steps
+  StepProfile step_profile_;  ///< of the step being run
   int pattern_changes_ = 0;
   int solver_iterations_ = 0;  ///< PCG iterations of the current step
   StateChanges last_changes_;  ///< of the last open-close update (for StepFailure's message)

@@ -1,0 +1,99 @@
+// Settings of a DDA run (scene: analysis.dda): mode, kinematics, time integration, step
+// control, contact thresholds and the linear solver.
+#pragma once
+
+#include "dda3d/linear_solver.h"
+
+namespace rockmass::dda3d {
+
+/// Dynamic (velocities carried between steps) or static (velocities reset every step).
+enum class AnalysisMode { Dynamic, Static };
+/// Deformable blocks (12 unknowns) or rigid blocks (6).
+enum class Kinematics { Deformable, Rigid };
+/// How the inertia term is integrated in time (docs/dda3d.md, "Time integration").
+enum class TimeIntegration {
+  /// Bossak alpha scheme (Newmark with a weighted inertia), second-order accurate, damping
+  /// the stiff contact modes by the spectral radius DdaSettings::spectral_radius.
+  Bossak,
+  /// Shi's scheme of the formulation doc (Newmark beta = 1/2, gamma = 1): first order, no
+  /// damping of stiff modes (a velocity that flips sign every step on contact springs).
+  Shi,
+};
+
+/// Settings of a run (scene: analysis.dda). Defaults follow the 2D reference lineage.
+struct DdaSettings {
+  AnalysisMode mode = AnalysisMode::Dynamic;
+  Kinematics kinematics = Kinematics::Deformable;
+  /// Share of the velocity (and acceleration) carried to the next step in dynamic mode (1
+  /// fully dynamic). Below 1 it is an extra, non-physical velocity damping.
+  double dynamic_ratio = 1.0;
+  TimeIntegration integration = TimeIntegration::Bossak;
+  /// Bossak: spectral radius rho_inf of the scheme for modes much stiffer than M / dt^2 (the
+  /// contact springs), in [0, 1]. 0 removes them within two steps; 1 keeps them undamped.
+  double spectral_radius = 0.0;
+  double time_step = 1e-3;  ///< s, the largest step; shrunk and regrown automatically
+  /// s, the smallest step the step control may cut to. A step that fails its checks at this
+  /// dt stops the run (StepFailure), and so does a run whose accepted steps stay at it for
+  /// `max_steps_at_min_time_step` steps in a row (it cannot progress).
+  double min_time_step = 1e-9;
+  int max_steps_at_min_time_step = 1000;
+  /// g2: largest displacement of any vertex in a step as a share of half the domain size.
+  double max_displacement_ratio = 0.01;
+  /// g3: allowed penetration as a share of half the domain size.
+  double allowed_penetration_ratio = 4e-4;
+  /// Normal contact penalty (N/m); 0 = automatic: penalty_factor * E_max * block size.
+  double penalty = 0.0;
+  double penalty_factor = 40.0;      ///< - (automatic penalty)
+  double shear_penalty_ratio = 2.5;  ///< k_n / k_s
+  /// Fixed points' spring (N/m) as a multiple of the normal contact penalty.
+  double fixed_point_penalty_ratio = 10.0;
+  /// Per attempt (the 2D reference allows 6 + 2). A pile of 1000 cubes landing on its base
+  /// opens and closes a thousand contacts in one step and settles in 20-30 iterations, the
+  /// changes falling off as a cascade; with 20 it redid such steps at 0.3 dt, to 6e-5 s.
+  int max_open_close_iterations = 40;
+  /// The open-close iteration has settled when no contact closed and at most this share of
+  /// the contacts opened or changed between locked and sliding in its last update (rounded
+  /// down: below 1 / this many contacts, none may change, the classic rule). Among the 2e5 contacts
+  /// of a large model a few always sit at a round-off gap where closing pushes them open and
+  /// opening lets them close; with no allowance every step then failed its 20 iterations and cut dt
+  /// by 0.3, down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
+  /// new state for the next step; one that closed always takes another iteration.
+  double open_close_tolerance = 1e-4;
+  double iteration_time_step_factor = 0.3;  ///< dt multiplier when the iteration fails
+  int max_step_attempts = 40;               ///< redo limit per step
+  /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a
+  /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
+  /// blocks. A contact closed at that depth starts with 1/2 k_n d^2 in its spring, which the
+  /// step gives back as motion: at 1e-6 l0 the vibrating corners of two deformable cubes
+  /// closed 4e-6 m deep, 113 J in one step against 1 J of kinetic energy, and the pair
+  /// bounced apart at dt = 2.5e-4 s. 1e-8 keeps the hysteresis above round-off.
+  double close_threshold_ratio = 1e-8;
+  /// A closed contact opens when d > T A / k_n + this * l0. The 2D reference's 2e-7 lets a
+  /// stiff penalty pull with k_n * 2e-7 l0 (~10^5 N here) before opening, which glues a
+  /// wedge to a plane it should leave; 1e-10 keeps only a round-off margin.
+  double open_threshold_ratio = 1e-10;
+  /// Sub-contact points (m): 0 = the corners of each face carry its contact (their area
+  /// weights spread cohesion over the overlap of the faces); > 0 = every face at least two
+  /// cells of this size wide both ways is cut into cells of about this size, and a point at
+  /// each cell's centroid, carrying the cell's area, is a contact of its own against the
+  /// face facing it (docs/stability.md, "Contact points"). Needed where a face contact opens
+  /// in part: a base whose heel lifts keeps its cohesion on the compressed part only.
+  double contact_point_spacing = 0.0;
+  /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
+  double half_domain_size = 0.0;
+  /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
+  /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
+  SolverOptions solver{.kind = SolverKind::Auto};
+};
+
+/// The relative residual |K d - F| / |F| that SolverKind::Auto gives PCG. The displacement
+/// error it leaves must be a small share of the allowed penetration g3 l0 while a step moves
+/// vertices by up to g2 l0: a relative error of 1e-2 g3 / g2 in d, divided by 1e3 for the
+/// condition number of the block-Jacobi preconditioned K (the residual bounds the error only
+/// up to it). 4e-7 with the default g2 = 0.01, g3 = 4e-4.
+double autoPcgTolerance(const DdaSettings& settings);
+/// The solver options a run with these settings and `movable` movable blocks uses (Auto
+/// resolved; block size set from the kinematics).
+SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable);
+
+}  // namespace rockmass::dda3d
