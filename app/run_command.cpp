@@ -341,15 +341,234 @@ io::RunInfo stageRun(const io::RunInfo& run, io::Timings timings) {
   return info;
 }
 
+/// What the stages of one `run` share: the scene, the output folder, and what goes into
+/// summary.json (the header with the stages' names and timings, each stage's summary part,
+/// the run report with the files written). Each stage adds its name, its timings, its files
+/// and its part.
+struct RunContext {
+  const RunOptions& options;
+  io::Scene scene;
+  StagePlan plan;
+  fs::path out;
+  io::RunInfo run;
+  io::RunReport report;
+  std::vector<io::StageSummary> parts;
+  double write_seconds = 0.0;
+
+  /// Runs `write`, its time counted in the "write" timing.
+  template <class Write>
+  void timedWrite(const Write& write) {
+    const auto start = Clock::now();
+    write();
+    write_seconds += secondsSince(start);
+  }
+  void addFiles(std::initializer_list<std::string> files) {
+    report.files.insert(report.files.end(), files);
+  }
+  /// Adds a stage's name and wall time.
+  void addStage(const std::string& name, double seconds) {
+    run.stages.push_back(name);
+    run.timings.emplace_back(name, seconds);
+  }
+};
+
+/// DFN: always (every other stage is built on the network).
+DfnStage dfnStage(RunContext& ctx) {
+  DfnStage dfn = runDfnStage(ctx.scene, ctx.options.common.scene);
+  ctx.addStage("dfn", dfn.seconds);
+  ctx.timedWrite([&] { writeDfnFiles(ctx.out, ctx.scene, dfn.network); });
+  ctx.addFiles({"fractures.csv", "fractures.fab", "fractures.vtu"});
+  ctx.parts.push_back({"dfn", io::formatDfnSummary(stageRun(ctx.run, {}), dfn.network, dfn.stats)});
+  return dfn;
+}
+
+/// The vertical section through the blocks (section.csv, section.svg).
+void sectionStage(RunContext& ctx, const SceneBlocks& cut, const geometry::FractureNetwork& network,
+                  const std::pair<geometry::SectionPlane, std::string>& section) {
+  const auto start = Clock::now();
+  const io::Section s =
+      io::sectionOf(cut.model, network, section.first, section.second, cut.input.disc_segments);
+  ctx.run.timings.emplace_back("section", secondsSince(start));
+  ctx.timedWrite([&] {
+    io::writeFileAtomically(ctx.out / "section.csv",
+                            io::formatSectionCsv(s, network, ctx.scene.materials));
+    io::writeFileAtomically(ctx.out / "section.svg",
+                            io::formatSectionSvg(s, network, ctx.scene.materials));
+  });
+  ctx.report.section = section.second;
+  ctx.addFiles({"section.csv", "section.svg"});
+  std::fprintf(stderr, "run: section %s: %zu piece polygons, %zu traces\n", section.second.c_str(),
+               s.polygons.size(), s.traces.size());
+}
+
+/// Blocks (and the section through them).
+SceneBlocks cutStage(RunContext& ctx, const geometry::FractureNetwork& network,
+                     const std::optional<std::pair<geometry::SectionPlane, std::string>>& section) {
+  const std::string& cutter = ctx.plan.cutter;
+  const auto start = Clock::now();
+  SceneBlocks cut = cutSceneBlocks(ctx.scene, network, cutter, ctx.options.common.scene);
+  const double seconds = secondsSince(start);
+  std::fprintf(stderr, "run: %zu blocks (%d pieces), %s cutter (%.2f s)\n", cut.model.blocks.size(),
+               cut.pieces, cutter.c_str(), seconds);
+  ctx.addStage("cut", seconds);
+  ctx.report.cutter = cutter;
+  ctx.timedWrite([&] { writeBlocksFiles(ctx.out, ctx.scene, cut.model, network); });
+  ctx.addFiles({"blocks.csv", "blocks.vtu", "faces.vtu"});
+  ctx.parts.push_back(
+      {"cut",
+       io::formatBlocksSummary(stageRun(ctx.run, {{"cut_split", cut.split_seconds},
+                                                  {"cut_assemble", cut.assemble_seconds}}),
+                               network, cut.model, cutInfoOf(cut, cutter), ctx.scene.materials)});
+  if (section) sectionStage(ctx, cut, network, *section);
+  return cut;
+}
+
+/// RQD: balls, boreholes, the grid.
+void rqdStage(RunContext& ctx, const geometry::FractureNetwork& network, RqdPlan plan,
+              const RqdOverrides& overrides) {
+  RqdStage stage =
+      runRqdStage(ctx.scene, ctx.options.common.scene, network, std::move(plan), overrides);
+  ctx.run.stages.insert(ctx.run.stages.end(), stage.stages.begin(), stage.stages.end());
+  ctx.run.timings.insert(ctx.run.timings.end(), stage.timings.begin(), stage.timings.end());
+  ctx.timedWrite([&] { writeRqdFiles(ctx.out, stage.report); });
+  if (!stage.report.balls.empty()) {
+    ctx.report.files.push_back("rqd_balls.csv");
+    for (const io::BallReport& ball : stage.report.balls) {
+      for (const double t : ball.result.thresholds) {
+        ctx.report.files.push_back(io::ballPlyName(ball.name, t));
+      }
+    }
+  }
+  if (stage.report.boreholes) ctx.report.files.push_back("boreholes.csv");
+  if (stage.report.grid) ctx.report.files.push_back("rqd.vdb");
+  ctx.parts.push_back({"rqd", io::formatRqdSummary(stageRun(ctx.run, {}), stage.report)});
+}
+
+/// The DDA's blocks: those of the cut with the small ones glued
+/// (analysis.dda.min_block_volume), or with analysis.dda.region a second cut of the same
+/// network in the region (ddaScene), the blocks stage keeping the whole domain.
+blocks::BlockModel ddaStageBlocks(RunContext& ctx, const io::Scene& dda_scene,
+                                  const geometry::FractureNetwork& network,
+                                  const std::optional<SceneBlocks>& cut,
+                                  std::optional<blocks::MergeReport>& glued) {
+  if (!(ctx.scene.analysis.dda && ctx.scene.analysis.dda->region)) {
+    return ddaBlocks(ctx.scene, cut->model, glued);
+  }
+  const auto start = Clock::now();
+  const SceneBlocks region =
+      cutSceneBlocks(dda_scene, network, ctx.plan.cutter, ctx.options.common.scene);
+  const double seconds = secondsSince(start);
+  ctx.run.timings.emplace_back("dda_region_cut", seconds);
+  std::fprintf(stderr, "run: DDA region: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
+               region.model.blocks.size(), region.pieces, ctx.plan.cutter.c_str(), seconds);
+  return ddaBlocks(dda_scene, region.model, glued);
+}
+
+/// The stability analyses' model, built before the DDA stage so that its input checks (the
+/// monitors that analysis.equilibrium.watch: monitors watches) come before minutes of work.
+dda3d::DdaModel stabilityModel(RunContext& ctx, io::Scene& dda_scene,
+                               const blocks::BlockModel& dda_blocks,
+                               const geometry::FractureNetwork& network) {
+  dda3d::DdaModel model = io::buildDdaModel(dda_scene, dda_blocks, network);
+  io::EquilibriumAnalysis* equilibrium =
+      dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
+  if (ctx.options.quick && equilibrium && equilibrium->watch_monitors &&
+      dda3d::monitoredMovableBlocks(model).empty()) {
+    // The quick box moved the monitors into blocks its supports hold: watch every block.
+    equilibrium->watch_monitors = false;
+    ctx.report.warnings.push_back(
+        "quick: analysis.equilibrium.watch: monitors changed to all: every monitor lies in "
+        "a held block of the quick box");
+    std::fprintf(stderr, "run: warning: %s\n", ctx.report.warnings.back().c_str());
+  }
+  checkWatchedMonitors(dda_scene, model);
+  return model;
+}
+
+/// The DDA run of analysis.dda.
+void ddaStage(RunContext& ctx, const io::Scene& dda_scene, const blocks::BlockModel& dda_blocks,
+              const geometry::FractureNetwork& network, const DdaOverrides& overrides,
+              const std::optional<blocks::MergeReport>& glued) {
+  const auto start = Clock::now();
+  const DdaStage stage = runDdaStage(dda_scene, dda_blocks, network, overrides, ctx.out, glued);
+  ctx.addStage("dda", secondsSince(start));
+  ctx.run.effects = stage.effects;
+  ctx.timedWrite([&] { writeDdaFiles(ctx.out, stage); });
+  ctx.addFiles({"history.csv", "steps.csv", "dda.pvd"});
+  ctx.report.files.insert(ctx.report.files.end(), stage.frame_files.begin(),
+                          stage.frame_files.end());
+  ctx.parts.push_back({"dda", io::formatDdaSummary(stageRun(ctx.run, {}), stage.summary)});
+}
+
+/// Overload and strength reduction, from one start state: the one place where they are wired.
+void stabilityStage(RunContext& ctx, const io::Scene& dda_scene,
+                    const dda3d::DdaModel& stability_model,
+                    const std::optional<blocks::MergeReport>& glued) {
+  const auto start_state = Clock::now();
+  const StabilityStart begin = stabilityStart(dda_scene, stability_model);
+  const dda3d::DdaModel& model = begin.model;
+  if (begin.settling) ctx.run.timings.emplace_back("stability_start", secondsSince(start_state));
+  std::optional<dda3d::FactorSearchResult> overload;
+  std::optional<dda3d::FactorSearchResult> strength;
+  dda3d::ActiveTerms terms;
+  if (ctx.plan.overload) {
+    const auto start = Clock::now();
+    overload = runSceneOverload(dda_scene, begin);
+    ctx.addStage("overload", secondsSince(start));
+    addRunTerms(*overload, terms);
+    ctx.timedWrite([&] {
+      io::writeFileAtomically(ctx.out / "overload.csv",
+                              io::formatOverloadCsv(monitorNames(model), *overload));
+    });
+    ctx.report.files.push_back("overload.csv");
+  }
+  if (ctx.plan.strength_reduction) {
+    const auto start = Clock::now();
+    strength = runSceneStrengthReduction(dda_scene, begin);
+    ctx.addStage("strength_reduction", secondsSince(start));
+    addRunTerms(*strength, terms);
+  }
+  for (const std::string& effect : terms.names()) {
+    if (std::find(ctx.run.effects.begin(), ctx.run.effects.end(), effect) ==
+        ctx.run.effects.end()) {
+      ctx.run.effects.push_back(effect);
+    }
+  }
+  const io::StabilitySummary summary = stabilitySummary(
+      dda_scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
+  ctx.parts.push_back({"stability", io::formatStabilitySummary(stageRun(ctx.run, {}), summary)});
+}
+
+/// summary.json, then the figures (and summary.json again, with them).
+void finishRun(RunContext& ctx) {
+  std::sort(ctx.report.files.begin(), ctx.report.files.end());
+  ctx.report.files.push_back("summary.json");
+  ctx.run.timings.emplace_back("write", ctx.write_seconds);
+  io::writeFileAtomically(ctx.out / "summary.json",
+                          io::formatRunSummary(ctx.run, ctx.parts, ctx.report));
+  if (!ctx.options.no_figures) {
+    const auto start = Clock::now();
+    ctx.report.figures = makeFigures(ctx.options, ctx.out, ctx.report.warnings);
+    ctx.run.timings.emplace_back("figures", secondsSince(start));
+    io::writeFileAtomically(ctx.out / "summary.json",
+                            io::formatRunSummary(ctx.run, ctx.parts, ctx.report));
+  }
+  double total = 0.0;
+  for (const auto& [stage, seconds] : ctx.run.timings) total += seconds;
+  std::fprintf(stderr, "run: %zu stages in %.1f s; wrote %s\n", ctx.run.stages.size(), total,
+               ctx.out.string().c_str());
+}
+
 int runAll(const RunOptions& options) {
   const std::string& scene_path = options.common.scene;
-  io::Scene scene = loadScene(options.common);
+  RunContext ctx{options, loadScene(options.common), {}, {}, {}, {}, {}, 0.0};
+  io::Scene& scene = ctx.scene;
   const geometry::Box full_domain = scene.dfn.domain;
-  io::RunReport report;
-  report.quick = options.quick;
-  if (options.quick) report.warnings = makeQuick(scene);
-  report.domain = scene.dfn.domain;
-  const StagePlan plan = planStages(scene, options);
+  ctx.report.quick = options.quick;
+  if (options.quick) ctx.report.warnings = makeQuick(scene);
+  ctx.report.domain = scene.dfn.domain;
+  ctx.plan = planStages(scene, options);
+  const StagePlan& plan = ctx.plan;
 
   // Everything the stages read is checked before any work is done.
   RqdOverrides rqd_overrides;
@@ -363,190 +582,27 @@ int runAll(const RunOptions& options) {
   if (options.quick && plan.dda) {
     dda_overrides.steps = std::min(scene.analysis.dda->steps, kQuickDdaSteps);
   }
-  const fs::path out = prepareOutput(options.common.output);
+  ctx.out = prepareOutput(options.common.output);
+  ctx.run.command = "run";
+  ctx.run.scene = scene_path;
+  ctx.run.name = scene.name;
+  ctx.run.seed = scene.seed;
 
-  io::RunInfo run;
-  run.command = "run";
-  run.scene = scene_path;
-  run.name = scene.name;
-  run.seed = scene.seed;
-  std::vector<io::StageSummary> parts;
-  double write_seconds = 0.0;
-  const auto timedWrite = [&](const auto& write) {
-    const auto start = Clock::now();
-    write();
-    write_seconds += secondsSince(start);
-  };
-
-  // DFN: always (every other stage is built on the network).
-  const DfnStage dfn = runDfnStage(scene, scene_path);
-  run.stages.push_back("dfn");
-  run.timings.emplace_back("dfn", dfn.seconds);
-  timedWrite([&] { writeDfnFiles(out, scene, dfn.network); });
-  report.files.insert(report.files.end(), {"fractures.csv", "fractures.fab", "fractures.vtu"});
-  parts.push_back({"dfn", io::formatDfnSummary(stageRun(run, {}), dfn.network, dfn.stats)});
-
-  // Blocks (and the section through them).
+  const DfnStage dfn = dfnStage(ctx);
   std::optional<SceneBlocks> cut;
-  if (plan.cut) {
-    auto start = Clock::now();
-    cut = cutSceneBlocks(scene, dfn.network, plan.cutter, scene_path);
-    const double cut_seconds = secondsSince(start);
-    std::fprintf(stderr, "run: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
-                 cut->model.blocks.size(), cut->pieces, plan.cutter.c_str(), cut_seconds);
-    run.stages.push_back("cut");
-    run.timings.emplace_back("cut", cut_seconds);
-    report.cutter = plan.cutter;
-    timedWrite([&] { writeBlocksFiles(out, scene, cut->model, dfn.network); });
-    report.files.insert(report.files.end(), {"blocks.csv", "blocks.vtu", "faces.vtu"});
-    parts.push_back(
-        {"cut", io::formatBlocksSummary(stageRun(run, {{"cut_split", cut->split_seconds},
-                                                       {"cut_assemble", cut->assemble_seconds}}),
-                                        dfn.network, cut->model, cutInfoOf(*cut, plan.cutter),
-                                        scene.materials)});
-    if (section) {
-      start = Clock::now();
-      const int segments = cut->input.disc_segments;
-      const io::Section s =
-          io::sectionOf(cut->model, dfn.network, section->first, section->second, segments);
-      run.timings.emplace_back("section", secondsSince(start));
-      timedWrite([&] {
-        io::writeFileAtomically(out / "section.csv",
-                                io::formatSectionCsv(s, dfn.network, scene.materials));
-        io::writeFileAtomically(out / "section.svg",
-                                io::formatSectionSvg(s, dfn.network, scene.materials));
-      });
-      report.section = section->second;
-      report.files.insert(report.files.end(), {"section.csv", "section.svg"});
-      std::fprintf(stderr, "run: section %s: %zu piece polygons, %zu traces\n",
-                   section->second.c_str(), s.polygons.size(), s.traces.size());
-    }
+  if (plan.cut) cut = cutStage(ctx, dfn.network, section);
+  if (plan.rqd) rqdStage(ctx, dfn.network, std::move(*rqd_plan), rqd_overrides);
+  const bool stability = plan.overload || plan.strength_reduction;
+  if (plan.dda || stability) {
+    io::Scene dda_scene = ddaScene(scene);
+    std::optional<blocks::MergeReport> glued;
+    const blocks::BlockModel dda_blocks = ddaStageBlocks(ctx, dda_scene, dfn.network, cut, glued);
+    std::optional<dda3d::DdaModel> stability_model;
+    if (stability) stability_model = stabilityModel(ctx, dda_scene, dda_blocks, dfn.network);
+    if (plan.dda) ddaStage(ctx, dda_scene, dda_blocks, dfn.network, dda_overrides, glued);
+    if (stability) stabilityStage(ctx, dda_scene, *stability_model, glued);
   }
-
-  // RQD.
-  if (plan.rqd) {
-    RqdStage stage =
-        runRqdStage(scene, scene_path, dfn.network, std::move(*rqd_plan), rqd_overrides);
-    run.stages.insert(run.stages.end(), stage.stages.begin(), stage.stages.end());
-    run.timings.insert(run.timings.end(), stage.timings.begin(), stage.timings.end());
-    timedWrite([&] { writeRqdFiles(out, stage.report); });
-    if (!stage.report.balls.empty()) {
-      report.files.push_back("rqd_balls.csv");
-      for (const io::BallReport& ball : stage.report.balls) {
-        for (const double t : ball.result.thresholds) {
-          report.files.push_back(io::ballPlyName(ball.name, t));
-        }
-      }
-    }
-    if (stage.report.boreholes) report.files.push_back("boreholes.csv");
-    if (stage.report.grid) report.files.push_back("rqd.vdb");
-    parts.push_back({"rqd", io::formatRqdSummary(stageRun(run, {}), stage.report)});
-  }
-
-  // DDA (on the blocks with the small ones glued, analysis.dda.min_block_volume).
-  // With analysis.dda.region, the DDA's blocks are a second cut of the same network in the
-  // region (ddaScene): the blocks stage above keeps the whole domain.
-  std::optional<blocks::BlockModel> dda_blocks;
-  std::optional<blocks::MergeReport> glued;
-  io::Scene dda_scene = ddaScene(scene);
-  if (plan.dda || plan.overload || plan.strength_reduction) {
-    if (scene.analysis.dda && scene.analysis.dda->region) {
-      const auto start = Clock::now();
-      const SceneBlocks region = cutSceneBlocks(dda_scene, dfn.network, plan.cutter, scene_path);
-      const double seconds = secondsSince(start);
-      run.timings.emplace_back("dda_region_cut", seconds);
-      std::fprintf(stderr, "run: DDA region: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
-                   region.model.blocks.size(), region.pieces, plan.cutter.c_str(), seconds);
-      dda_blocks = ddaBlocks(dda_scene, region.model, glued);
-    } else {
-      dda_blocks = ddaBlocks(scene, cut->model, glued);
-    }
-  }
-  // The stability analyses' model, built before the DDA stage so that its input checks (the
-  // monitors that analysis.equilibrium.watch: monitors watches) come before minutes of work.
-  std::optional<dda3d::DdaModel> stability_model;
-  if (plan.overload || plan.strength_reduction) {
-    stability_model = io::buildDdaModel(dda_scene, *dda_blocks, dfn.network);
-    io::EquilibriumAnalysis* equilibrium =
-        dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
-    if (options.quick && equilibrium && equilibrium->watch_monitors &&
-        dda3d::monitoredMovableBlocks(*stability_model).empty()) {
-      // The quick box moved the monitors into blocks its supports hold: watch every block.
-      equilibrium->watch_monitors = false;
-      report.warnings.push_back(
-          "quick: analysis.equilibrium.watch: monitors changed to all: every monitor lies in "
-          "a held block of the quick box");
-      std::fprintf(stderr, "run: warning: %s\n", report.warnings.back().c_str());
-    }
-    checkWatchedMonitors(dda_scene, *stability_model);
-  }
-  if (plan.dda) {
-    const auto start = Clock::now();
-    const DdaStage stage =
-        runDdaStage(dda_scene, *dda_blocks, dfn.network, dda_overrides, out, glued);
-    run.stages.push_back("dda");
-    run.timings.emplace_back("dda", secondsSince(start));
-    run.effects = stage.effects;
-    timedWrite([&] { writeDdaFiles(out, stage); });
-    report.files.insert(report.files.end(), {"history.csv", "steps.csv", "dda.pvd"});
-    report.files.insert(report.files.end(), stage.frame_files.begin(), stage.frame_files.end());
-    parts.push_back({"dda", io::formatDdaSummary(stageRun(run, {}), stage.summary)});
-  }
-
-  // ===== Overload and strength reduction: the one place where they are wired. =====
-  if (plan.overload || plan.strength_reduction) {
-    const auto start_state = Clock::now();
-    const StabilityStart begin = stabilityStart(dda_scene, *stability_model);
-    const dda3d::DdaModel& model = begin.model;
-    if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start_state));
-    std::optional<dda3d::FactorSearchResult> overload;
-    std::optional<dda3d::FactorSearchResult> strength;
-    dda3d::ActiveTerms terms;
-    if (plan.overload) {
-      const auto start = Clock::now();
-      overload = runSceneOverload(dda_scene, begin);
-      run.stages.push_back("overload");
-      run.timings.emplace_back("overload", secondsSince(start));
-      addRunTerms(*overload, terms);
-      timedWrite([&] {
-        io::writeFileAtomically(out / "overload.csv",
-                                io::formatOverloadCsv(monitorNames(model), *overload));
-      });
-      report.files.push_back("overload.csv");
-    }
-    if (plan.strength_reduction) {
-      const auto start = Clock::now();
-      strength = runSceneStrengthReduction(dda_scene, begin);
-      run.stages.push_back("strength_reduction");
-      run.timings.emplace_back("strength_reduction", secondsSince(start));
-      addRunTerms(*strength, terms);
-    }
-    for (const std::string& effect : terms.names()) {
-      if (std::find(run.effects.begin(), run.effects.end(), effect) == run.effects.end()) {
-        run.effects.push_back(effect);
-      }
-    }
-    const io::StabilitySummary summary = stabilitySummary(
-        dda_scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
-    parts.push_back({"stability", io::formatStabilitySummary(stageRun(run, {}), summary)});
-  }
-  // ===== end of overload / strength reduction =====
-
-  std::sort(report.files.begin(), report.files.end());
-  report.files.push_back("summary.json");
-  run.timings.emplace_back("write", write_seconds);
-  io::writeFileAtomically(out / "summary.json", io::formatRunSummary(run, parts, report));
-
-  if (!options.no_figures) {
-    const auto start = Clock::now();
-    report.figures = makeFigures(options, out, report.warnings);
-    run.timings.emplace_back("figures", secondsSince(start));
-    io::writeFileAtomically(out / "summary.json", io::formatRunSummary(run, parts, report));
-  }
-  double total = 0.0;
-  for (const auto& [stage, seconds] : run.timings) total += seconds;
-  std::fprintf(stderr, "run: %zu stages in %.1f s; wrote %s\n", run.stages.size(), total,
-               out.string().c_str());
+  finishRun(ctx);
   return 0;
 }
 
