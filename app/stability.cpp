@@ -55,17 +55,15 @@ std::string describe(const dda3d::FactorSearchResult& r) {
 dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const StabilityStart& start) {
   dda3d::FactorSearch search = io::overloadSearch(scene);
   search.start_contacts = start.contacts;
-  return dda3d::runOverload(start.model, io::equilibriumDdaSettings(scene),
-                            io::loadScaling(*scene.analysis.overload), search,
-                            progress("overload"));
+  return dda3d::runOverload(start.model, start.settings, io::loadScaling(*scene.analysis.overload),
+                            search, progress("overload"));
 }
 
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                                     const StabilityStart& start) {
   dda3d::FactorSearch search = io::strengthReductionSearch(scene);
   search.start_contacts = start.contacts;
-  return dda3d::runStrengthReduction(start.model, io::equilibriumDdaSettings(scene), search,
-                                     progress("strength"));
+  return dda3d::runStrengthReduction(start.model, start.settings, search, progress("strength"));
 }
 
 void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) {
@@ -80,10 +78,11 @@ void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) 
 
 StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
   checkWatchedMonitors(scene, model);
+  const dda3d::DdaSettings settings = io::equilibriumDdaSettings(scene);
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
-    return {model, {}, std::nullopt};
+    return {model, settings, {}, std::nullopt};
   }
-  dda3d::Simulation sim(model, io::equilibriumDdaSettings(scene));
+  dda3d::Simulation sim(model, settings);
   const dda3d::EquilibriumResult settled =
       dda3d::runToEquilibrium(sim, io::equilibriumSettings(scene));
   std::fprintf(stderr,
@@ -91,7 +90,7 @@ StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& mod
                "runs from it\n",
                settled.reached ? "at rest" : "NOT at rest", settled.steps,
                settled.unbalanced_ratio);
-  return {dda3d::settledModel(sim), sim.contacts(), settled};
+  return {dda3d::settledModel(sim), settings, sim.contacts(), settled};
 }
 
 std::vector<std::string> monitorNames(const dda3d::DdaModel& model) {

@@ -18,7 +18,10 @@ namespace rockmass::app {
 
 /// What the overload and strength-reduction runs start from.
 struct StabilityStart {
-  dda3d::DdaModel model;                 ///< the model of factor 1
+  dda3d::DdaModel model;  ///< the model of factor 1
+  /// The engine settings of every run (io::equilibriumDdaSettings: analysis.dda with the
+  /// equilibrium's dynamic ratio).
+  dda3d::DdaSettings settings;
   std::vector<dda3d::Contact> contacts;  ///< contacts to start from (empty: none)
   /// The run that settled the model (start: settled); none for an unloaded start.
   std::optional<dda3d::EquilibriumResult> settling;

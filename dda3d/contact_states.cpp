@@ -54,16 +54,157 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& s
          displacementMatrix(c.foot, bj.centroid) * dj;
 }
 
+namespace {
+
+/// The thresholds of the state changes in one update (Simulation::updateContactStates).
+struct StateRules {
+  double penalty = 0.0;            ///< k_n (N/m)
+  double ks = 0.0;                 ///< k_s (N/m)
+  double close_tolerance = 0.0;    ///< an open contact closes past this penetration (m)
+  double open_tolerance = 0.0;     ///< a closed one opens past this gap (m), T A / k_n aside
+  double reverse_tolerance = 0.0;  ///< a slip reversal below this is round-off (m)
+  double allowed = 0.0;            ///< the allowed penetration g3 l0 (m)
+};
+
+/// f N, plus c A while the contact keeps its cohesion.
+double strengthOf(const Contact& c, const DdaJoint& joint) {
+  return joint.friction * std::max(0.0, c.normal_force) +
+         (c.bonded ? joint.cohesion * c.area : 0.0);
+}
+
+/// An open contact at gap `d` after the solve: closes (locked, no shear) past the threshold.
+void updateOpenContact(Contact& c, double d, const StateRules& rules) {
+  c.normal_force = 0.0;
+  // A contact that closed, opened (its pull over the hold limit below) and is open again
+  // in this step is met mid-step by a block arriving fast: solved closed it pulls,
+  // solved open it penetrates (a cube landing at 2.5 m/s on a pile: 2.6 um and
+  // 0.27 mm), and flipping it every iteration never settled; the steps of a landing pile
+  // of 1 000 cubes were redone down to 2e-5 s (docs/dda3d.md). It stays open while its
+  // penetration is at most half its approach in the step (gap0 - d), i.e. less than the
+  // gap it closed, and a tenth of the allowed penetration: found penetrating at the next
+  // step, its spring pushes it out at about 2 |d| / dt, at most its approach speed (a
+  // restitution of 1 or less; the scheme's damping takes the rest). A resting contact (no
+  // approach) closes as any other: left open whatever its approach, contacts sank and
+  // were pushed out every step, and a settled pile boiled at 0.3 m/s.
+  const double approach = c.gap0 - d;
+  const double close_at = c.toggles >= 3 ? std::max(rules.close_tolerance,
+                                                    std::min(kChatterClosingRatio * rules.allowed,
+                                                             0.5 * kLateRestitution * approach))
+                                         : rules.close_tolerance;
+  if (d < -close_at) {
+    c.state = ContactState::Locked;
+    c.shear.setZero();
+    ++c.toggles;
+  }
+}
+
+/// A locked contact whose spring, with this iteration's `slip`, carries more than its
+/// strength `limit` (beyond the allowance) starts to slide.
+void updateLockedContact(Contact& c, const Vec3& slip, double limit, const DdaJoint& joint,
+                         const StateRules& rules) {
+  // Over the limit by more than a round-off slip: a contact whose spring the
+  // predictor set at the limit must not slide on the round-off of a resting block.
+  const Vec3 shear = tangential(c.shear, c.normal) + slip;
+  // The allowance is a force: ks times the round-off slip, but never more than
+  // kStickAllowance of the strength. Allowed ks times the round-off alone, a stiff
+  // penalty (40 times E l0) gave a frictionless joint 250 N of shear strength per
+  // contact: the joint between two cubes pushed down a slope carried 10 % of the
+  // front cube's weight to the rear one, and the pair slid 17 % too fast
+  // (kStickAllowance).
+  const double allowance = std::min(rules.ks * rules.reverse_tolerance, kStickAllowance * limit);
+  if (!c.held && rules.ks * (shear.norm() - allowance / rules.ks) > limit) {
+    ++c.flips;
+    c.state = ContactState::Sliding;
+    // Shi's brittle joint loses its cohesion and tension as it starts to slide; the
+    // plastic joint keeps them while it slides (docs/stability.md, "Joint models").
+    if (joint.model == JointModel::Brittle) c.bonded = false;
+    c.slide_direction = shear.normalized();
+    c.slip_length = 0.0;  // not known yet: no transverse tangent
+  }
+}
+
+/// A sliding contact: sticks where its friction would drive it back, else follows its slip.
+void updateSlidingContact(Contact& c, const Vec3& rigid_slip, double limit,
+                          const StateRules& rules) {
+  // A contact at its friction limit with no slip velocity can flip between locked
+  // and sliding forever; after two flips in a step it stays sliding (the friction
+  // force then holds it at the limit, which is what both states mean there), unless its
+  // friction then drives it back (below).
+  const bool frozen = c.flips >= 2;
+  const double back = -rigid_slip.dot(c.slide_direction);
+  if (limit > 0.0 && (frozen ? back > std::max(rules.reverse_tolerance, limit / rules.ks)
+                             : back > rules.reverse_tolerance)) {
+    // Friction alone would drive it back: it sticks, its spring carrying the friction.
+    // A frozen contact (above) sticks too, for the rest of the step, once its friction
+    // drove it back by more than its shear spring's stretch at the strength: its
+    // friction, a load of f N along the direction of the last iteration's slip, did
+    // work on the slip instead of resisting it. On a light block between heavy ones (a
+    // 1 cm sliver, 106 kg, under 1e5 N corner contacts) the frozen friction forces of
+    // its two faces lined up and threw it sideways at 1 m/s in one step (docs/dda3d.md,
+    // "Known limits"). A smaller reversal is the creep of a contact at its limit: it
+    // stays sliding, as the frozen rule means (a stuck spring would hold a wedge at
+    // SRF 1.6 whose FS is 1.5).
+    ++c.flips;
+    c.state = ContactState::Locked;
+    c.shear = (limit / rules.ks) * c.slide_direction;
+    c.held = frozen;
+    return;
+  }
+  // While the contact creeps (its slip in the step shorter than its shear spring's
+  // stretch at the start of the step, the predictor's), the friction opposes the
+  // trial shear, that stretch plus the slip (a return mapping). Along the slip alone,
+  // a contact that creeps by 1e-7 m a step took its direction from the round-off of
+  // that slip: its sideways part rolled a block on a plane, and the corners slid in
+  // turn on either side. A contact that slides farther follows its slip.
+  const Vec3 stretch = tangential(c.shear, c.normal);
+  const Vec3 trial = rigid_slip.norm() < stretch.norm() ? Vec3(stretch + rigid_slip) : rigid_slip;
+  if (trial.norm() > 0.0) {
+    c.slide_direction = trial.normalized();
+    c.slip_length = trial.norm();
+  }
+}
+
+/// A closed (locked or sliding) contact at gap `d`: opens past its tension and the margin,
+/// unless held (`stays_closed`); else its shear state is updated.
+void updateClosedContact(Contact& c, double d, const Vec3& slip, const Vec3& rigid_slip,
+                         bool stays_closed, const DdaJoint& joint, const StateRules& rules) {
+  const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
+  c.normal_force = -rules.penalty * d;
+  // The margin is a round-off distance: its force, penalty times it, sums over the
+  // points of a face, so a sub-contact point takes its share (with the whole margin each,
+  // the 512 points under a dam's lifting toe held 3e5 N of tension at 4.5e-10 m, and
+  // the dam stood at 1.24 times its sliding factor).
+  if (!stays_closed && d > tension / rules.penalty + c.share * rules.open_tolerance) {
+    ++c.toggles;
+    // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
+    c.state = ContactState::Open;
+    c.bonded = false;
+    c.normal_force = 0.0;
+    c.shear.setZero();
+    return;
+  }
+  const double limit = strengthOf(c, joint);
+  if (c.state == ContactState::Locked) {
+    updateLockedContact(c, slip, limit, joint, rules);
+  } else {
+    updateSlidingContact(c, rigid_slip, limit, rules);
+  }
+}
+
+}  // namespace
+
 Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& solution) {
-  const double close_tolerance = settings_.close_threshold_ratio * half_domain_;
-  const double open_tolerance = settings_.open_threshold_ratio * half_domain_;
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  StateRules rules;
+  rules.penalty = penalty_;
+  rules.ks = penalty_ / settings_.shear_penalty_ratio;
+  rules.close_tolerance = settings_.close_threshold_ratio * half_domain_;
+  rules.open_tolerance = settings_.open_threshold_ratio * half_domain_;
   // A sliding contact sticks only when its slip reverses by more than round-off: at a tiny
   // time step (or at rest) the rigid slip is ~1e-13 m in a random direction, and reading its
   // sign locked and released thousands of contacts of the Xiangjiaba model in turn, so that
   // the iteration never settled at any time step.
-  const double reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
-  const double allowed = settings_.allowed_penetration_ratio * half_domain_;
+  rules.reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
+  rules.allowed = settings_.allowed_penetration_ratio * half_domain_;
   StateChanges changes;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     Contact& c = contacts_[k];
@@ -75,34 +216,10 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     // tilts the friction forces sideways so that a block with phi > theta creeps.
     const Vec3 rigid_slip = tangential(relativeDisplacement(c, solution, true), c.normal);
     c.gap = d;
-    const DdaJoint& joint = jointOf(c);
     const ContactState before = c.state;
     if (c.state == ContactState::Open) {
-      c.normal_force = 0.0;
-      // A contact that closed, opened (its pull over the hold limit below) and is open again
-      // in this step is met mid-step by a block arriving fast: solved closed it pulls,
-      // solved open it penetrates (a cube landing at 2.5 m/s on a pile: 2.6 um and
-      // 0.27 mm), and flipping it every iteration never settled; the steps of a landing pile
-      // of 1 000 cubes were redone down to 2e-5 s (docs/dda3d.md). It stays open while its
-      // penetration is at most half its approach in the step (gap0 - d), i.e. less than the
-      // gap it closed, and a tenth of the allowed penetration: found penetrating at the next
-      // step, its spring pushes it out at about 2 |d| / dt, at most its approach speed (a
-      // restitution of 1 or less; the scheme's damping takes the rest). A resting contact (no
-      // approach) closes as any other: left open whatever its approach, contacts sank and
-      // were pushed out every step, and a settled pile boiled at 0.3 m/s.
-      const double approach = c.gap0 - d;
-      const double close_at =
-          c.toggles >= 3 ? std::max(close_tolerance, std::min(kChatterClosingRatio * allowed,
-                                                              0.5 * kLateRestitution * approach))
-                         : close_tolerance;
-      if (d < -close_at) {
-        c.state = ContactState::Locked;
-        c.shear.setZero();
-        ++c.toggles;
-      }
+      updateOpenContact(c, d, rules);
     } else {
-      const double tension = c.bonded ? joint.tensile_strength * c.area : 0.0;
-      c.normal_force = -penalty_ * d;
       // A contact that opened and closed again in this step stays closed while its pull is
       // below kHoldWeights times the lighter block's weight: it sits where neither state is
       // consistent (solved closed it pulls by ~1e-7 m, solved open it penetrates past the
@@ -113,77 +230,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       // a neighbouring contact with forces of 100 weights, and their work created energy
       // (random piles, docs/dda3d.md "Robustness tests"; none at 12 weights in 200 piles).
       const bool stays_closed = c.toggles >= 2 && penalty_ * d <= holdLimit(c);
-      // The margin is a round-off distance: its force, penalty times it, sums over the
-      // points of a face, so a sub-contact point takes its share (with the whole margin each,
-      // the 512 points under a dam's lifting toe held 3e5 N of tension at 4.5e-10 m, and
-      // the dam stood at 1.24 times its sliding factor).
-      if (!stays_closed && d > tension / penalty_ + c.share * open_tolerance) {
-        ++c.toggles;
-        // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
-        c.state = ContactState::Open;
-        c.bonded = false;
-        c.normal_force = 0.0;
-        c.shear.setZero();
-      } else {
-        const double limit = shearStrength(c, joint);
-        // A contact at its friction limit with no slip velocity can flip between locked
-        // and sliding forever; after two flips in a step it stays sliding (the friction
-        // force then holds it at the limit, which is what both states mean there), unless its
-        // friction then drives it back (below).
-        const bool frozen = c.flips >= 2;
-        if (c.state == ContactState::Locked) {
-          // Over the limit by more than a round-off slip: a contact whose spring the
-          // predictor set at the limit must not slide on the round-off of a resting block.
-          const Vec3 shear = tangential(c.shear, c.normal) + slip;
-          // The allowance is a force: ks times the round-off slip, but never more than
-          // kStickAllowance of the strength. Allowed ks times the round-off alone, a stiff
-          // penalty (40 times E l0) gave a frictionless joint 250 N of shear strength per
-          // contact: the joint between two cubes pushed down a slope carried 10 % of the
-          // front cube's weight to the rear one, and the pair slid 17 % too fast
-          // (kStickAllowance).
-          const double allowance = std::min(ks * reverse_tolerance, kStickAllowance * limit);
-          if (!c.held && ks * (shear.norm() - allowance / ks) > limit) {
-            ++c.flips;
-            c.state = ContactState::Sliding;
-            // Shi's brittle joint loses its cohesion and tension as it starts to slide; the
-            // plastic joint keeps them while it slides (docs/stability.md, "Joint models").
-            if (joint.model == JointModel::Brittle) c.bonded = false;
-            c.slide_direction = shear.normalized();
-            c.slip_length = 0.0;  // not known yet: no transverse tangent
-          }
-        } else if (const double back = -rigid_slip.dot(c.slide_direction);
-                   limit > 0.0 && (frozen ? back > std::max(reverse_tolerance, limit / ks)
-                                          : back > reverse_tolerance)) {
-          // Friction alone would drive it back: it sticks, its spring carrying the friction.
-          // A frozen contact (above) sticks too, for the rest of the step, once its friction
-          // drove it back by more than its shear spring's stretch at the strength: its
-          // friction, a load of f N along the direction of the last iteration's slip, did
-          // work on the slip instead of resisting it. On a light block between heavy ones (a
-          // 1 cm sliver, 106 kg, under 1e5 N corner contacts) the frozen friction forces of
-          // its two faces lined up and threw it sideways at 1 m/s in one step (docs/dda3d.md,
-          // "Known limits"). A smaller reversal is the creep of a contact at its limit: it
-          // stays sliding, as the frozen rule means (a stuck spring would hold a wedge at
-          // SRF 1.6 whose FS is 1.5).
-          ++c.flips;
-          c.state = ContactState::Locked;
-          c.shear = (shearStrength(c, joint) / ks) * c.slide_direction;
-          c.held = frozen;
-        } else {
-          // While the contact creeps (its slip in the step shorter than its shear spring's
-          // stretch at the start of the step, the predictor's), the friction opposes the
-          // trial shear, that stretch plus the slip (a return mapping). Along the slip alone,
-          // a contact that creeps by 1e-7 m a step took its direction from the round-off of
-          // that slip: its sideways part rolled a block on a plane, and the corners slid in
-          // turn on either side. A contact that slides farther follows its slip.
-          const Vec3 stretch = tangential(c.shear, c.normal);
-          const Vec3 trial =
-              rigid_slip.norm() < stretch.norm() ? Vec3(stretch + rigid_slip) : rigid_slip;
-          if (trial.norm() > 0.0) {
-            c.slide_direction = trial.normalized();
-            c.slip_length = trial.norm();
-          }
-        }
-      }
+      updateClosedContact(c, d, slip, rigid_slip, stays_closed, jointOf(c), rules);
     }
     if (c.state != before) {
       ++changes.changed;
@@ -209,8 +256,7 @@ double Simulation::holdLimit(const Contact& c) const {
 }
 
 double Simulation::shearStrength(const Contact& c, const DdaJoint& joint) const {
-  return joint.friction * std::max(0.0, c.normal_force) +
-         (c.bonded ? joint.cohesion * c.area : 0.0);
+  return strengthOf(c, joint);
 }
 
 }  // namespace rockmass::dda3d
