@@ -163,7 +163,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   frames.write(frameOf(sim, blocks, 0));
 
   io::DdaRunSummary& summary = stage.summary;
-  const double duration = steps * dda.time_step;
+  const double duration = steps * dda.engine.time_step;
   // The last step may land a round-off short of the duration: no sliver step for it.
   const double end = duration * (1.0 - 1e-9);
   int step = 0;
@@ -222,14 +222,14 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   summary.pieces = pieces;
   summary.unknowns = (summary.blocks - fixed_blocks) * sim.dofsPerBlock();
   summary.glued = glued;
-  summary.dynamic = dda.dynamic;
-  summary.deformable = dda.deformable;
+  summary.dynamic = dda.engine.mode == dda3d::AnalysisMode::Dynamic;
+  summary.deformable = dda.engine.kinematics == dda3d::Kinematics::Deformable;
   summary.solver = sim.solverName();
   const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
   summary.time_integration = bossak ? "bossak" : "shi";
   summary.spectral_radius = sim.settings().spectral_radius;
   summary.steps_requested = steps;
-  summary.time_step = dda.time_step;
+  summary.time_step = dda.engine.time_step;
   summary.duration = sim.time();
   summary.penalty = sim.penalty();
   for (const dda3d::MonitorState& m : sim.monitors()) {

@@ -20,7 +20,8 @@ enum class TimeIntegration {
   Shi,
 };
 
-/// Settings of a run (scene: analysis.dda). Defaults follow the 2D reference lineage.
+/// Settings of a run (scene: analysis.dda). The defaults are the scene contract's: a scene
+/// that omits a key gets the value below (docs/scene-reference.md, "analysis.dda").
 struct DdaSettings {
   AnalysisMode mode = AnalysisMode::Dynamic;
   Kinematics kinematics = Kinematics::Deformable;
@@ -31,14 +32,14 @@ struct DdaSettings {
   /// Bossak: spectral radius rho_inf of the scheme for modes much stiffer than M / dt^2 (the
   /// contact springs), in [0, 1]. 0 removes them within two steps; 1 keeps them undamped.
   double spectral_radius = 0.0;
-  double time_step = 1e-3;  ///< s, the largest step; shrunk and regrown automatically
+  double time_step = 0.002;  ///< s, the largest step; shrunk and regrown automatically
   /// s, the smallest step the step control may cut to. A step that fails its checks at this
   /// dt stops the run (StepFailure), and so does a run whose accepted steps stay at it for
   /// `max_steps_at_min_time_step` steps in a row (it cannot progress).
   double min_time_step = 1e-9;
   int max_steps_at_min_time_step = 1000;
   /// g2: largest displacement of any vertex in a step as a share of half the domain size.
-  double max_displacement_ratio = 0.01;
+  double max_displacement_ratio = 0.001;
   /// g3: allowed penetration as a share of half the domain size.
   double allowed_penetration_ratio = 4e-4;
   /// Normal contact penalty (N/m); 0 = automatic: penalty_factor * E_max * block size.
@@ -90,7 +91,7 @@ struct DdaSettings {
 /// error it leaves must be a small share of the allowed penetration g3 l0 while a step moves
 /// vertices by up to g2 l0: a relative error of 1e-2 g3 / g2 in d, divided by 1e3 for the
 /// condition number of the block-Jacobi preconditioned K (the residual bounds the error only
-/// up to it). 4e-7 with the default g2 = 0.01, g3 = 4e-4.
+/// up to it). 4e-6 with the default g2 = 0.001, g3 = 4e-4; capped at 1e-8 (the .cpp).
 double autoPcgTolerance(const DdaSettings& settings);
 /// The solver options a run with these settings and `movable` movable blocks uses (Auto
 /// resolved; block size set from the kinematics).

@@ -836,40 +836,42 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
                           "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
                           "region", "min_time_step", "contact_point_spacing"});
   DdaAnalysis dda;
-  dda.dynamic = m.valueOr("mode", dda.dynamic, [](const Cursor& v) {
-    return v.choice("mode", {"dynamic", "static"}) == 0;
+  dda3d::DdaSettings& e = dda.engine;
+  e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
+    return v.choice("mode", {"dynamic", "static"}) == 0 ? dda3d::AnalysisMode::Dynamic
+                                                        : dda3d::AnalysisMode::Static;
   });
-  dda.deformable = m.valueOr("kinematics", dda.deformable, [](const Cursor& v) {
-    return v.choice("kinematics", {"deformable", "rigid"}) == 0;
+  e.kinematics = m.valueOr("kinematics", e.kinematics, [](const Cursor& v) {
+    return v.choice("kinematics", {"deformable", "rigid"}) == 0 ? dda3d::Kinematics::Deformable
+                                                                : dda3d::Kinematics::Rigid;
   });
   // At most 1e7 steps: hours on a small model (the histories go to disk as the run goes and
   // summary.json keeps at most 1e5 step records, so memory does not grow with the steps).
   dda.steps = m.integerOr("steps", dda.steps, closed(1, 1e7));
-  dda.time_step = m.numberOr("time_step", dda.time_step, kPositive);
+  e.time_step = m.numberOr("time_step", e.time_step, kPositive);
   if (const auto step = m.get("time_step");
-      step && !m.get("min_time_step") && dda.time_step < dda.min_time_step) {
-    step->fail("expected a time step >= min_time_step (" + formatDouble(dda.min_time_step) +
-               " s; set min_time_step to go lower), got " + formatDouble(dda.time_step));
+      step && !m.get("min_time_step") && e.time_step < e.min_time_step) {
+    step->fail("expected a time step >= min_time_step (" + formatDouble(e.min_time_step) +
+               " s; set min_time_step to go lower), got " + formatDouble(e.time_step));
   }
   if (const auto min_step = m.get("min_time_step")) {
-    dda.min_time_step = min_step->number(kPositive);
-    if (dda.min_time_step > dda.time_step) {
-      min_step->fail("expected a time step no larger than time_step (" +
-                     formatDouble(dda.time_step) + " s)");
+    e.min_time_step = min_step->number(kPositive);
+    if (e.min_time_step > e.time_step) {
+      min_step->fail("expected a time step no larger than time_step (" + formatDouble(e.time_step) +
+                     " s)");
     }
   }
-  dda.max_displacement_ratio =
-      m.numberOr("max_displacement_ratio", dda.max_displacement_ratio,
-                 {.low = 0, .high = 1, .low_open = true, .high_open = true});
+  e.max_displacement_ratio = m.numberOr("max_displacement_ratio", e.max_displacement_ratio,
+                                        {.low = 0, .high = 1, .low_open = true, .high_open = true});
   if (const auto penalty = m.get("penalty"); penalty && !penalty->is("auto")) {
     if (!penalty->isNumber()) penalty->failExpected("'auto' or a number > 0");
-    dda.penalty = penalty->number(kPositive);
+    e.penalty = penalty->number(kPositive);
   }
   dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
-  dda.open_close_tolerance = m.numberOr("open_close_tolerance", dda.open_close_tolerance,
-                                        {.low = 0, .high = 1, .high_open = true});
+  e.open_close_tolerance = m.numberOr("open_close_tolerance", e.open_close_tolerance,
+                                      {.low = 0, .high = 1, .high_open = true});
   if (const auto spacing = m.get("contact_point_spacing")) {
-    dda.contact_point_spacing = spacing->number(kNonNegative);
+    e.contact_point_spacing = spacing->number(kNonNegative);
     dda.contact_point_spacing_line = spacing->line();
   }
   if (const auto region = m.get("region")) {
@@ -887,13 +889,15 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   }
   if (const auto integration = m.get("time_integration")) {
     const Cursor t = integration->map({"scheme", "spectral_radius"});
-    dda.bossak = t.valueOr("scheme", dda.bossak, [](const Cursor& v) {
-      return v.choice("scheme", {"bossak", "shi"}) == 0;
+    e.integration = t.valueOr("scheme", e.integration, [](const Cursor& v) {
+      return v.choice("scheme", {"bossak", "shi"}) == 0 ? dda3d::TimeIntegration::Bossak
+                                                        : dda3d::TimeIntegration::Shi;
     });
     if (const auto radius = t.get("spectral_radius")) {
       // Shi's scheme has no parameter: a spectral radius with it would be silently ignored.
-      if (!dda.bossak) radius->fail("only with scheme: bossak (Shi's scheme has no parameter)");
-      dda.spectral_radius = radius->number({.low = 0, .high = 1});
+      if (e.integration != dda3d::TimeIntegration::Bossak)
+        radius->fail("only with scheme: bossak (Shi's scheme has no parameter)");
+      e.spectral_radius = radius->number({.low = 0, .high = 1});
     }
   }
   return dda;

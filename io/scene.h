@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dda3d/simulation_settings.h"
 #include "geometry/dfn_spec.h"
 #include "geometry/fracture_network.h"
 #include "geometry/polyhedron.h"
@@ -134,31 +135,16 @@ struct RqdAnalysis {
 
 /// analysis.dda
 struct DdaAnalysis {
-  bool dynamic = true;       ///< dynamic | static
-  bool deformable = true;    ///< deformable (12 DOF) | rigid (6 DOF)
-  int steps = 1000;          ///< number of steps of size time_step
-  double time_step = 0.002;  ///< s, the largest allowed
-  /// s: the smallest the step control may cut it to; a step that still fails its checks there
-  /// stops the run (dda3d::StepFailure).
-  double min_time_step = 1e-9;
-  double max_displacement_ratio = 0.001;  ///< of the domain size, per step
-  std::optional<double> penalty;          ///< N/m; none means auto
-  /// time_integration.scheme: true for bossak (the Bossak alpha scheme, the default), false
-  /// for shi (Shi's Newmark beta = 1/2, gamma = 1; docs/dda3d.md, "Time integration").
-  bool bossak = true;
-  /// time_integration.spectral_radius: the Bossak scheme's high-frequency spectral radius
-  /// rho_inf in [0, 1] (0 damps the stiff contact modes within two steps, 1 keeps them).
-  double spectral_radius = 0.0;
+  /// The engine's settings as the scene gives them: mode, kinematics, time_step,
+  /// min_time_step, max_displacement_ratio, penalty (0: auto), time_integration,
+  /// open_close_tolerance, contact_point_spacing. Keys the scene omits keep the engine's
+  /// defaults (dda3d::DdaSettings), which are the scene contract's (docs/scene-reference.md).
+  dda3d::DdaSettings engine;
+  int steps = 1000;  ///< number of steps of size time_step
   /// m3: blocks smaller than this are glued to the same-material neighbour they share the
   /// most face area with before the DDA (blocks::mergeSmallBlocks); 0 glues none.
   double min_block_volume = 0.0;
-  /// Share of the contacts that may still change state in the last open-close iteration of
-  /// a settled step (dda3d::DdaSettings::open_close_tolerance); 0 is the classic rule.
-  double open_close_tolerance = 1e-4;
-  /// m: sub-contact points on every face at least twice this wide both ways
-  /// (dda3d::DdaSettings::contact_point_spacing; none or 0: the corners only).
-  std::optional<double> contact_point_spacing;
-  int contact_point_spacing_line = 0;  ///< line of `contact_point_spacing` (messages)
+  int contact_point_spacing_line = 0;  ///< line of `contact_point_spacing` (messages; 0: none)
   /// region {min, max}: the box the DDA (and the overload and strength reduction) runs on,
   /// inside the domain box. Its blocks are cut from the same network and structures with the
   /// region as the domain, so supports and `domain_top` loads act on the region's faces.

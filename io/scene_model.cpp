@@ -201,7 +201,7 @@ bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int
 void setContactPointSpacings(const Scene& scene, const blocks::BlockModel& blocks,
                              const Members& members, dda3d::DdaModel& model) {
   const double run =
-      scene.analysis.dda ? scene.analysis.dda->contact_point_spacing.value_or(0.0) : 0.0;
+      scene.analysis.dda ? scene.analysis.dda->engine.contact_point_spacing : 0.0;
   struct Source {
     std::string key;
     int line = 0;

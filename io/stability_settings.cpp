@@ -17,18 +17,9 @@ namespace {
 }  // namespace
 
 dda3d::DdaSettings ddaSettings(const DdaAnalysis& dda) {
-  dda3d::DdaSettings settings;
-  settings.mode = dda.dynamic ? dda3d::AnalysisMode::Dynamic : dda3d::AnalysisMode::Static;
-  settings.kinematics = dda.deformable ? dda3d::Kinematics::Deformable : dda3d::Kinematics::Rigid;
-  settings.time_step = dda.time_step;
-  settings.min_time_step = dda.min_time_step;
-  settings.max_displacement_ratio = dda.max_displacement_ratio;
-  settings.penalty = dda.penalty.value_or(0.0);
-  settings.integration = dda.bossak ? dda3d::TimeIntegration::Bossak : dda3d::TimeIntegration::Shi;
-  settings.spectral_radius = dda.spectral_radius;
-  settings.open_close_tolerance = dda.open_close_tolerance;
-  settings.contact_point_spacing = dda.contact_point_spacing.value_or(0.0);
-  settings.solver.block_size = dda.deformable ? dda3d::kBlockDofs : 6;
+  dda3d::DdaSettings settings = dda.engine;
+  settings.solver.block_size =
+      settings.kinematics == dda3d::Kinematics::Deformable ? dda3d::kBlockDofs : 6;
   return settings;
 }
 

@@ -679,29 +679,34 @@ TEST(SceneDefaults, GravityVectorAndAutoPenalty) {
                                  "vector.yaml");
   EXPECT_EQ(scene.loads.gravity, Vec3(0, 1, -9));
   ASSERT_TRUE(scene.analysis.dda.has_value());
-  EXPECT_FALSE(scene.analysis.dda->penalty.has_value());
-  EXPECT_TRUE(scene.analysis.dda->dynamic);
+  const dda3d::DdaSettings& engine = scene.analysis.dda->engine;
+  EXPECT_EQ(engine.penalty, 0.0);  // auto
+  EXPECT_EQ(engine.mode, dda3d::AnalysisMode::Dynamic);
   EXPECT_EQ(scene.analysis.dda->steps, 1000);
   // Default time integration: Bossak with rho_inf = 0 (docs/dda3d.md, "Time integration").
-  EXPECT_TRUE(scene.analysis.dda->bossak);
-  EXPECT_EQ(scene.analysis.dda->spectral_radius, 0.0);
+  EXPECT_EQ(engine.integration, dda3d::TimeIntegration::Bossak);
+  EXPECT_EQ(engine.spectral_radius, 0.0);
+  // One set of defaults: the scene contract's are the engine's (docs/scene-reference.md).
+  EXPECT_EQ(engine.time_step, 0.002);
+  EXPECT_EQ(engine.max_displacement_ratio, 0.001);
+  EXPECT_EQ(engine.open_close_tolerance, dda3d::DdaSettings{}.open_close_tolerance);
 }
 
 TEST(SceneDdaTimeIntegration, SchemeAndSpectralRadius) {
   const auto dda = [](const std::string& integration) {
-    return *parseScene(
-                valid_head + "analysis:\n  dda:\n    time_integration: " + integration + "\n",
-                "ti.yaml")
-                .analysis.dda;
+    return parseScene(valid_head + "analysis:\n  dda:\n    time_integration: " + integration + "\n",
+                      "ti.yaml")
+        .analysis.dda->engine;
   };
-  const DdaAnalysis bossak = dda("{scheme: bossak, spectral_radius: 0.5}");
-  EXPECT_TRUE(bossak.bossak);
+  using dda3d::TimeIntegration;
+  const dda3d::DdaSettings bossak = dda("{scheme: bossak, spectral_radius: 0.5}");
+  EXPECT_EQ(bossak.integration, TimeIntegration::Bossak);
   EXPECT_EQ(bossak.spectral_radius, 0.5);
   EXPECT_EQ(dda("{spectral_radius: 1}").spectral_radius, 1.0);  // bossak is the default scheme
-  const DdaAnalysis shi = dda("{scheme: shi}");
-  EXPECT_FALSE(shi.bossak);
+  const dda3d::DdaSettings shi = dda("{scheme: shi}");
+  EXPECT_EQ(shi.integration, TimeIntegration::Shi);
   EXPECT_EQ(shi.spectral_radius, 0.0);
-  EXPECT_TRUE(dda("{}").bossak);  // an empty map keeps the defaults
+  EXPECT_EQ(dda("{}").integration, TimeIntegration::Bossak);  // an empty map keeps the defaults
 }
 
 TEST(SceneDdaTimeIntegration, BadValuesNameTheKey) {
@@ -963,12 +968,12 @@ TEST_F(SceneFiles, FullSceneParsesToTheExpectedValues) {
   EXPECT_FALSE(rqd.grid_region.has_value());
   ASSERT_TRUE(scene.analysis.dda.has_value());
   const DdaAnalysis& dda = *scene.analysis.dda;
-  EXPECT_FALSE(dda.dynamic);
-  EXPECT_FALSE(dda.deformable);
+  EXPECT_EQ(dda.engine.mode, dda3d::AnalysisMode::Static);
+  EXPECT_EQ(dda.engine.kinematics, dda3d::Kinematics::Rigid);
   EXPECT_EQ(dda.steps, 500);
-  EXPECT_EQ(dda.time_step, 0.001);
-  EXPECT_EQ(dda.max_displacement_ratio, 0.002);
-  EXPECT_EQ(dda.penalty, 1.0e9);
+  EXPECT_EQ(dda.engine.time_step, 0.001);
+  EXPECT_EQ(dda.engine.max_displacement_ratio, 0.002);
+  EXPECT_EQ(dda.engine.penalty, 1.0e9);
   ASSERT_TRUE(scene.analysis.overload.has_value());
   EXPECT_EQ(scene.analysis.overload->factors, (std::vector<double>{1, 2, 7.5}));
   EXPECT_EQ(scene.analysis.overload->scales, (std::vector<std::string>{"water", "gravity"}));
