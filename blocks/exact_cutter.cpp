@@ -24,6 +24,7 @@
 
 #include "blocks/block_assembly.h"
 #include "blocks/piece_soundness.h"
+#include "blocks/region_split.h"
 #include "blocks/slab_material.h"
 #include "blocks/union_find.h"
 #include "geometry/interrupt.h"
@@ -335,15 +336,12 @@ struct Region {
 /// comes within the prefilter tolerance of one nearly normal to the axis (so that region faces
 /// are never covered by a disc or lie on the domain surface).
 double splitLevel(const Context& context, const std::vector<int>& discs, const Box& box, int axis) {
-  const double size = box.max[axis] - box.min[axis];
-  for (int attempt = 0; attempt < 32; ++attempt) {
-    const double offset = (attempt % 2 == 0 ? 1.0 : -1.0) * ((attempt + 1) / 2) / 67.0;
-    const double level = box.min[axis] + (0.5 + offset) * size;
-    // A plane within 1e-12 rad of the axis plane and within the prefilter tolerance of the
-    // level clashes too: a fault with dip 90 has a normal (1, 6e-17, 6e-17) from cos(90 deg),
-    // and a region face 1e-16 m from it glued blocks across a crossing fault (issue 3's
-    // two-faults-and-a-joint scene: 21 blocks against 23 with one region and with the fast
-    // cutter, whose kd split has the same rule).
+  // A plane within 1e-12 rad of the axis plane and within the prefilter tolerance of the
+  // level clashes too: a fault with dip 90 has a normal (1, 6e-17, 6e-17) from cos(90 deg),
+  // and a region face 1e-16 m from it glued blocks across a crossing fault (issue 3's
+  // two-faults-and-a-joint scene: 21 blocks against 23 with one region and with the fast
+  // cutter, whose kd split has the same rule).
+  const auto clashes = [&](double level) {
     const auto near = [&](const KnownPlane& p) {
       return isAxisPlane(p.exact, axis, level) ||
              (std::abs(p.normal[axis]) >= 1.0 - 1e-12 &&
@@ -352,18 +350,17 @@ double splitLevel(const Context& context, const std::vector<int>& discs, const B
     bool clash = false;
     for (const int d : discs) clash = clash || near(context.discs[d].plane);
     for (const KnownPlane& p : context.boundary_planes) clash = clash || near(p);
-    if (!clash) return level;
-  }
-  throw std::runtime_error("exact cutter: no free splitting plane found");
+    return clash;
+  };
+  return freeSplitLevel(box, axis, clashes, "exact cutter");
 }
 
 /// kd split of the domain until each region meets at most `max_discs` discs.
 void splitRegions(const Context& context, const Region& region, double min_size, int max_discs,
                   std::vector<Region>& out) {
-  const Vec3 size = region.box.size();
-  int axis = 0;
-  size.maxCoeff(&axis);
-  if (static_cast<int>(region.discs.size()) <= max_discs || size[axis] < 2.0 * min_size) {
+  const int axis = longestAxis(region.box);
+  if (static_cast<int>(region.discs.size()) <= max_discs ||
+      region.box.size()[axis] < 2.0 * min_size) {
     out.push_back(region);
     return;
   }

@@ -15,6 +15,7 @@
 #include "blocks/convex_partition.h"
 #include "blocks/convex_split.h"
 #include "blocks/piece_contacts.h"
+#include "blocks/region_split.h"
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
 #include "geometry/interrupt.h"
@@ -618,22 +619,19 @@ void splitRegions(const std::vector<CutPolygon>& polygons,
                   const std::array<std::vector<double>, 3>& avoid, double min_size,
                   int max_polygons, double tolerance, UnionFind& plane_ids, Region region,
                   std::vector<Region>& out) {
-  const Vec3 size = region.box.size();
-  int axis = 0;
-  size.maxCoeff(&axis);
-  if (static_cast<int>(region.polygons.size()) <= max_polygons || size[axis] < 2.0 * min_size) {
+  const int axis = longestAxis(region.box);
+  if (static_cast<int>(region.polygons.size()) <= max_polygons ||
+      region.box.size()[axis] < 2.0 * min_size) {
     out.push_back(std::move(region));
     return;
   }
-  double level = 0.0;
-  for (int attempt = 0;; ++attempt) {
-    const double offset = (attempt % 2 == 0 ? 1.0 : -1.0) * ((attempt + 1) / 2) / 67.0;
-    level = region.box.min[axis] + (0.5 + offset) * size[axis];
-    const bool clash = std::any_of(avoid[axis].begin(), avoid[axis].end(), [&](double x) {
-      return std::abs(x - level) <= 1e3 * tolerance;
-    });
-    if (!clash || attempt == 32) break;
-  }
+  const double level = freeSplitLevel(
+      region.box, axis,
+      [&](double level) {
+        return std::any_of(avoid[axis].begin(), avoid[axis].end(),
+                           [&](double x) { return std::abs(x - level) <= 1e3 * tolerance; });
+      },
+      "fast cutter");
   const int plane = plane_ids.add();
   for (int side = 0; side < 2; ++side) {
     Region child;
