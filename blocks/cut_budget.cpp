@@ -88,42 +88,71 @@ bool crosses(const Segment& s, const Segment& t) {
 
 struct Stop {};
 
+/// The cutting discs of `input` that reach into its domain, in their own planes; sizes
+/// `estimate.set_intersections` to the network's sets.
+std::vector<PlanarDisc> planarDiscs(const CutInput& input, BlockEstimate& estimate) {
+  const Box& domain = input.domain_box;
+  std::vector<PlanarDisc> discs;
+  if (!input.network) return discs;
+  std::size_t sets = input.network->sets.size();
+  for (const Disc& disc : input.network->discs) {
+    sets = std::max(sets, static_cast<std::size_t>(std::max(disc.set, 0)) + 1);
+  }
+  estimate.set_intersections.assign(sets, 0);
+  for (const Disc& disc : input.network->discs) {
+    if (!disc.cuts) continue;
+    const Box b = disc.bounds();
+    if ((b.max.array() < domain.min.array()).any() || (b.min.array() > domain.max.array()).any()) {
+      continue;
+    }
+    PlanarDisc d;
+    d.set = std::max(disc.set, 0);
+    d.center = disc.center;
+    d.normal = disc.normal.normalized();
+    d.u = disc.major.normalized();
+    d.v = d.normal.cross(d.u).normalized();
+    const std::vector<Vec3> outline =
+        disc.polygon.empty() ? disc.outline(kOutlineSegments) : disc.polygon;
+    for (const Vec3& p : outline) {
+      d.outline.push_back(inPlane(d, p));
+      d.radius = std::max(d.radius, d.outline.back().norm());
+    }
+    d.bounds = b;
+    discs.push_back(std::move(d));
+  }
+  return discs;
+}
+
+/// Counts the points where segments cross on each disc into `estimate.vertices` (each point
+/// where three discs meet is found on each of the three), by a sweep along u; stops (false)
+/// once `total()` passes `limit`.
+template <class Total>
+bool countVertices(std::vector<std::vector<Segment>>& segments, BlockEstimate& estimate,
+                   const Total& total, double limit) {
+  std::int64_t crossings = 0;
+  for (std::vector<Segment>& on_disc : segments) {
+    std::sort(on_disc.begin(), on_disc.end(),
+              [](const Segment& s, const Segment& t) { return s.min_u() < t.min_u(); });
+    for (std::size_t i = 0; i < on_disc.size(); ++i) {
+      const double end = on_disc[i].max_u();
+      for (std::size_t j = i + 1; j < on_disc.size() && on_disc[j].min_u() <= end; ++j) {
+        if (crosses(on_disc[i], on_disc[j])) ++crossings;
+      }
+      estimate.vertices = crossings / 3;
+      if (total() > limit) return false;
+    }
+  }
+  estimate.vertices = crossings / 3;
+  return true;
+}
+
 }  // namespace
 
 BlockEstimate estimateBlocks(const CutInput& input, double limit) {
   BlockEstimate estimate;
   const Box& domain = input.domain_box;
   const double scale = std::max(domain.diagonal(), 1e-300);
-  std::vector<PlanarDisc> discs;
-  if (input.network) {
-    std::size_t sets = input.network->sets.size();
-    for (const Disc& disc : input.network->discs) {
-      sets = std::max(sets, static_cast<std::size_t>(std::max(disc.set, 0)) + 1);
-    }
-    estimate.set_intersections.assign(sets, 0);
-    for (const Disc& disc : input.network->discs) {
-      if (!disc.cuts) continue;
-      const Box b = disc.bounds();
-      if ((b.max.array() < domain.min.array()).any() ||
-          (b.min.array() > domain.max.array()).any()) {
-        continue;
-      }
-      PlanarDisc d;
-      d.set = std::max(disc.set, 0);
-      d.center = disc.center;
-      d.normal = disc.normal.normalized();
-      d.u = disc.major.normalized();
-      d.v = d.normal.cross(d.u).normalized();
-      const std::vector<Vec3> outline =
-          disc.polygon.empty() ? disc.outline(kOutlineSegments) : disc.polygon;
-      for (const Vec3& p : outline) {
-        d.outline.push_back(inPlane(d, p));
-        d.radius = std::max(d.radius, d.outline.back().norm());
-      }
-      d.bounds = b;
-      discs.push_back(std::move(d));
-    }
-  }
+  const std::vector<PlanarDisc> discs = planarDiscs(input, estimate);
   estimate.discs = static_cast<std::int64_t>(discs.size());
   const auto total = [&] {
     return 1.0 + static_cast<double>(estimate.discs) + static_cast<double>(estimate.intersections) +
@@ -194,26 +223,12 @@ BlockEstimate estimateBlocks(const CutInput& input, double limit) {
     return estimate;
   }
 
-  // Vertices: the segments that cross on a disc (each point where three discs meet is found
-  // on each of the three), by a sweep along u.
-  std::int64_t crossings = 0;
-  for (std::vector<Segment>& on_disc : segments) {
-    std::sort(on_disc.begin(), on_disc.end(),
-              [](const Segment& s, const Segment& t) { return s.min_u() < t.min_u(); });
-    for (std::size_t i = 0; i < on_disc.size(); ++i) {
-      const double end = on_disc[i].max_u();
-      for (std::size_t j = i + 1; j < on_disc.size() && on_disc[j].min_u() <= end; ++j) {
-        if (crosses(on_disc[i], on_disc[j])) ++crossings;
-      }
-      estimate.vertices = crossings / 3;
-      if (total() > limit) {
-        estimate.blocks = total();
-        estimate.stopped = true;
-        return estimate;
-      }
-    }
+  // Vertices: the segments that cross on a disc.
+  if (!countVertices(segments, estimate, total, limit)) {
+    estimate.blocks = total();
+    estimate.stopped = true;
+    return estimate;
   }
-  estimate.vertices = crossings / 3;
   estimate.blocks = total();
   return estimate;
 }
