@@ -165,14 +165,27 @@ std::string formatSectionCsv(const Section& section, const geometry::FractureNet
   return out;
 }
 
-std::string formatSectionSvg(const Section& section, const geometry::FractureNetwork& network,
-                             const std::vector<Material>& materials) {
-  // Extent of everything drawn.
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
-  Vec2 hi = -lo;
+namespace {
+
+/// The drawing's frame: the extent of what is drawn, and the map from section coordinates
+/// (m) to SVG pixels.
+struct SvgFrame {
+  Vec2 lo, hi;
+  double span = 0.0;
+  double scale = 0.0;  ///< px per metre
+  double margin = 40.0, legend = 150.0;
+  double width = 0.0, height = 0.0;
+  std::string X(const Vec2& p) const { return px(margin + (p.x() - lo.x()) * scale); }
+  std::string Y(const Vec2& p) const { return px(margin + 30.0 + (hi.y() - p.y()) * scale); }
+};
+
+SvgFrame svgFrame(const Section& section, const geometry::FractureNetwork& network) {
+  SvgFrame f;
+  f.lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  f.hi = -f.lo;
   const auto extend = [&](const Vec2& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+    f.lo = f.lo.cwiseMin(p);
+    f.hi = f.hi.cwiseMax(p);
   };
   for (const SectionPolygon& polygon : section.polygons) {
     for (const Vec2& p : polygon.points) extend(p);
@@ -181,7 +194,7 @@ std::string formatSectionSvg(const Section& section, const geometry::FractureNet
     extend(trace.a);
     extend(trace.b);
   }
-  if (!(lo.x() <= hi.x())) {  // nothing crosses the plane: draw the domain's projection
+  if (!(f.lo.x() <= f.hi.x())) {  // nothing crosses the plane: draw the domain's projection
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3 p((corner & 1) ? network.domain.max.x() : network.domain.min.x(),
                    (corner & 2) ? network.domain.max.y() : network.domain.min.y(),
@@ -189,25 +202,16 @@ std::string formatSectionSvg(const Section& section, const geometry::FractureNet
       extend(section.plane.project(p));
     }
   }
-  const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-9});
-  const double scale = 1400.0 / span;  // px per metre
-  const double margin = 40.0, legend = 150.0;
-  const double width = (hi.x() - lo.x()) * scale + 2 * margin + legend;
-  const double height = (hi.y() - lo.y()) * scale + 2 * margin + 30.0;
-  const auto X = [&](const Vec2& p) { return px(margin + (p.x() - lo.x()) * scale); };
-  const auto Y = [&](const Vec2& p) { return px(margin + 30.0 + (hi.y() - p.y()) * scale); };
+  f.span = std::max({f.hi.x() - f.lo.x(), f.hi.y() - f.lo.y(), 1e-9});
+  f.scale = 1400.0 / f.span;
+  f.width = (f.hi.x() - f.lo.x()) * f.scale + 2 * f.margin + f.legend;
+  f.height = (f.hi.y() - f.lo.y()) * f.scale + 2 * f.margin + 30.0;
+  return f;
+}
 
-  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(width) + "\" height=\"" +
-         px(height) + "\" viewBox=\"0 0 " + px(width) + " " + px(height) + "\">\n";
-  out += "<title>rockmass section " + xmlText(section.label) + "</title>\n";
-  out += "<rect x=\"0\" y=\"0\" width=\"" + px(width) + "\" height=\"" + px(height) +
-         "\" fill=\"white\"/>\n";
-  out += "<text x=\"" + px(margin) + "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" +
-         "Section " + xmlText(section.label) + ": " + std::to_string(section.polygons.size()) +
-         " piece sections, " + std::to_string(section.traces.size()) + " traces</text>\n";
-
-  // Pieces, filled by material, no stroke (internal cuts are not block outlines).
+/// Pieces filled by material, no stroke (internal cuts are not block outlines), then block
+/// outlines: every real (non-fictitious) edge.
+void svgPieces(const Section& section, const SvgFrame& f, std::string& out) {
   out += "<g id=\"pieces\" stroke=\"none\">\n";
   for (const SectionPolygon& polygon : section.polygons) {
     out += "<polygon fill=\"" +
@@ -216,26 +220,29 @@ std::string formatSectionSvg(const Section& section, const geometry::FractureNet
            "\" points=\"";
     for (std::size_t k = 0; k < polygon.points.size(); ++k) {
       if (k > 0) out += ' ';
-      out += X(polygon.points[k]);
+      out += f.X(polygon.points[k]);
       out += ',';
-      out += Y(polygon.points[k]);
+      out += f.Y(polygon.points[k]);
     }
     out += "\"/>\n";
   }
   out += "</g>\n";
-  // Block outlines: every real (non-fictitious) edge.
   out += "<g id=\"block-outlines\" stroke=\"#404040\" stroke-width=\"0.6\">\n";
   for (const SectionPolygon& polygon : section.polygons) {
     for (std::size_t k = 0; k < polygon.points.size(); ++k) {
       if (polygon.edges[k].kind == blocks::FaceKind::Fictitious) continue;
       const Vec2& a = polygon.points[k];
       const Vec2& b = polygon.points[(k + 1) % polygon.points.size()];
-      out += "<line x1=\"" + X(a) + "\" y1=\"" + Y(a) + "\" x2=\"" + X(b) + "\" y2=\"" + Y(b) +
-             "\"/>\n";
+      out += "<line x1=\"" + f.X(a) + "\" y1=\"" + f.Y(a) + "\" x2=\"" + f.X(b) + "\" y2=\"" +
+             f.Y(b) + "\"/>\n";
     }
   }
   out += "</g>\n";
-  // Traces, by kind.
+}
+
+/// Traces, grouped by kind.
+void svgTraces(const Section& section, const geometry::FractureNetwork& network, const SvgFrame& f,
+               std::string& out) {
   struct Style {
     const char* id;
     const char* stroke;
@@ -257,15 +264,19 @@ std::string formatSectionSvg(const Section& section, const geometry::FractureNet
     for (const SectionTrace& trace : section.traces) {
       const Style style = styleOf(discOf(network, trace.disc));
       if (std::string(style.id) != group) continue;
-      out += "<line x1=\"" + X(trace.a) + "\" y1=\"" + Y(trace.a) + "\" x2=\"" + X(trace.b) +
-             "\" y2=\"" + Y(trace.b) + "\" stroke=\"" + style.stroke + "\" stroke-width=\"" +
+      out += "<line x1=\"" + f.X(trace.a) + "\" y1=\"" + f.Y(trace.a) + "\" x2=\"" + f.X(trace.b) +
+             "\" y2=\"" + f.Y(trace.b) + "\" stroke=\"" + style.stroke + "\" stroke-width=\"" +
              style.width + "\"/>\n";
     }
     out += "</g>\n";
   }
-  // Legend and scale bar.
-  const double lx = width - legend + 10.0;
-  double ly = margin + 40.0;
+}
+
+/// Legend (trace kinds, the materials shown) and scale bar.
+void svgLegend(const Section& section, const std::vector<Material>& materials, const SvgFrame& f,
+               std::string& out) {
+  const double lx = f.width - f.legend + 10.0;
+  double ly = f.margin + 40.0;
   out += "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"12\">\n";
   const std::array<std::array<const char*, 3>, 4> lines = {{{"#1f4e9a", "0.8", "joint"},
                                                             {"#8fb3e0", "0.5", "joint (RQD only)"},
@@ -297,19 +308,39 @@ std::string formatSectionSvg(const Section& section, const geometry::FractureNet
     ly += 18.0;
   }
   // Scale bar: the largest 1-2-5 length below a fifth of the span.
-  double bar = std::pow(10.0, std::floor(std::log10(span / 5.0)));
-  for (const double f : {5.0, 2.0}) {
-    if (bar * f <= span / 5.0) {
-      bar *= f;
+  double bar = std::pow(10.0, std::floor(std::log10(f.span / 5.0)));
+  for (const double k : {5.0, 2.0}) {
+    if (bar * k <= f.span / 5.0) {
+      bar *= k;
       break;
     }
   }
   ly += 10.0;
-  out += "<line x1=\"" + px(lx) + "\" y1=\"" + px(ly) + "\" x2=\"" + px(lx + bar * scale) +
+  out += "<line x1=\"" + px(lx) + "\" y1=\"" + px(ly) + "\" x2=\"" + px(lx + bar * f.scale) +
          "\" y2=\"" + px(ly) + "\" stroke=\"black\" stroke-width=\"2\"/>\n";
   out +=
       "<text x=\"" + px(lx) + "\" y=\"" + px(ly + 16) + "\">" + formatDouble(bar) + " m</text>\n";
-  out += "</g>\n</svg>\n";
+  out += "</g>\n";
+}
+
+}  // namespace
+
+std::string formatSectionSvg(const Section& section, const geometry::FractureNetwork& network,
+                             const std::vector<Material>& materials) {
+  const SvgFrame f = svgFrame(section, network);
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + px(f.width) + "\" height=\"" +
+         px(f.height) + "\" viewBox=\"0 0 " + px(f.width) + " " + px(f.height) + "\">\n";
+  out += "<title>rockmass section " + xmlText(section.label) + "</title>\n";
+  out += "<rect x=\"0\" y=\"0\" width=\"" + px(f.width) + "\" height=\"" + px(f.height) +
+         "\" fill=\"white\"/>\n";
+  out += "<text x=\"" + px(f.margin) + "\" y=\"24\" font-family=\"sans-serif\" font-size=\"16\">" +
+         "Section " + xmlText(section.label) + ": " + std::to_string(section.polygons.size()) +
+         " piece sections, " + std::to_string(section.traces.size()) + " traces</text>\n";
+  svgPieces(section, f, out);
+  svgTraces(section, network, f, out);
+  svgLegend(section, materials, f, out);
+  out += "</svg>\n";
   return out;
 }
 
