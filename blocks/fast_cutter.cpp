@@ -1260,23 +1260,10 @@ void faceLoop(const Piece& piece, int f, std::vector<Vec3>& out) {
   for (int v : piece.shape.faces[f]) out.push_back(piece.shape.vertices[v]);
 }
 
-BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
-                         const CutTolerances& tol, FastCutReport* report) {
-  FastCutReport counters;
-  const auto start = std::chrono::steady_clock::now();
-  CutStart setup = startCut(input, tol);
-  UnionFind& plane_ids = setup.plane_ids;
-  const std::vector<Piece>& domain = setup.domain;
-  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
-  std::vector<CutPolygon>& polygons = setup.polygons;
-  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
-                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
-                          geometry::bounds(domain[0].shape).max == input.domain_box.max &&
-                          domain[0].shape.vertices.size() == 8;
-  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
-  counters.cutting_polygons = static_cast<int>(polygons.size());
-
-  // Regions.
+/// Levels of the axis-aligned polygon planes and domain face planes along each axis: the
+/// kd split avoids them (splitRegions).
+std::array<std::vector<double>, 3> axisPlaneLevels(const std::vector<CutPolygon>& polygons,
+                                                   const std::vector<Piece>& domain) {
   std::array<std::vector<double>, 3> avoid;
   for (const CutPolygon& polygon : polygons) {
     for (int a = 0; a < 3; ++a) {
@@ -1295,6 +1282,114 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
       }
     }
   }
+  return avoid;
+}
+
+/// The regions' kd faces in one table, in plane order (ties in piece and face order): the
+/// table findContactsByPlane would build from the pieces.
+ContactFaces kdFaceTable(const std::vector<RegionCut>& cuts, const std::vector<int>& piece_first,
+                         UnionFind& plane_ids) {
+  ContactFaces kd;
+  std::vector<int> kd_root;
+  for (std::size_t r = 0; r < cuts.size(); ++r) {
+    kd.append(cuts[r].kd, piece_first[r]);
+    for (int id : cuts[r].kd_planes) kd_root.push_back(plane_ids.find(id));
+  }
+  {
+    std::vector<std::uint32_t> order(kd.faces.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return kd_root[a] < kd_root[b]; });
+    std::vector<ContactFaces::Face> sorted;
+    sorted.reserve(order.size());
+    for (std::uint32_t k : order) sorted.push_back(kd.faces[k]);
+    kd.faces = std::move(sorted);
+    for (std::size_t b = 0; b < order.size();) {
+      std::size_t e = b + 1;
+      while (e < order.size() && kd_root[order[e]] == kd_root[order[b]]) ++e;
+      if (e - b >= 2) kd.groups.emplace_back(b, e);
+      b = e;
+    }
+  }
+  return kd;
+}
+
+/// Contacts inside regions and across them, with their sources, in one list in
+/// (piece_a, piece_b, face_a, face_b) order.
+void mergeContacts(const std::vector<PieceContact>& inside,
+                   const std::vector<FaceSource>& inside_sources,
+                   const std::vector<PieceContact>& across,
+                   const std::vector<FaceSource>& across_sources,
+                   std::vector<PieceContact>& contacts, std::vector<FaceSource>& sources) {
+  // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts:
+  // both lists are in that order already (and share no face pair: a contact inside a region
+  // joins pieces of one region, one across regions pieces of two), so they are merged.
+  const auto before = [](const PieceContact& x, const PieceContact& y) {
+    return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
+           std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
+  };
+  contacts.reserve(inside.size() + across.size());
+  sources.reserve(inside.size() + across.size());
+  std::size_t i = 0, j = 0;
+  while (i < inside.size() || j < across.size()) {
+    if (j == across.size() || (i < inside.size() && !before(across[j], inside[i]))) {
+      contacts.push_back(inside[i]);
+      sources.push_back(inside_sources[i++]);
+    } else {
+      contacts.push_back(across[j]);
+      sources.push_back(across_sources[j++]);
+    }
+  }
+}
+
+/// The contacts of tracked regions: inside a region the pairs each region tracked; across
+/// regions the faces in the kd planes only (two pieces of different regions can share area
+/// only in the plane between them). `planes` is overwritten (kd plane ids, else -1).
+std::vector<PieceContact> trackedContacts(
+    const std::vector<ContactTablePart>& tracked, const std::vector<Region>& regions,
+    const std::vector<RegionCut>& cuts, const std::vector<int>& piece_first,
+    std::size_t piece_count, UnionFind& plane_ids, std::vector<int>& planes,
+    const CutTolerances& tol, const ContactDecision& decide, std::vector<FaceSource>& sources) {
+  std::vector<PieceContact> contacts;
+  // Inside a region: the tracked pairs. Across regions: faces in the kd planes only (two
+  // pieces of different regions can share area only in the plane between them).
+  std::vector<FaceSource> inside_sources, across_sources;
+  const std::vector<PieceContact> inside =
+      decideTableContacts(tracked, piece_count, tol.distance, tol.area, decide, &inside_sources);
+  std::vector<char> kd_plane(plane_ids.size(), 0);
+  for (const Region& region : regions) {
+    for (int id : region.face_plane) {
+      if (id >= 0) kd_plane[plane_ids.find(id)] = 1;
+    }
+  }
+  // In place (no copy): the contacts inside regions are decided already, and the faces
+  // searched now keep their (kd plane) ids, which is all `decide` reads of them.
+  for (int& id : planes) id = kd_plane[id] ? id : -1;
+  const ContactFaces kd = kdFaceTable(cuts, piece_first, plane_ids);
+  const std::vector<PieceContact> across =
+      decidePlaneContacts(kd, piece_count, tol.distance, tol.area, decide, &across_sources);
+  mergeContacts(inside, inside_sources, across, across_sources, contacts, sources);
+  return contacts;
+}
+
+BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
+                         const CutTolerances& tol, FastCutReport* report) {
+  FastCutReport counters;
+  const auto start = std::chrono::steady_clock::now();
+  CutStart setup = startCut(input, tol);
+  UnionFind& plane_ids = setup.plane_ids;
+  const std::vector<Piece>& domain = setup.domain;
+  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
+  std::vector<CutPolygon>& polygons = setup.polygons;
+  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
+                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
+                          geometry::bounds(domain[0].shape).max == input.domain_box.max &&
+                          domain[0].shape.vertices.size() == 8;
+  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
+  counters.cutting_polygons = static_cast<int>(polygons.size());
+
+  // Regions.
+  const std::array<std::vector<double>, 3> avoid = axisPlaneLevels(polygons, domain);
   Region root;
   root.box = input.domain_box;
   for (std::size_t p = 0; p < polygons.size(); ++p) {
@@ -1445,65 +1540,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   if (!options.track_contacts) {
     contacts = findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
   } else {
-    // Inside a region: the tracked pairs. Across regions: faces in the kd planes only (two
-    // pieces of different regions can share area only in the plane between them).
-    std::vector<FaceSource> inside_sources, across_sources;
-    const std::vector<PieceContact> inside = decideTableContacts(
-        tracked, pieces.size(), tol.distance, tol.area, decide, &inside_sources);
-    std::vector<char> kd_plane(plane_ids.size(), 0);
-    for (const Region& region : regions) {
-      for (int id : region.face_plane) {
-        if (id >= 0) kd_plane[plane_ids.find(id)] = 1;
-      }
-    }
-    // In place (no copy): the contacts inside regions are decided already, and the faces
-    // searched now keep their (kd plane) ids, which is all `decide` reads of them.
-    for (int& id : planes) id = kd_plane[id] ? id : -1;
-    // The regions' kd faces in one table, in plane order (ties in piece and face order):
-    // the table findContactsByPlane would build from the pieces.
-    ContactFaces kd;
-    std::vector<int> kd_root;
-    for (std::size_t r = 0; r < cuts.size(); ++r) {
-      kd.append(cuts[r].kd, piece_first[r]);
-      for (int id : cuts[r].kd_planes) kd_root.push_back(plane_ids.find(id));
-    }
-    {
-      std::vector<std::uint32_t> order(kd.faces.size());
-      std::iota(order.begin(), order.end(), 0u);
-      std::stable_sort(order.begin(), order.end(),
-                       [&](std::uint32_t a, std::uint32_t b) { return kd_root[a] < kd_root[b]; });
-      std::vector<ContactFaces::Face> sorted;
-      sorted.reserve(order.size());
-      for (std::uint32_t k : order) sorted.push_back(kd.faces[k]);
-      kd.faces = std::move(sorted);
-      for (std::size_t b = 0; b < order.size();) {
-        std::size_t e = b + 1;
-        while (e < order.size() && kd_root[order[e]] == kd_root[order[b]]) ++e;
-        if (e - b >= 2) kd.groups.emplace_back(b, e);
-        b = e;
-      }
-    }
-    const std::vector<PieceContact> across =
-        decidePlaneContacts(kd, pieces.size(), tol.distance, tol.area, decide, &across_sources);
-    // One list in (piece_a, piece_b, face_a, face_b) order, as findContactsByPlane sorts:
-    // both lists are in that order already (and share no face pair: a contact inside a region
-    // joins pieces of one region, one across regions pieces of two), so they are merged.
-    const auto before = [](const PieceContact& x, const PieceContact& y) {
-      return std::tie(x.piece_a, x.piece_b, x.face_a, x.face_b) <
-             std::tie(y.piece_a, y.piece_b, y.face_a, y.face_b);
-    };
-    contacts.reserve(inside.size() + across.size());
-    sources.reserve(inside.size() + across.size());
-    std::size_t i = 0, j = 0;
-    while (i < inside.size() || j < across.size()) {
-      if (j == across.size() || (i < inside.size() && !before(across[j], inside[i]))) {
-        contacts.push_back(inside[i]);
-        sources.push_back(inside_sources[i++]);
-      } else {
-        contacts.push_back(across[j]);
-        sources.push_back(across_sources[j++]);
-      }
-    }
+    contacts = trackedContacts(tracked, regions, cuts, piece_first, pieces.size(), plane_ids,
+                               planes, tol, decide, sources);
   }
   counters.contact_seconds = secondsSince(contact_start);
   tracked.clear();
