@@ -15,6 +15,7 @@
 #include "app/scene_blocks.h"
 #include "app/stages.h"
 #include "dda3d/simulation.h"
+#include "geometry/progress.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
 #include "io/dda_output.h"
@@ -167,12 +168,11 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   // The last step may land a round-off short of the duration: no sliver step for it.
   const double end = duration * (1.0 - 1e-9);
   int step = 0;
-  int next_report = 1;
   io::DdaStepRecord last;
   std::vector<std::pair<std::string, double>> phase_totals;
   // Progress every 10 % of the simulated time, and at least every 30 s of wall time (a
   // large model may take minutes per 10 %).
-  auto last_report = std::chrono::steady_clock::now();
+  Progress progress("dda", duration, "s simulated");
   while (sim.time() < end) {
     const dda3d::StepReport report = sim.step();
     ++step;
@@ -195,18 +195,14 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
                             contactRecords(sim, blocks));
     }
-    const auto now = std::chrono::steady_clock::now();
-    if (sim.time() >= next_report * 0.1 * duration ||
-        now - last_report > std::chrono::seconds(30)) {
-      last_report = now;
-      std::fprintf(stderr,
-                   "dda: %3d%%  step %d  t = %.4g s  dt = %.3g s  contacts %d (%d open)  "
-                   "iterations %d  redone: %d open-close, %d displacement, %d penetration\n",
-                   static_cast<int>(100.0 * sim.time() / duration + 0.5), step, sim.time(),
-                   report.time_step, report.contacts.total, report.contacts.open, report.iterations,
-                   report.redo_iterations, report.redo_displacement, report.redo_penetration);
-      while (sim.time() >= next_report * 0.1 * duration) ++next_report;
-    }
+    char detail[200];
+    std::snprintf(detail, sizeof detail,
+                  "step %d, dt = %.3g s, contacts %d (%d open), iterations %d, redone: %d "
+                  "open-close, %d displacement, %d penetration",
+                  step, report.time_step, report.contacts.total, report.contacts.open,
+                  report.iterations, report.redo_iterations, report.redo_displacement,
+                  report.redo_penetration);
+    progress.update(sim.time(), detail);
   }
   frames.write(frameOf(sim, blocks, step));
   if (step > 0 && (summary.steps.empty() || summary.steps.back().step != step)) {

@@ -11,6 +11,7 @@
 
 #include "app/command.h"
 #include "app/stages.h"
+#include "geometry/progress.h"
 #include "io/atomic_file.h"
 #include "io/borehole_file.h"
 #include "io/input_error.h"
@@ -36,19 +37,21 @@ struct RqdOptions {
   RqdOverrides overrides;
 };
 
-/// Reports progress of a long evaluation on stderr, at most once a second.
+/// Reports progress of a long evaluation on stderr (geometry/progress.h).
 class ProgressReporter {
  public:
   explicit ProgressReporter(std::string what) : what_(std::move(what)) {}
   void operator()(std::size_t done, std::size_t total) {
-    if (secondsSince(last_) < 1.0) return;
-    last_ = Clock::now();
-    std::fprintf(stderr, "rqd: %s: %zu of %zu scanlines\n", what_.c_str(), done, total);
+    if (!progress_) {
+      progress_ = std::make_shared<Progress>("rqd: " + what_, static_cast<double>(total),
+                                             "scanlines", 10.0);
+    }
+    progress_->update(static_cast<double>(done));
   }
 
  private:
   std::string what_;
-  Clock::time_point last_ = Clock::now();
+  std::shared_ptr<Progress> progress_;
 };
 
 /// The scene's analysis.rqd with the command-line overrides applied and checked.
@@ -141,12 +144,8 @@ rqd::RqdVolume computeGrid(const rqd::ScanlineScene& ray_scene,
                            const geometry::FractureNetwork& network, const rqd::VolumeSpec& spec,
                            const std::string& scene_path) {
   const auto start = Clock::now();
-  auto last = start;
-  const auto progress = [&](double fraction) {
-    if (secondsSince(last) < 1.0) return;
-    last = Clock::now();
-    std::fprintf(stderr, "rqd: grid: %.0f%% of the cells\n", 100.0 * fraction);
-  };
+  Progress cells("rqd: grid", 1.0, "", 10.0);
+  const auto progress = [&](double fraction) { cells.update(fraction); };
   try {
     rqd::RqdVolume volume = rqd::computeRqdVolume(ray_scene, network, spec, progress);
     std::fprintf(stderr,

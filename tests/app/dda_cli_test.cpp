@@ -119,7 +119,7 @@ TEST_F(DdaCli, StackSettlesOnItsContactSprings) {
                               &output),
             0)
       << output;
-  EXPECT_NE(output.find("dda: 100%"), std::string::npos) << "progress on stderr: " << output;
+  EXPECT_NE(output.find("dda: 100 % ("), std::string::npos) << "progress on stderr: " << output;
   const nlohmann::json summary = summaryOf("a");
   ASSERT_EQ(summary["blocks"], 3);
   ASSERT_EQ(summary["fixed_blocks"], 1);

@@ -1,0 +1,50 @@
+// Progress of a long stage (cutting, the RQD grid, DDA steps, factor runs): a line on stderr
+// with the share done, the elapsed time and an estimate of what is left, at most once per
+// interval and at each tenth of the work; each report is a safe point where an interruption
+// (Ctrl-C, geometry/interrupt.h) stops the stage.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace rockmass {
+
+class Progress {
+ public:
+  /// Seconds on a steady clock (tests pass their own).
+  using Clock = std::function<double()>;
+  /// Where the lines go (default: stderr, one line each).
+  using Sink = std::function<void(const std::string&)>;
+
+  /// `label` starts each line ("dda", "rqd: grid"); `total` is the work in `unit`s (> 0;
+  /// unit "": a share, not counted in the line).
+  Progress(std::string label, double total, std::string unit, double interval = 30.0,
+           Sink sink = {}, Clock clock = {});
+
+  /// Records `done` units of work (at most `total`); reports when a tenth more is done than
+  /// at the last report or `interval` seconds have passed, with `detail` after the numbers.
+  /// Throws Interrupted (at this safe point) when an interruption was requested.
+  void update(double done, const std::string& detail = "");
+
+  /// Seconds since construction.
+  double elapsed() const;
+  /// Linear estimate of the seconds left at `done` units (none before any work is done).
+  std::optional<double> remaining(double done) const;
+  /// "<label>: 40 % (4 of 10 <unit>), 12 s, about 18 s left[, <detail>]" (without the
+  /// parenthesis when the unit is empty).
+  std::string line(double done, const std::string& detail) const;
+
+ private:
+  std::string label_;
+  double total_;
+  std::string unit_;
+  double interval_;
+  Sink sink_;
+  Clock clock_;
+  double start_;
+  double last_time_;
+  int last_tenth_ = 0;
+};
+
+}  // namespace rockmass
