@@ -173,14 +173,7 @@ BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCu
   }
   const std::vector<PieceContact> contacts =
       findContactsByPlane(pieces, planes, tol.distance, tol.area);
-  AssemblyReport assembly;
-  BlockModel model = assembleBlocks(std::move(pieces), contacts, input, tol, &assembly);
-  counters.inconsistent_contacts = assembly.inconsistent_contacts;
-  counters.soundness = assembly.soundness;
-  counters.pieces -= assembly.soundness.folded_pieces;
-  counters.assemble_seconds = secondsSince(assemble_start);
-  if (report) *report = counters;
-  return model;
+  return assembleCut(std::move(pieces), contacts, input, tol, counters, assemble_start, report);
 }
 
 }  // namespace rockmass::blocks::fastcut

@@ -349,4 +349,20 @@ Cover coverage(const std::vector<Vec3>& face, const DiscGroup& group,
   return Cover::Whole;
 }
 
+BlockModel assembleCut(std::vector<Piece> pieces, const std::vector<PieceContact>& contacts,
+                       const CutInput& input, const CutTolerances& tol, FastCutReport& counters,
+                       std::chrono::steady_clock::time_point assemble_start, FastCutReport* report,
+                       const std::vector<FaceSource>* sources,
+                       const std::vector<PieceFacts>* facts) {
+  AssemblyReport assembly;
+  BlockModel model =
+      assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, sources, facts);
+  counters.inconsistent_contacts = assembly.inconsistent_contacts;
+  counters.soundness = assembly.soundness;
+  counters.pieces -= assembly.soundness.folded_pieces;
+  counters.assemble_seconds = secondsSince(assemble_start);
+  if (report) *report = counters;
+  return model;
+}
+
 }  // namespace rockmass::blocks::fastcut

@@ -10,9 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "blocks/block_assembly.h"
 #include "blocks/convex_split.h"
 #include "blocks/cutter.h"
 #include "blocks/fast_cutter.h"
+#include "blocks/piece_contacts.h"
 #include "blocks/union_find.h"
 #include "geometry/disc.h"
 
@@ -128,6 +130,15 @@ double coveredArea(const std::vector<Vec3>& face, const CutPolygon& polygon);
 /// covered part of area at most tolerance.area is none.
 Cover coverage(const std::vector<Vec3>& face, const DiscGroup& group,
                const std::vector<CutPolygon>& polygons, const CutTolerances& tol, int* disc);
+
+/// The cut's blocks from its pieces and contacts (assembleBlocks), its counters completed
+/// (inconsistent contacts, soundness, pieces, assembly time since `assemble_start`) and
+/// copied to `report` when given.
+BlockModel assembleCut(std::vector<Piece> pieces, const std::vector<PieceContact>& contacts,
+                       const CutInput& input, const CutTolerances& tol, FastCutReport& counters,
+                       std::chrono::steady_clock::time_point assemble_start, FastCutReport* report,
+                       const std::vector<FaceSource>* sources = nullptr,
+                       const std::vector<PieceFacts>* facts = nullptr);
 
 /// FastStrategy::EdgePlanes (blocks/edge_planes_cutter.cpp).
 BlockModel cutEdgePlanes(const CutInput& input, const CutTolerances& tol, FastCutReport* report);

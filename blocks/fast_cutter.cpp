@@ -999,15 +999,8 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   counters.contact_seconds = secondsSince(contact_start);
   tracked.clear();
   cuts.clear();
-  AssemblyReport assembly;
-  BlockModel model =
-      assembleBlocks(std::move(pieces), contacts, input, tol, &assembly, &sources, &facts);
-  counters.inconsistent_contacts = assembly.inconsistent_contacts;
-  counters.soundness = assembly.soundness;
-  counters.pieces -= assembly.soundness.folded_pieces;
-  counters.assemble_seconds = secondsSince(assemble_start);
-  if (report) *report = counters;
-  return model;
+  return assembleCut(std::move(pieces), contacts, input, tol, counters, assemble_start, report,
+                     &sources, &facts);
 }
 
 }  // namespace
