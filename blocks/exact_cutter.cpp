@@ -1334,6 +1334,145 @@ std::vector<Polyhedron> convexDecomposition(const Polyhedron& solid) {
   return convexVolumes(nef);
 }
 
+namespace {
+
+/// With the Nef referee: the Nef volumes, glued across region faces, must give the same
+/// partition as the exact faces (`sets`); the report gets the Nef block count and whether
+/// they agree.
+void refereeWithNef(const Context& context, const std::vector<FaceRecord>& records,
+                    const std::vector<std::pair<int, int>>& nef_links, UnionFind& sets,
+                    ExactCutReport& local) {
+  const int count = static_cast<int>(sets.size());
+  UnionFind nef_sets(static_cast<std::size_t>(count));
+  for (const auto& [a, b] : nef_links) nef_sets.unite(a, b);
+  matchFaces(context, records, nef_sets, /*discs=*/false);
+  std::map<int, int> forward;
+  std::map<int, int> backward;
+  bool agrees = true;
+  for (int i = 0; i < count; ++i) {
+    const int a = sets.find(i);
+    const int b = nef_sets.find(i);
+    agrees = agrees && forward.try_emplace(a, b).first->second == b &&
+             backward.try_emplace(b, a).first->second == a;
+  }
+  local.nef_blocks = static_cast<int>(backward.size());
+  local.nef_agrees = agrees;
+}
+
+/// Sound pieces (piece_soundness.h): slivers are folded away and near vertices merged after
+/// the gluing, which the exact faces decided, so the blocks are those of the exact partition;
+/// a block of slivers only disappears. Returns which pieces were folded.
+std::vector<bool> soundPieces(std::vector<Piece>& pieces, const SoundnessTolerances& soundness,
+                              SoundnessReport& report) {
+  std::vector<bool> folded(pieces.size(), false);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    SoundPieceReport piece_report;
+    std::optional<SoundPiece> sound = soundPiece(pieces[i], soundness, &piece_report);
+    addToReport(pieces[i], sound, piece_report, report);
+    if (sound) {
+      pieces[i] = std::move(sound->piece);
+    } else {
+      folded[i] = true;
+    }
+  }
+  return folded;
+}
+
+/// The rock blocks: components of the piece graph (`sets`), in order of their first kept
+/// piece, each of the material holding most of its volume. `block_of_piece` gets each
+/// piece's block; a folded piece belongs to its component's block (it keeps its mass there),
+/// or to none (-1).
+std::vector<Block> rockBlocks(const CutInput& input, const CutTolerances& tolerances,
+                              const std::vector<Piece>& pieces, const std::vector<bool>& folded,
+                              UnionFind& sets, std::vector<int>& block_of_piece) {
+  std::vector<std::vector<int>> members;
+  std::unordered_map<int, int> component;
+  block_of_piece.assign(pieces.size(), -1);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (folded[i]) continue;
+    const int root_piece = sets.find(static_cast<int>(i));
+    const auto [it, added] = component.try_emplace(root_piece, static_cast<int>(members.size()));
+    if (added) members.emplace_back();
+    members[it->second].push_back(static_cast<int>(i));
+    block_of_piece[i] = it->second;
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (!folded[i]) continue;
+    const auto it = component.find(sets.find(static_cast<int>(i)));
+    if (it != component.end()) block_of_piece[i] = it->second;
+  }
+  const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
+                            tolerances.distance);
+  std::vector<Block> blocks;
+  for (const std::vector<int>& group : members) {
+    std::vector<Piece> block_pieces;
+    for (const int i : group) block_pieces.push_back(pieces[i]);
+    const int material = slabs.ofBlock(block_pieces);
+    blocks.push_back(makeBlock(std::move(block_pieces), material));
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i) {  // folded slivers keep their mass
+    if (!folded[i] || block_of_piece[i] < 0) continue;
+    const geometry::MassProperties m = geometry::massProperties(pieces[i].shape);
+    blocks[static_cast<std::size_t>(block_of_piece[i])].mass += m;
+    blocks[static_cast<std::size_t>(block_of_piece[i])].folded_volume += m.volume;
+  }
+  return blocks;
+}
+
+/// Rock pieces near the structures, then the structures' pieces, with the block of each, and
+/// the contacts between them.
+struct StructureContacts {
+  std::vector<Piece> near;
+  std::vector<int> block_of_near;
+  std::vector<PieceContact> contacts;
+};
+
+/// One block per structure appended to `blocks`, and its contacts with the rock pieces near
+/// it and with the other structures.
+StructureContacts structureBlocks(const CutInput& input, const CutTolerances& tolerances,
+                                  const std::vector<Piece>& pieces, const std::vector<bool>& folded,
+                                  const std::vector<int>& block_of_piece,
+                                  std::vector<Block>& blocks) {
+  StructureContacts out;
+  std::vector<Piece>& near = out.near;
+  std::vector<int>& block_of_near = out.block_of_near;
+  if (!input.structures.empty()) {
+    std::vector<Box> structure_boxes;
+    for (const StructureSolid& structure : input.structures) {
+      for (const Polyhedron& shape : structure.pieces) {
+        structure_boxes.push_back(geometry::bounds(shape).enlarged(tolerances.distance));
+      }
+    }
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      if (folded[i]) continue;
+      const Box b = geometry::bounds(pieces[i].shape);
+      const bool close =
+          std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const Box& s) {
+            return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
+          });
+      if (close) {
+        near.push_back(pieces[i]);
+        block_of_near.push_back(block_of_piece[i]);
+      }
+    }
+  }
+  const std::size_t near_rock = near.size();
+  for (std::size_t s = 0; s < input.structures.size(); ++s) {
+    std::vector<Piece> structure_pieces = labelStructurePieces(input, s, tolerances);
+    for (const Piece& piece : structure_pieces) {
+      near.push_back(piece);
+      block_of_near.push_back(static_cast<int>(blocks.size()));
+    }
+    blocks.push_back(makeBlock(std::move(structure_pieces), input.structures[s].material));
+    blocks.back().structure = static_cast<int>(s);
+  }
+  appendStructureContacts(near, near_rock, tolerances, out.contacts);
+
+  return out;
+}
+
+}  // namespace
+
 BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, ExactCutReport* report) {
   const Context context = makeContext(input);
   checkStructuresOutsideRock(input, cutTolerances(input.domain_box));
@@ -1377,111 +1516,22 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   }
   UnionFind sets(pieces.size());
   const std::vector<CrackContact> cracks = matchFaces(context, records, sets, /*discs=*/true);
-  if (options.nef_referee) {
-    // The Nef volumes, glued across region faces, must give the same partition.
-    UnionFind nef_sets(pieces.size());
-    for (const auto& [a, b] : nef_links) nef_sets.unite(a, b);
-    matchFaces(context, records, nef_sets, /*discs=*/false);
-    std::map<int, int> forward;
-    std::map<int, int> backward;
-    bool agrees = true;
-    for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
-      const int a = sets.find(i);
-      const int b = nef_sets.find(i);
-      agrees = agrees && forward.try_emplace(a, b).first->second == b &&
-               backward.try_emplace(b, a).first->second == a;
-    }
-    local.nef_blocks = static_cast<int>(backward.size());
-    local.nef_agrees = agrees;
-  }
+  if (options.nef_referee) refereeWithNef(context, records, nef_links, sets, local);
 
   // Sound pieces (piece_soundness.h): slivers are folded away and near vertices merged
   // after the gluing, which the exact faces decided, so the blocks are those of the exact
   // partition; a block of slivers only disappears.
-  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
-  std::vector<bool> folded(pieces.size(), false);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    SoundPieceReport piece_report;
-    std::optional<SoundPiece> sound = soundPiece(pieces[i], soundness, &piece_report);
-    addToReport(pieces[i], sound, piece_report, local.soundness);
-    if (sound) {
-      pieces[i] = std::move(sound->piece);
-    } else {
-      folded[i] = true;
-    }
-  }
+  const std::vector<bool> folded =
+      soundPieces(pieces, soundnessTolerances(input.domain_box), local.soundness);
 
-  // Rock blocks: components of the piece graph, in order of their first kept piece. A folded
-  // piece belongs to its component's block (for the adjacency), or to none (-1).
-  std::vector<std::vector<int>> members;
-  std::unordered_map<int, int> component;
-  std::vector<int> block_of_piece(pieces.size(), -1);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (folded[i]) continue;
-    const int root_piece = sets.find(static_cast<int>(i));
-    const auto [it, added] = component.try_emplace(root_piece, static_cast<int>(members.size()));
-    if (added) members.emplace_back();
-    members[it->second].push_back(static_cast<int>(i));
-    block_of_piece[i] = it->second;
-  }
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (!folded[i]) continue;
-    const auto it = component.find(sets.find(static_cast<int>(i)));
-    if (it != component.end()) block_of_piece[i] = it->second;
-  }
+  // Rock blocks: components of the piece graph, in order of their first kept piece.
   const CutTolerances tolerances = cutTolerances(input.domain_box);
-  const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
-                            tolerances.distance);
-  std::vector<Block> blocks;
-  for (const std::vector<int>& group : members) {
-    std::vector<Piece> block_pieces;
-    for (const int i : group) block_pieces.push_back(pieces[i]);
-    const int material = slabs.ofBlock(block_pieces);
-    blocks.push_back(makeBlock(std::move(block_pieces), material));
-  }
-  for (std::size_t i = 0; i < pieces.size(); ++i) {  // folded slivers keep their mass
-    if (!folded[i] || block_of_piece[i] < 0) continue;
-    const geometry::MassProperties m = geometry::massProperties(pieces[i].shape);
-    blocks[static_cast<std::size_t>(block_of_piece[i])].mass += m;
-    blocks[static_cast<std::size_t>(block_of_piece[i])].folded_volume += m.volume;
-  }
+  std::vector<int> block_of_piece;
+  std::vector<Block> blocks = rockBlocks(input, tolerances, pieces, folded, sets, block_of_piece);
   // Structures: one block each, as the fast cutter makes them (block_assembly.h), and their
   // contacts with the rock pieces near them and with each other.
-  std::vector<Piece> near;  // rock pieces near a structure, then the structure pieces
-  std::vector<int> block_of_near;
-  if (!input.structures.empty()) {
-    std::vector<Box> structure_boxes;
-    for (const StructureSolid& structure : input.structures) {
-      for (const Polyhedron& shape : structure.pieces) {
-        structure_boxes.push_back(geometry::bounds(shape).enlarged(tolerances.distance));
-      }
-    }
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      if (folded[i]) continue;
-      const Box b = geometry::bounds(pieces[i].shape);
-      const bool close =
-          std::any_of(structure_boxes.begin(), structure_boxes.end(), [&](const Box& s) {
-            return (b.min.array() <= s.max.array()).all() && (s.min.array() <= b.max.array()).all();
-          });
-      if (close) {
-        near.push_back(pieces[i]);
-        block_of_near.push_back(block_of_piece[i]);
-      }
-    }
-  }
-  const std::size_t near_rock = near.size();
-  for (std::size_t s = 0; s < input.structures.size(); ++s) {
-    std::vector<Piece> structure_pieces = labelStructurePieces(input, s, tolerances);
-    for (const Piece& piece : structure_pieces) {
-      near.push_back(piece);
-      block_of_near.push_back(static_cast<int>(blocks.size()));
-    }
-    blocks.push_back(makeBlock(std::move(structure_pieces), input.structures[s].material));
-    blocks.back().structure = static_cast<int>(s);
-  }
-  std::vector<PieceContact> structure_contacts;
-  appendStructureContacts(near, near_rock, tolerances, structure_contacts);
-
+  const StructureContacts structures =
+      structureBlocks(input, tolerances, pieces, folded, block_of_piece, blocks);
   // Deterministic ids: the order both cutters share.
   const std::vector<int> order = blockOrder(blocks, input.domain_box);
   std::vector<int> id_of(blocks.size());
@@ -1502,14 +1552,16 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
   for (const CrackContact& c : cracks) {
     add(block_of_piece[c.piece_a], block_of_piece[c.piece_b], c.source, c.area);
   }
-  for (const PieceContact& c : structure_contacts) {
+  for (const PieceContact& c : structures.contacts) {
     // The rule of assembleBlocks: no fictitious side; the structure's face names the contact
     // (piece_a's when both sides are structures).
-    const FaceSource& a = near[static_cast<std::size_t>(c.piece_a)].face_sources[c.face_a];
-    const FaceSource& b = near[static_cast<std::size_t>(c.piece_b)].face_sources[c.face_b];
+    const FaceSource& a =
+        structures.near[static_cast<std::size_t>(c.piece_a)].face_sources[c.face_a];
+    const FaceSource& b =
+        structures.near[static_cast<std::size_t>(c.piece_b)].face_sources[c.face_b];
     if (a.kind == FaceKind::Fictitious || b.kind == FaceKind::Fictitious) continue;
-    add(block_of_near[c.piece_a], block_of_near[c.piece_b], a.kind == FaceKind::Structure ? a : b,
-        c.area);
+    add(structures.block_of_near[c.piece_a], structures.block_of_near[c.piece_b],
+        a.kind == FaceKind::Structure ? a : b, c.area);
   }
 
   BlockModel model;
