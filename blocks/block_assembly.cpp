@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -160,6 +161,155 @@ std::vector<Piece> labelDomainPieces(const CutInput& input, const CutTolerances&
   return pieces;
 }
 
+namespace {
+
+/// The pieces glued into blocks: a contact whose shared part is not wholly covered by discs
+/// (fictitious on both sides, or as the cutter decided: `decided(k)`) joins its pieces, and
+/// the pieces of one structure are one block. A contact with one outer side and one inner
+/// counts as inconsistent in `report`.
+UnionFind glueClusters(const std::vector<Piece>& all, std::size_t rock_count,
+                       const std::vector<int>& structure_of,
+                       const std::vector<PieceContact>& contacts,
+                       const std::function<const FaceSource*(std::size_t)>& decided,
+                       AssemblyReport& report) {
+  UnionFind clusters(all.size());
+  const auto fictitious = [&](int piece, int face) {
+    return all[piece].face_sources[face].kind == FaceKind::Fictitious;
+  };
+  const auto outer = [&](int piece, int face) {
+    const FaceKind kind = all[piece].face_sources[face].kind;
+    return kind == FaceKind::Boundary || kind == FaceKind::Structure;
+  };
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const PieceContact& c = contacts[k];
+    if (const FaceSource* source = decided(k)) {
+      if (outer(c.piece_a, c.face_a) != outer(c.piece_b, c.face_b)) {
+        ++report.inconsistent_contacts;
+      } else if (source->kind == FaceKind::Fictitious) {
+        clusters.unite(c.piece_a, c.piece_b);
+      }
+      continue;
+    }
+    const bool fa = fictitious(c.piece_a, c.face_a);
+    const bool fb = fictitious(c.piece_b, c.face_b);
+    if (fa && fb) {
+      clusters.unite(c.piece_a, c.piece_b);
+    } else if (fa != fb) {
+      ++report.inconsistent_contacts;
+    }
+  }
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    for (std::size_t j = rock_count; j < i; ++j) {
+      if (structure_of[i] == structure_of[j]) {
+        clusters.unite(static_cast<int>(i), static_cast<int>(j));
+        break;
+      }
+    }
+  }
+  return clusters;
+}
+
+/// Rock pieces made sound: which were repaired (their face labels before the repair kept for
+/// the contacts that refer to them), the mass properties of every piece as kept, and which
+/// were folded away (they keep their mass in their block).
+struct SoundRock {
+  std::vector<std::vector<FaceSource>> repaired_sources;  ///< by piece; empty: not repaired
+  std::vector<char> repaired;                             ///< by rock piece
+  std::vector<geometry::MassProperties> mass;             ///< by piece
+  std::vector<bool> folded;                               ///< by piece
+};
+
+/// Sound rock pieces (piece_soundness.h): `all`'s first `rock_count` pieces with vertices to
+/// merge are repaired in place, slivers folded; counts go to `report`.
+SoundRock soundRockPieces(std::vector<Piece>& all, std::size_t rock_count,
+                          const std::vector<PieceFacts>* rock_facts,
+                          const SoundnessTolerances& soundness, SoundnessReport& report) {
+  SoundRock out;
+  // The face labels the contacts refer to, before soundPiece renumbers faces: copied only
+  // for the pieces it repairs (the others keep their faces; see sourcesOf below).
+  out.repaired_sources.resize(all.size());
+  // Most pieces have no vertices to merge: soundPiece would give them unchanged (or fold them
+  // when below the volume tolerance), so they are neither copied nor repaired. Each piece's
+  // mass properties (of the piece as kept, or as folded) are computed once, here.
+  std::vector<std::optional<SoundPiece>> sound(rock_count);
+  std::vector<SoundPieceReport> sound_reports(rock_count);
+  out.repaired.assign(rock_count, 0);
+  out.mass.resize(all.size());
+  tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
+    const PieceFacts* facts = rock_facts != nullptr ? &(*rock_facts)[i] : nullptr;
+    if (facts ? facts->close_vertices : hasCloseVertices(all[i], soundness)) {
+      out.repaired[i] = 1;
+      sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
+    }
+    out.mass[i] = sound[i] ? geometry::massProperties(sound[i]->piece.shape)
+                  : facts  ? facts->mass
+                           : geometry::massProperties(all[i].shape);
+  });
+  for (std::size_t i = rock_count; i < all.size(); ++i) {
+    out.mass[i] = geometry::massProperties(all[i].shape);
+  }
+  out.folded.assign(all.size(), false);
+  for (std::size_t i = 0; i < rock_count; ++i) {
+    if (!out.repaired[i]) {
+      // As soundPiece and addToReport count an unchanged piece.
+      if (!(out.mass[i].volume >= soundness.volume)) {
+        out.folded[i] = true;
+        ++report.folded_pieces;
+        report.folded_volume += out.mass[i].volume;
+      }
+      continue;
+    }
+    addToReport(all[i], sound[i], sound_reports[i], report);
+    if (sound[i]) {
+      out.repaired_sources[i] = std::move(all[i].face_sources);
+      all[i] = std::move(sound[i]->piece);
+    } else {
+      out.folded[i] = true;
+    }
+  }
+  return out;
+}
+
+/// Adjacency: real contacts between different blocks (`block_of` each piece's block id, 0:
+/// none), their areas summed per pair and source. The source is the cutter's decision
+/// (`decided`), else the structure when one side is a structure, else the face of the block
+/// with the smaller id (`sources_of`: a piece's face labels as the contacts refer to them).
+std::vector<Adjacency> blockAdjacency(
+    const std::vector<PieceContact>& contacts, const std::vector<int>& block_of,
+    const std::function<const FaceSource*(std::size_t)>& decided,
+    const std::function<const std::vector<FaceSource>&(int)>& sources_of) {
+  // Adjacency: real contacts between different blocks. The source is the structure when
+  // one side is a structure, else the face of the block with the smaller id.
+  std::map<std::tuple<int, int, int, int>, double> areas;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const PieceContact& c = contacts[k];
+    int a = block_of[c.piece_a], b = block_of[c.piece_b];
+    if (a == b || a == 0 || b == 0) continue;
+    if (const FaceSource* source = decided(k)) {
+      if (source->kind == FaceKind::Fictitious) continue;
+      if (a > b) std::swap(a, b);
+      areas[{a, b, static_cast<int>(source->kind), source->id}] += c.area;
+      continue;
+    }
+    const FaceSource source_a = sources_of(c.piece_a)[c.face_a];
+    const FaceSource source_b = sources_of(c.piece_b)[c.face_b];
+    if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
+    FaceSource source = a < b ? source_a : source_b;
+    if (source_b.kind == FaceKind::Structure) source = source_b;
+    if (source_a.kind == FaceKind::Structure) source = source_a;
+    if (a > b) std::swap(a, b);
+    areas[{a, b, static_cast<int>(source.kind), source.id}] += c.area;
+  }
+  std::vector<Adjacency> adjacency;
+  for (const auto& [key, area] : areas) {
+    const auto& [a, b, kind, id] = key;
+    adjacency.push_back({a, b, area, {static_cast<FaceKind>(kind), id}});
+  }
+  return adjacency;
+}
+
+}  // namespace
+
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
                           const std::vector<PieceContact>& rock_contacts, const CutInput& input,
                           const CutTolerances& tolerances, AssemblyReport* report,
@@ -177,93 +327,22 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
 
   std::vector<PieceContact> contacts = rock_contacts;
   appendStructureContacts(all, rock_count, tolerances, contacts);
-  UnionFind clusters(all.size());
-  AssemblyReport local_report;
-  const auto fictitious = [&](int piece, int face) {
-    return all[piece].face_sources[face].kind == FaceKind::Fictitious;
-  };
   // The source of contact k as the cutter decided it (rock contacts), else nothing.
   const auto decided = [&](std::size_t k) -> const FaceSource* {
     return contact_sources != nullptr && k < rock_contacts.size() ? &(*contact_sources)[k]
                                                                   : nullptr;
   };
-  const auto outer = [&](int piece, int face) {
-    const FaceKind kind = all[piece].face_sources[face].kind;
-    return kind == FaceKind::Boundary || kind == FaceKind::Structure;
-  };
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const PieceContact& c = contacts[k];
-    if (const FaceSource* source = decided(k)) {
-      if (outer(c.piece_a, c.face_a) != outer(c.piece_b, c.face_b)) {
-        ++local_report.inconsistent_contacts;
-      } else if (source->kind == FaceKind::Fictitious) {
-        clusters.unite(c.piece_a, c.piece_b);
-      }
-      continue;
-    }
-    const bool fa = fictitious(c.piece_a, c.face_a);
-    const bool fb = fictitious(c.piece_b, c.face_b);
-    if (fa && fb) {
-      clusters.unite(c.piece_a, c.piece_b);
-    } else if (fa != fb) {
-      ++local_report.inconsistent_contacts;
-    }
-  }
-  for (std::size_t i = rock_count; i < all.size(); ++i) {
-    for (std::size_t j = rock_count; j < i; ++j) {
-      if (structure_of[i] == structure_of[j]) {
-        clusters.unite(static_cast<int>(i), static_cast<int>(j));
-        break;
-      }
-    }
-  }
+  AssemblyReport local_report;
+  UnionFind clusters = glueClusters(all, rock_count, structure_of, contacts, decided, local_report);
 
-  // The face labels the contacts refer to, before soundPiece renumbers faces: copied only
-  // for the pieces it repairs (the others keep their faces; see sourcesOf below).
-  std::vector<std::vector<FaceSource>> repaired_sources(all.size());
   // Sound rock pieces (piece_soundness.h), after the gluing, as the exact cutter does: slivers
   // are folded away, near vertices merged; a block of slivers only disappears.
-  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
-  // Most pieces have no vertices to merge: soundPiece would give them unchanged (or fold them
-  // when below the volume tolerance), so they are neither copied nor repaired. Each piece's
-  // mass properties (of the piece as kept, or as folded) are computed once, here.
-  std::vector<std::optional<SoundPiece>> sound(rock_count);
-  std::vector<SoundPieceReport> sound_reports(rock_count);
-  std::vector<char> repaired(rock_count, 0);
-  std::vector<geometry::MassProperties> mass(all.size());
-  tbb::parallel_for(std::size_t{0}, rock_count, [&](std::size_t i) {
-    const PieceFacts* facts = rock_facts != nullptr ? &(*rock_facts)[i] : nullptr;
-    if (facts ? facts->close_vertices : hasCloseVertices(all[i], soundness)) {
-      repaired[i] = 1;
-      sound[i] = soundPiece(all[i], soundness, &sound_reports[i]);
-    }
-    mass[i] = sound[i] ? geometry::massProperties(sound[i]->piece.shape)
-              : facts  ? facts->mass
-                       : geometry::massProperties(all[i].shape);
-  });
-  for (std::size_t i = rock_count; i < all.size(); ++i) {
-    mass[i] = geometry::massProperties(all[i].shape);
-  }
-  std::vector<bool> folded(all.size(), false);
-  for (std::size_t i = 0; i < rock_count; ++i) {
-    if (!repaired[i]) {
-      // As soundPiece and addToReport count an unchanged piece.
-      if (!(mass[i].volume >= soundness.volume)) {
-        folded[i] = true;
-        ++local_report.soundness.folded_pieces;
-        local_report.soundness.folded_volume += mass[i].volume;
-      }
-      continue;
-    }
-    addToReport(all[i], sound[i], sound_reports[i], local_report.soundness);
-    if (sound[i]) {
-      repaired_sources[i] = std::move(all[i].face_sources);
-      all[i] = std::move(sound[i]->piece);
-    } else {
-      folded[i] = true;
-    }
-  }
-  sound.clear();
+  const SoundRock sound = soundRockPieces(
+      all, rock_count, rock_facts, soundnessTolerances(input.domain_box), local_report.soundness);
+  const std::vector<std::vector<FaceSource>>& repaired_sources = sound.repaired_sources;
+  const std::vector<char>& repaired = sound.repaired;
+  const std::vector<geometry::MassProperties>& mass = sound.mass;
+  const std::vector<bool>& folded = sound.folded;
 
   const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
                             tolerances.distance);
@@ -363,32 +442,7 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
     }
   }
 
-  // Adjacency: real contacts between different blocks. The source is the structure when
-  // one side is a structure, else the face of the block with the smaller id.
-  std::map<std::tuple<int, int, int, int>, double> areas;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const PieceContact& c = contacts[k];
-    int a = block_of[c.piece_a], b = block_of[c.piece_b];
-    if (a == b || a == 0 || b == 0) continue;
-    if (const FaceSource* source = decided(k)) {
-      if (source->kind == FaceKind::Fictitious) continue;
-      if (a > b) std::swap(a, b);
-      areas[{a, b, static_cast<int>(source->kind), source->id}] += c.area;
-      continue;
-    }
-    const FaceSource source_a = sourcesOf(c.piece_a)[c.face_a];
-    const FaceSource source_b = sourcesOf(c.piece_b)[c.face_b];
-    if (source_a.kind == FaceKind::Fictitious || source_b.kind == FaceKind::Fictitious) continue;
-    FaceSource source = a < b ? source_a : source_b;
-    if (source_b.kind == FaceKind::Structure) source = source_b;
-    if (source_a.kind == FaceKind::Structure) source = source_a;
-    if (a > b) std::swap(a, b);
-    areas[{a, b, static_cast<int>(source.kind), source.id}] += c.area;
-  }
-  for (const auto& [key, area] : areas) {
-    const auto& [a, b, kind, id] = key;
-    model.adjacency.push_back({a, b, area, {static_cast<FaceKind>(kind), id}});
-  }
+  model.adjacency = blockAdjacency(contacts, block_of, decided, sourcesOf);
   if (report) *report = local_report;
   return model;
 }
