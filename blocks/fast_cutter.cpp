@@ -294,6 +294,7 @@ class CellStore {
   const Box& box(int c) const { return boxes_[c]; }
   std::size_t size() const { return v_begin_.size(); }
   std::vector<Link>& links(int c) { return links_[c]; }
+  const std::vector<Link>& links(int c) const { return links_[c]; }
   /// Drops a dead cell's links.
   void kill(int c) {
     links_[c].clear();
@@ -509,6 +510,143 @@ void relink(CellStore& store, int c, int below_id, int above_id, const FlatSplit
   }
 }
 
+/// Whether `polygon` cuts a cell whose section by the polygon's plane is `section`: the
+/// polygon meets the section with area (more than a graze of the distance tolerance).
+bool polygonCutsSection(const std::vector<Vec3>& section, const CutPolygon& polygon,
+                        const Box& reach, const CutTolerances& tol, std::vector<Vec3>& covered,
+                        std::vector<Vec3>& scratch) {
+  // Does the polygon meet the section with area? A section whose box misses the
+  // polygon's (grown by the tolerance) does not: no cut, as the tests below would find
+  // (their clip would come out empty). Then vertex signs: an edge with the whole section
+  // outside (within the tolerance) leaves at most a strip of that width; a section
+  // inside every edge is covered whole; only the rest is clipped.
+  if (!section.empty()) {
+    Vec3 low = section.front(), high = section.front();
+    for (const Vec3& x : section) {
+      low = low.cwiseMin(x);
+      high = high.cwiseMax(x);
+    }
+    if ((high.array() < reach.min.array()).any() || (low.array() > reach.max.array()).any()) {
+      return false;
+    }
+  }
+  bool apart = false, inside = true;
+  for (const Plane& edge : polygon.edges) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Vec3& x : section) {
+      const double d = edge.distance(x);
+      low = std::min(low, d);
+      high = std::max(high, d);
+    }
+    if (high <= tol.distance) {
+      apart = true;
+      break;
+    }
+    inside = inside && low >= 0.0;
+  }
+  // A covered part thinner than the distance tolerance is a graze: no cut. A small but
+  // compact one (a corner poking 0.1 mm through a crack) is cut, as the exact cutter
+  // cuts it (blocks-exact2's rule for EdgePlanes, thinnerThan).
+  bool cut = false;
+  if (!apart && inside) {
+    cut = !thinnerThan(section, tol.distance);
+  } else if (!apart) {
+    overlapInto(section, polygon, covered, scratch);
+    cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
+  }
+  return cut;
+}
+
+/// The contact tables of a region's pieces: the pairs of faces that may touch (tracked
+/// through the cuts), the two sides of each cut (twins, decided without a table entry), and
+/// the faces in the region's kd faces. `local` maps a cell to its piece index.
+void regionContactTables(const CellStore& store, const std::vector<int>& live,
+                         const std::vector<int>& local, const Region& region,
+                         const CutTolerances& tol, RegionCut& out) {
+  // The contact table straight from the flat store (sequential, still in cache), faces in
+  // first-use order of the pairs: slots and sizes first, then the table sized once and
+  // filled.
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
+  struct Use {
+    int cell, piece, face;
+    std::uint32_t begin;
+  };
+  std::vector<Use> uses;
+  std::uint32_t corners = 0;
+  std::vector<Vec3> corners_a, corners_b;
+  const auto slotOf = [&](int cell, int k, int face) {
+    std::uint32_t& at = slot[store.faceIndex(cell, face)];
+    if (at == kNone) {
+      at = static_cast<std::uint32_t>(uses.size());
+      uses.push_back({cell, k, face, corners});
+      corners += static_cast<std::uint32_t>(store.view(cell).face_size[face]);
+    }
+    return at;
+  };
+  for (std::size_t k = 0; k < live.size(); ++k) {
+    for (const Link& link : store.links(live[k])) {
+      if (link.other_face < 0) continue;
+      const int other = local[link.other];
+      if (other <= static_cast<int>(k)) continue;
+      if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
+          store.mirrored(live[k], link.face, link.other, link.other_face)) {
+        // The two sides of one cut: their contact is decided without a table entry.
+        out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
+        store.faceCorners(live[k], link.face, corners_a);
+        store.faceCorners(link.other, link.other_face, corners_b);
+        if (const std::optional<double> area =
+                mirroredContactArea(corners_a, corners_b, tol.distance, tol.area)) {
+          out.mirrored.push_back({static_cast<int>(k), link.face, other, link.other_face, *area});
+        }
+        continue;
+      }
+      const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
+      const std::uint32_t b = slotOf(link.other, other, link.other_face);
+      out.pairs.emplace_back(a, b);
+    }
+  }
+  // The faces in the region's kd faces, in piece and face order (counted, then the table
+  // sized once and filled).
+  std::vector<std::pair<int, int>> kd_faces;  // (k, face)
+  std::uint32_t kd_corners = 0;
+  for (std::size_t k = 0; k < live.size(); ++k) {
+    for (int f = 0; f < store.faceCount(live[k]); ++f) {
+      const int plane = store.planeOf(live[k], f);
+      if (std::find(region.face_plane.begin(), region.face_plane.end(), plane) ==
+          region.face_plane.end()) {
+        continue;
+      }
+      kd_faces.emplace_back(static_cast<int>(k), f);
+      kd_corners += static_cast<std::uint32_t>(store.view(live[k]).face_size[f]);
+      out.kd_planes.push_back(plane);
+    }
+  }
+  out.kd.faces.resize(kd_faces.size());
+  out.kd.points.resize(kd_corners);
+  out.kd.inward.resize(kd_corners);
+  kd_corners = 0;
+  for (std::size_t u = 0; u < kd_faces.size(); ++u) {
+    const auto [k, f] = kd_faces[u];
+    const FlatPieceView view = store.view(live[static_cast<std::size_t>(k)]);
+    const auto loop = view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                         static_cast<std::size_t>(view.face_size[f]));
+    out.kd.set(static_cast<std::uint32_t>(u), k, f, kd_corners, view.vertices, loop);
+    kd_corners += static_cast<std::uint32_t>(loop.size());
+  }
+  out.faces.faces.resize(uses.size());
+  out.faces.points.resize(corners);
+  out.faces.inward.resize(corners);
+  for (std::size_t u = 0; u < uses.size(); ++u) {
+    const FlatPieceView view = store.view(uses[u].cell);
+    const auto f = static_cast<std::size_t>(uses[u].face);
+    out.faces.set(static_cast<std::uint32_t>(u), uses[u].piece, uses[u].face, uses[u].begin,
+                  view.vertices,
+                  view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
+                                     static_cast<std::size_t>(view.face_size[f])));
+  }
+}
+
 /// Splits the region's cells by the full plane of every polygon that meets them. With
 /// `track`, follows which faces may touch through the splits (RegionCut::touching).
 RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygons,
@@ -554,47 +692,11 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
         next.push_back(id);
         continue;
       }
-      // Does the polygon meet the section with area? A section whose box misses the
-      // polygon's (grown by the tolerance) does not: no cut, as the tests below would find
-      // (their clip would come out empty). Then vertex signs: an edge with the whole section
-      // outside (within the tolerance) leaves at most a strip of that width; a section
-      // inside every edge is covered whole; only the rest is clipped.
-      if (!section.empty()) {
-        Vec3 low = section.front(), high = section.front();
-        for (const Vec3& x : section) {
-          low = low.cwiseMin(x);
-          high = high.cwiseMax(x);
-        }
-        if ((high.array() < reach.min.array()).any() || (low.array() > reach.max.array()).any()) {
-          next.push_back(id);
-          continue;
-        }
+      if (!polygonCutsSection(section, polygon, reach, tol, covered, scratch)) {
+        next.push_back(id);
+        continue;
       }
-      bool apart = false, inside = true;
-      for (const Plane& edge : polygon.edges) {
-        double low = std::numeric_limits<double>::infinity(), high = -low;
-        for (const Vec3& x : section) {
-          const double d = edge.distance(x);
-          low = std::min(low, d);
-          high = std::max(high, d);
-        }
-        if (high <= tol.distance) {
-          apart = true;
-          break;
-        }
-        inside = inside && low >= 0.0;
-      }
-      // A covered part thinner than the distance tolerance is a graze: no cut. A small but
-      // compact one (a corner poking 0.1 mm through a crack) is cut, as the exact cutter
-      // cuts it (blocks-exact2's rule for EdgePlanes, thinnerThan).
-      bool cut = false;
-      if (!apart && inside) {
-        cut = !thinnerThan(section, tol.distance);
-      } else if (!apart) {
-        overlapInto(section, polygon, covered, scratch);
-        cut = covered.size() >= 3 && !thinnerThan(covered, tol.distance);
-      }
-      if (!cut || !splitFlat(store.view(id), crossed, split)) {
+      if (!splitFlat(store.view(id), crossed, split)) {
         next.push_back(id);
         continue;
       }
@@ -620,90 +722,7 @@ RegionCut cutRegion(const Region& region, const std::vector<CutPolygon>& polygon
     out.facts.push_back({geometry::massProperties(piece.shape), geometry::bounds(piece.shape),
                          hasCloseVertices(piece, soundness)});
   }
-  if (track) {
-    // The contact table straight from the flat store (sequential, still in cache), faces in
-    // first-use order of the pairs: slots and sizes first, then the table sized once and
-    // filled.
-    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> slot(store.faceTotal(), kNone);
-    struct Use {
-      int cell, piece, face;
-      std::uint32_t begin;
-    };
-    std::vector<Use> uses;
-    std::uint32_t corners = 0;
-    std::vector<Vec3> corners_a, corners_b;
-    const auto slotOf = [&](int cell, int k, int face) {
-      std::uint32_t& at = slot[store.faceIndex(cell, face)];
-      if (at == kNone) {
-        at = static_cast<std::uint32_t>(uses.size());
-        uses.push_back({cell, k, face, corners});
-        corners += static_cast<std::uint32_t>(store.view(cell).face_size[face]);
-      }
-      return at;
-    };
-    for (std::size_t k = 0; k < live.size(); ++k) {
-      for (const Link& link : store.links(live[k])) {
-        if (link.other_face < 0) continue;
-        const int other = local[link.other];
-        if (other <= static_cast<int>(k)) continue;
-        if (store.planeOf(live[k], link.face) == store.planeOf(link.other, link.other_face) &&
-            store.mirrored(live[k], link.face, link.other, link.other_face)) {
-          // The two sides of one cut: their contact is decided without a table entry.
-          out.twins.push_back({static_cast<int>(k), link.face, other, link.other_face});
-          store.faceCorners(live[k], link.face, corners_a);
-          store.faceCorners(link.other, link.other_face, corners_b);
-          if (const std::optional<double> area =
-                  mirroredContactArea(corners_a, corners_b, tol.distance, tol.area)) {
-            out.mirrored.push_back({static_cast<int>(k), link.face, other, link.other_face, *area});
-          }
-          continue;
-        }
-        const std::uint32_t a = slotOf(live[k], static_cast<int>(k), link.face);
-        const std::uint32_t b = slotOf(link.other, other, link.other_face);
-        out.pairs.emplace_back(a, b);
-      }
-    }
-    // The faces in the region's kd faces, in piece and face order (counted, then the table
-    // sized once and filled).
-    std::vector<std::pair<int, int>> kd_faces;  // (k, face)
-    std::uint32_t kd_corners = 0;
-    for (std::size_t k = 0; k < live.size(); ++k) {
-      for (int f = 0; f < store.faceCount(live[k]); ++f) {
-        const int plane = store.planeOf(live[k], f);
-        if (std::find(region.face_plane.begin(), region.face_plane.end(), plane) ==
-            region.face_plane.end()) {
-          continue;
-        }
-        kd_faces.emplace_back(static_cast<int>(k), f);
-        kd_corners += static_cast<std::uint32_t>(store.view(live[k]).face_size[f]);
-        out.kd_planes.push_back(plane);
-      }
-    }
-    out.kd.faces.resize(kd_faces.size());
-    out.kd.points.resize(kd_corners);
-    out.kd.inward.resize(kd_corners);
-    kd_corners = 0;
-    for (std::size_t u = 0; u < kd_faces.size(); ++u) {
-      const auto [k, f] = kd_faces[u];
-      const FlatPieceView view = store.view(live[static_cast<std::size_t>(k)]);
-      const auto loop = view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
-                                           static_cast<std::size_t>(view.face_size[f]));
-      out.kd.set(static_cast<std::uint32_t>(u), k, f, kd_corners, view.vertices, loop);
-      kd_corners += static_cast<std::uint32_t>(loop.size());
-    }
-    out.faces.faces.resize(uses.size());
-    out.faces.points.resize(corners);
-    out.faces.inward.resize(corners);
-    for (std::size_t u = 0; u < uses.size(); ++u) {
-      const FlatPieceView view = store.view(uses[u].cell);
-      const auto f = static_cast<std::size_t>(uses[u].face);
-      out.faces.set(static_cast<std::uint32_t>(u), uses[u].piece, uses[u].face, uses[u].begin,
-                    view.vertices,
-                    view.loops.subspan(static_cast<std::size_t>(view.face_begin[f]),
-                                       static_cast<std::size_t>(view.face_size[f])));
-    }
-  }
+  if (track) regionContactTables(store, live, local, region, tol, out);
   return out;
 }
 
