@@ -844,23 +844,12 @@ std::vector<PieceContact> trackedContacts(
   return contacts;
 }
 
-BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
-                         const CutTolerances& tol, FastCutReport* report) {
-  FastCutReport counters;
-  const auto start = std::chrono::steady_clock::now();
-  CutStart setup = startCut(input, tol);
-  UnionFind& plane_ids = setup.plane_ids;
-  const std::vector<Piece>& domain = setup.domain;
-  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
-  std::vector<CutPolygon>& polygons = setup.polygons;
-  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
-                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
-                          geometry::bounds(domain[0].shape).max == input.domain_box.max &&
-                          domain[0].shape.vertices.size() == 8;
-  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
-  counters.cutting_polygons = static_cast<int>(polygons.size());
-
-  // Regions.
+/// The kd regions of the cut (the split avoids the axis-aligned polygon and domain planes),
+/// each with the polygons that may meet it.
+std::vector<Region> kdRegions(const CutInput& input, const FastCutOptions& options,
+                              const std::vector<CutPolygon>& polygons,
+                              const std::vector<Piece>& domain, const CutTolerances& tol,
+                              UnionFind& plane_ids) {
   const std::array<std::vector<double>, 3> avoid = axisPlaneLevels(polygons, domain);
   Region root;
   root.box = input.domain_box;
@@ -873,21 +862,26 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
   splitRegions(polygons, avoid, input.domain_box.size().maxCoeff() / 64.0,
                std::max(1, options.max_discs_per_region), tol.distance, plane_ids, std::move(root),
                regions);
-  counters.regions = static_cast<int>(regions.size());
+  return regions;
+}
 
-  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
-  std::vector<RegionCut> cuts(regions.size());
-  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
-    throwIfInterrupted("the block cut (fast cutter)");
-    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
-                        options.track_contacts);
-  });
+/// The regions' cuts in one list: pieces in region order, with their faces' plane ids, the
+/// tracked contact tables (each region's table stays where the region built it; the contact
+/// decisions read them in place), the twins (the two sides of one cut), and each piece's facts.
+struct GatheredCut {
   std::vector<Piece> pieces;
-  std::vector<int> planes;  // plane id of every face, in piece and face order (first_face)
-  // Tracked: per region, the faces that may touch and the pairs of them (each region's
-  // table stays where the region built it; the contact decisions read them in place).
+  std::vector<int> planes;  ///< plane id of every face, in piece and face order
   std::vector<ContactTablePart> tracked;
-  std::vector<std::array<int, 4>> twins;  // (piece, face, piece, face), global piece indices
+  std::vector<std::array<int, 4>> twins;  ///< (piece, face, piece, face), global indices
+  std::vector<int> piece_first;           ///< per region: the index of its first piece
+  std::vector<PieceFacts> facts;          ///< per piece, for the assembly
+};
+
+GatheredCut gatherCuts(std::vector<RegionCut>& cuts, UnionFind& plane_ids,
+                       FastCutReport& counters) {
+  GatheredCut out;
+  std::vector<Piece>& pieces = out.pieces;
+  std::vector<int>& planes = out.planes;
   {
     std::size_t piece_total = 0, face_total = 0;
     for (const RegionCut& cut : cuts) {
@@ -897,22 +891,57 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     pieces.reserve(piece_total);
     planes.reserve(face_total);
   }
-  std::vector<int> piece_first;   // per region: the global index of its first piece
-  std::vector<PieceFacts> facts;  // per piece, for the assembly
   for (RegionCut& cut : cuts) {
-    piece_first.push_back(static_cast<int>(pieces.size()));
+    out.piece_first.push_back(static_cast<int>(pieces.size()));
     counters.piece_tests += cut.piece_tests;
     counters.splits += cut.splits;
     for (const auto& [a, b] : cut.coincident) plane_ids.unite(a, b);
     if (!cut.pairs.empty() || !cut.mirrored.empty()) {
-      tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs, cut.mirrored});
+      out.tracked.push_back({&cut.faces, static_cast<int>(pieces.size()), cut.pairs, cut.mirrored});
     }
     const int first = static_cast<int>(pieces.size());
-    for (const auto& [i, f, j, g] : cut.twins) twins.push_back({first + i, f, first + j, g});
+    for (const auto& [i, f, j, g] : cut.twins) out.twins.push_back({first + i, f, first + j, g});
     for (Piece& piece : cut.pieces) pieces.push_back(std::move(piece));
     planes.insert(planes.end(), cut.planes.begin(), cut.planes.end());
-    facts.insert(facts.end(), cut.facts.begin(), cut.facts.end());
+    out.facts.insert(out.facts.end(), cut.facts.begin(), cut.facts.end());
   }
+  return out;
+}
+
+BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
+                         const CutTolerances& tol, FastCutReport* report) {
+  FastCutReport counters;
+  const auto start = std::chrono::steady_clock::now();
+  CutStart setup = startCut(input, tol);
+  UnionFind& plane_ids = setup.plane_ids;
+  const std::vector<Piece>& domain = setup.domain;
+  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
+  std::vector<CutPolygon>& polygons = setup.polygons;
+  // The domain is its bounding box (one piece of 6 faces and 8 vertices spanning it).
+  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
+                          domain[0].shape.vertices.size() == 8 &&
+                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
+                          geometry::bounds(domain[0].shape).max == input.domain_box.max;
+  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
+  counters.cutting_polygons = static_cast<int>(polygons.size());
+
+  const std::vector<Region> regions = kdRegions(input, options, polygons, domain, tol, plane_ids);
+  counters.regions = static_cast<int>(regions.size());
+
+  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
+  std::vector<RegionCut> cuts(regions.size());
+  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
+    throwIfInterrupted("the block cut (fast cutter)");
+    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
+                        options.track_contacts);
+  });
+  GatheredCut gathered = gatherCuts(cuts, plane_ids, counters);
+  std::vector<Piece>& pieces = gathered.pieces;
+  std::vector<int>& planes = gathered.planes;
+  std::vector<ContactTablePart>& tracked = gathered.tracked;
+  std::vector<std::array<int, 4>>& twins = gathered.twins;
+  const std::vector<int>& piece_first = gathered.piece_first;
+  const std::vector<PieceFacts>& facts = gathered.facts;
   counters.pieces = static_cast<int>(pieces.size());
   for (int& id : planes) id = plane_ids.find(id);
   // Face f of piece i is face first_face[i] + f of the flat per-face tables.
