@@ -173,6 +173,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   // Progress every 10 % of the simulated time, and at least every 30 s of wall time (a
   // large model may take minutes per 10 %).
   Progress progress("dda", duration, "s simulated");
+  progress.setSafePoint(false);  // each step is one, naming its time (Simulation::step)
   while (sim.time() < end) {
     const dda3d::StepReport report = sim.step();
     ++step;

@@ -71,7 +71,7 @@ std::string Progress::line(double done, const std::string& detail) const {
 }
 
 void Progress::update(double done, const std::string& detail) {
-  throwIfInterrupted(label_);
+  if (safe_point_) throwIfInterrupted(label_);
   const int tenth = static_cast<int>(std::floor(10.0 * std::clamp(done / total_, 0.0, 1.0)));
   const double now = clock_();
   if (tenth <= last_tenth_ && now - last_time_ < interval_) return;

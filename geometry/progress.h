@@ -22,9 +22,14 @@ class Progress {
   Progress(std::string label, double total, std::string unit, double interval = 30.0,
            Sink sink = {}, Clock clock = {});
 
+  /// Whether update() is a safe point (default). A stage whose own loop stops at a more
+  /// telling safe point (the DDA: "the DDA at t = ... s") turns it off.
+  void setSafePoint(bool on) { safe_point_ = on; }
+
   /// Records `done` units of work (at most `total`); reports when a tenth more is done than
   /// at the last report or `interval` seconds have passed, with `detail` after the numbers.
-  /// Throws Interrupted (at this safe point) when an interruption was requested.
+  /// Throws Interrupted (at this safe point) when an interruption was requested (unless
+  /// setSafePoint(false)).
   void update(double done, const std::string& detail = "");
 
   /// Seconds since construction.
@@ -45,6 +50,7 @@ class Progress {
   double start_;
   double last_time_;
   int last_tenth_ = 0;
+  bool safe_point_ = true;
 };
 
 }  // namespace rockmass

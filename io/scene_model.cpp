@@ -200,8 +200,7 @@ bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int
 /// point moved every step and a contact candidate), at the line of the spacing that adds most.
 void setContactPointSpacings(const Scene& scene, const blocks::BlockModel& blocks,
                              const Members& members, dda3d::DdaModel& model) {
-  const double run =
-      scene.analysis.dda ? scene.analysis.dda->engine.contact_point_spacing : 0.0;
+  const double run = scene.analysis.dda ? scene.analysis.dda->engine.contact_point_spacing : 0.0;
   struct Source {
     std::string key;
     int line = 0;
