@@ -42,16 +42,14 @@ class ProgressReporter {
  public:
   explicit ProgressReporter(std::string what) : what_(std::move(what)) {}
   void operator()(std::size_t done, std::size_t total) {
-    if (!progress_) {
-      progress_ = std::make_shared<Progress>("rqd: " + what_, static_cast<double>(total),
-                                             "scanlines", 10.0);
-    }
+    if (!progress_)
+      progress_.emplace("rqd: " + what_, static_cast<double>(total), "scanlines", 10.0);
     progress_->update(static_cast<double>(done));
   }
 
  private:
   std::string what_;
-  std::shared_ptr<Progress> progress_;
+  std::optional<Progress> progress_;  ///< made at the first call, when the total is known
 };
 
 /// The scene's analysis.rqd with the command-line overrides applied and checked.

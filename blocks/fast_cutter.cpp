@@ -27,9 +27,6 @@ namespace {
 
 using namespace fastcut;
 
-using geometry::Box;
-using geometry::Vec2;
-
 /// A kd region: its box, the plane id of each of its six faces (boxPolyhedron order; -1 on
 /// the domain's bounding box) and the polygons that may meet it, ascending.
 struct Region {

@@ -210,11 +210,16 @@ void setContactPointSpacings(const Scene& scene, const blocks::BlockModel& block
   std::vector<Source> sources;
   sources.push_back({"analysis.dda.contact_point_spacing",
                      scene.analysis.dda ? scene.analysis.dda->contact_point_spacing_line : 0, run});
-  for (const int b : members[0]) {
-    for (const geometry::Polyhedron& piece : model.blocks[static_cast<std::size_t>(b)].pieces) {
-      sources[0].points += dda3d::facePointBound(piece, run);
+  // Counted only where there are points (a spacing of 0 gives none).
+  const auto count = [&](const std::vector<int>& own, Source& source) {
+    if (!(source.spacing > 0.0)) return;
+    for (const int b : own) {
+      for (const geometry::Polyhedron& piece : model.blocks[static_cast<std::size_t>(b)].pieces) {
+        source.points += dda3d::facePointBound(piece, source.spacing);
+      }
     }
-  }
+  };
+  count(members[0], sources[0]);
   for (std::size_t s = 0; s < scene.structures.size(); ++s) {
     const StructureSpec& spec = scene.structures[s];
     const std::vector<int>& own = members[s + 1];
@@ -236,13 +241,9 @@ void setContactPointSpacings(const Scene& scene, const blocks::BlockModel& block
         bonded ? (box.max - box.min).minCoeff() / kAutoPointCells : 0.0);
     Source source{"structures." + spec.name + ".contact_point_spacing",
                   spec.contact_point_spacing_line, spacing};
-    for (const int b : own) {
-      dda3d::DdaBlock& block = model.blocks[static_cast<std::size_t>(b)];
-      block.contact_point_spacing = spacing;
-      for (const geometry::Polyhedron& piece : block.pieces) {
-        source.points += dda3d::facePointBound(piece, spacing);
-      }
-    }
+    for (const int b : own)
+      model.blocks[static_cast<std::size_t>(b)].contact_point_spacing = spacing;
+    count(own, source);
     sources.push_back(source);
   }
   std::size_t total = 0;
