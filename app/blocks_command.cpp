@@ -6,20 +6,20 @@
 #include <vector>
 
 #include "app/command.h"
-#include "app/scene_blocks.h"
 #include "app/stages.h"
 #include "io/atomic_file.h"
 #include "io/block_mesh.h"
 #include "io/block_output.h"
 #include "io/input_error.h"
-#include "io/scene_model.h"
 #include "io/summary.h"
+#include "scene_model/dda_model.h"
+#include "scene_model/scene_blocks.h"
 
 namespace rockmass::app {
 
 namespace fs = std::filesystem;
 
-io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter) {
+io::CutInfo cutInfoOf(const scene_model::SceneBlocks& cut, const std::string& cutter) {
   io::CutInfo info;
   info.cutter = cutter;
   info.disc_segments = cut.input.disc_segments;
@@ -32,8 +32,10 @@ void writeBlocksFiles(const fs::path& out, const io::Scene& scene, const blocks:
                       const geometry::FractureNetwork& network) {
   io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
   io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
-  io::writeFileAtomically(out / "faces.vtu",
-                          io::formatFacesVtu(model, io::FaceJoints(scene, network)));
+  io::writeFileAtomically(
+      out / "faces.vtu",
+      io::formatFacesVtu(model, [joints = scene_model::FaceJoints(scene, network)](
+                                    const blocks::FaceSource& f) { return joints.of(f); }));
 }
 
 namespace {
@@ -47,12 +49,13 @@ struct BlocksOptions {
 
 int runBlocks(const BlocksOptions& options) {
   const io::Scene scene = loadScene(options.common, /*mesh_domain_supported=*/true);
-  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+  const std::string cutter = scene_model::chooseCutter(scene, options.cutter, options.common.scene);
   const fs::path out = prepareOutput(options.common.output);
   const DfnStage dfn = runDfnStage(scene, options.common.scene);
 
   auto start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(scene, dfn.network, cutter, options.common.scene);
+  const scene_model::SceneBlocks cut =
+      scene_model::cutSceneBlocks(scene, dfn.network, cutter, options.common.scene);
   const double cut_seconds = secondsSince(start);
   std::fprintf(stderr, "blocks: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
                cut.model.blocks.size(), cut.pieces, cutter.c_str(), cut_seconds);

@@ -145,4 +145,12 @@ geometry::FractureNetwork generateNetwork(const io::Scene& scene, const std::str
   }
 }
 
+void addCutterOption(CLI::App& command, std::string& cutter) {
+  command
+      .add_option("--cutter", cutter,
+                  "exact (exact-kernel splitting, CGAL Nef referee) or fast (floating-point "
+                  "convex splitting); overrides analysis.blocks.cutter")
+      ->check(CLI::IsMember({"exact", "fast"}));
+}
+
 }  // namespace rockmass::app

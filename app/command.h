@@ -72,4 +72,7 @@ Command addOverloadCommand(CLI::App& app);
 Command addStrengthCommand(CLI::App& app);
 Command addRunCommand(CLI::App& app);
 
+/// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
+void addCutterOption(CLI::App& command, std::string& cutter);
+
 }  // namespace rockmass::app

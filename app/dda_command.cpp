@@ -12,7 +12,6 @@
 #include <chrono>
 
 #include "app/command.h"
-#include "app/scene_blocks.h"
 #include "app/stages.h"
 #include "dda3d/simulation.h"
 #include "geometry/progress.h"
@@ -21,8 +20,9 @@
 #include "io/dda_output.h"
 #include "io/dda_summary.h"
 #include "io/input_error.h"
-#include "io/scene_model.h"
-#include "io/stability_settings.h"
+#include "scene_model/dda_model.h"
+#include "scene_model/scene_blocks.h"
+#include "scene_model/stability_settings.h"
 
 namespace rockmass::app {
 
@@ -39,7 +39,7 @@ struct DdaOptions {
 
 /// Engine settings from analysis.dda and the command line.
 dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOverrides& options) {
-  dda3d::DdaSettings settings = io::ddaSettings(dda);
+  dda3d::DdaSettings settings = scene_model::ddaSettings(dda);
   settings.solver.kind = options.solver == "pcg"       ? dda3d::SolverKind::Pcg
                          : options.solver == "eigen"   ? dda3d::SolverKind::Eigen
                          : options.solver == "cholmod" ? dda3d::SolverKind::Cholmod
@@ -144,7 +144,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   const io::DdaAnalysis& dda = *scene.analysis.dda;
   const int steps = options.steps.value_or(dda.steps);
   DdaStage stage;
-  dda3d::DdaModel model = io::buildDdaModel(scene, blocks, network);
+  dda3d::DdaModel model = scene_model::buildDdaModel(scene, blocks, network);
   int fixed_blocks = 0, pieces = 0;
   for (const dda3d::DdaBlock& b : model.blocks) {
     fixed_blocks += b.fixed;
@@ -252,7 +252,7 @@ int runDda(const DdaOptions& options) {
     throw io::InputError(options.common.scene +
                          ": analysis.dda: required by `rockmass dda` (steps, time_step, ...)");
   }
-  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+  const std::string cutter = scene_model::chooseCutter(scene, options.cutter, options.common.scene);
   const fs::path out = prepareOutput(options.common.output);
   io::RunInfo run;
   run.command = "dda";
@@ -265,9 +265,10 @@ int runDda(const DdaOptions& options) {
   run.timings.emplace_back("dfn", dfn.seconds);
 
   // The network covers the whole domain; the DDA cuts it in its region when it has one.
-  const io::Scene dda_scene = ddaScene(scene);
+  const io::Scene dda_scene = scene_model::ddaScene(scene);
   auto start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(dda_scene, dfn.network, cutter, options.common.scene);
+  const scene_model::SceneBlocks cut =
+      scene_model::cutSceneBlocks(dda_scene, dfn.network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
   std::fprintf(stderr, "dda: %zu blocks cut (%s cutter, %.2f s)%s\n", cut.model.blocks.size(),
                cutter.c_str(), run.timings.back().second,
@@ -275,15 +276,17 @@ int runDda(const DdaOptions& options) {
 
   start = Clock::now();
   std::optional<blocks::MergeReport> glued;
-  const blocks::BlockModel dda_blocks = ddaBlocks(dda_scene, cut.model, glued);
+  const blocks::BlockModel dda_blocks = scene_model::ddaBlocks(dda_scene, cut.model, glued);
   const DdaStage stage =
       runDdaStage(dda_scene, dda_blocks, dfn.network, options.overrides, out, glued);
   run.timings.emplace_back("dda", secondsSince(start));
 
   start = Clock::now();
   writeDdaFiles(out, stage);
-  io::writeFileAtomically(out / "faces.vtu",
-                          io::formatFacesVtu(dda_blocks, io::FaceJoints(dda_scene, dfn.network)));
+  io::writeFileAtomically(
+      out / "faces.vtu",
+      io::formatFacesVtu(dda_blocks, [joints = scene_model::FaceJoints(dda_scene, dfn.network)](
+                                         const blocks::FaceSource& f) { return joints.of(f); }));
   run.effects = stage.effects;
   run.timings.emplace_back("write", secondsSince(start));
   io::writeFileAtomically(out / "summary.json", io::formatDdaSummary(run, stage.summary));

@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "app/command.h"
-#include "app/scene_blocks.h"
 #include "app/stability.h"
+#include "scene_model/scene_blocks.h"
 
 namespace rockmass::app {
 

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "app/command.h"
-#include "app/scene_blocks.h"
 #include "app/stability.h"
 #include "app/stages.h"
 #include "geometry/plane_section.h"
@@ -23,10 +22,11 @@
 #include "io/input_error.h"
 #include "io/rqd_output.h"
 #include "io/run_summary.h"
-#include "io/scene_model.h"
 #include "io/section_output.h"
 #include "io/stability_output.h"
 #include "io/summary.h"
+#include "scene_model/dda_model.h"
+#include "scene_model/scene_blocks.h"
 
 namespace rockmass::app {
 
@@ -286,7 +286,7 @@ StagePlan planStages(const io::Scene& scene, const RunOptions& options) {
                          "reduced joint strength; add analysis.dda (mode, steps, time_step)");
   }
   plan.cut = a.blocks.has_value() || plan.dda;
-  if (plan.cut) plan.cutter = chooseCutter(scene, options.cutter, file);
+  if (plan.cut) plan.cutter = scene_model::chooseCutter(scene, options.cutter, file);
   return plan;
 }
 
@@ -383,7 +383,8 @@ DfnStage dfnStage(RunContext& ctx) {
 }
 
 /// The vertical section through the blocks (section.csv, section.svg).
-void sectionStage(RunContext& ctx, const SceneBlocks& cut, const geometry::FractureNetwork& network,
+void sectionStage(RunContext& ctx, const scene_model::SceneBlocks& cut,
+                  const geometry::FractureNetwork& network,
                   const std::pair<geometry::SectionPlane, std::string>& section) {
   const auto start = Clock::now();
   const io::Section s =
@@ -402,11 +403,13 @@ void sectionStage(RunContext& ctx, const SceneBlocks& cut, const geometry::Fract
 }
 
 /// Blocks (and the section through them).
-SceneBlocks cutStage(RunContext& ctx, const geometry::FractureNetwork& network,
-                     const std::optional<std::pair<geometry::SectionPlane, std::string>>& section) {
+scene_model::SceneBlocks cutStage(
+    RunContext& ctx, const geometry::FractureNetwork& network,
+    const std::optional<std::pair<geometry::SectionPlane, std::string>>& section) {
   const std::string& cutter = ctx.plan.cutter;
   const auto start = Clock::now();
-  SceneBlocks cut = cutSceneBlocks(ctx.scene, network, cutter, ctx.options.common.scene);
+  scene_model::SceneBlocks cut =
+      scene_model::cutSceneBlocks(ctx.scene, network, cutter, ctx.options.common.scene);
   const double seconds = secondsSince(start);
   std::fprintf(stderr, "run: %zu blocks (%d pieces), %s cutter (%.2f s)\n", cut.model.blocks.size(),
                cut.pieces, cutter.c_str(), seconds);
@@ -449,19 +452,19 @@ void rqdStage(RunContext& ctx, const geometry::FractureNetwork& network, RqdPlan
 /// network in the region (ddaScene), the blocks stage keeping the whole domain.
 blocks::BlockModel ddaStageBlocks(RunContext& ctx, const io::Scene& dda_scene,
                                   const geometry::FractureNetwork& network,
-                                  const std::optional<SceneBlocks>& cut,
+                                  const std::optional<scene_model::SceneBlocks>& cut,
                                   std::optional<blocks::MergeReport>& glued) {
   if (!(ctx.scene.analysis.dda && ctx.scene.analysis.dda->region)) {
-    return ddaBlocks(ctx.scene, cut->model, glued);
+    return scene_model::ddaBlocks(ctx.scene, cut->model, glued);
   }
   const auto start = Clock::now();
-  const SceneBlocks region =
-      cutSceneBlocks(dda_scene, network, ctx.plan.cutter, ctx.options.common.scene);
+  const scene_model::SceneBlocks region =
+      scene_model::cutSceneBlocks(dda_scene, network, ctx.plan.cutter, ctx.options.common.scene);
   const double seconds = secondsSince(start);
   ctx.run.timings.emplace_back("dda_region_cut", seconds);
   std::fprintf(stderr, "run: DDA region: %zu blocks (%d pieces), %s cutter (%.2f s)\n",
                region.model.blocks.size(), region.pieces, ctx.plan.cutter.c_str(), seconds);
-  return ddaBlocks(dda_scene, region.model, glued);
+  return scene_model::ddaBlocks(dda_scene, region.model, glued);
 }
 
 /// The stability analyses' model, built before the DDA stage so that its input checks (the
@@ -469,7 +472,7 @@ blocks::BlockModel ddaStageBlocks(RunContext& ctx, const io::Scene& dda_scene,
 dda3d::DdaModel stabilityModel(RunContext& ctx, io::Scene& dda_scene,
                                const blocks::BlockModel& dda_blocks,
                                const geometry::FractureNetwork& network) {
-  dda3d::DdaModel model = io::buildDdaModel(dda_scene, dda_blocks, network);
+  dda3d::DdaModel model = scene_model::buildDdaModel(dda_scene, dda_blocks, network);
   io::EquilibriumAnalysis* equilibrium =
       dda_scene.analysis.equilibrium ? &*dda_scene.analysis.equilibrium : nullptr;
   if (ctx.options.quick && equilibrium && equilibrium->watch_monitors &&
@@ -589,12 +592,12 @@ int runAll(const RunOptions& options) {
   ctx.run.seed = scene.seed;
 
   const DfnStage dfn = dfnStage(ctx);
-  std::optional<SceneBlocks> cut;
+  std::optional<scene_model::SceneBlocks> cut;
   if (plan.cut) cut = cutStage(ctx, dfn.network, section);
   if (plan.rqd) rqdStage(ctx, dfn.network, std::move(*rqd_plan), rqd_overrides);
   const bool stability = plan.overload || plan.strength_reduction;
   if (plan.dda || stability) {
-    io::Scene dda_scene = ddaScene(scene);
+    io::Scene dda_scene = scene_model::ddaScene(scene);
     std::optional<blocks::MergeReport> glued;
     const blocks::BlockModel dda_blocks = ddaStageBlocks(ctx, dda_scene, dfn.network, cut, glued);
     std::optional<dda3d::DdaModel> stability_model;

@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <string>
 
-#include "app/scene_blocks.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
-#include "io/scene_model.h"
 #include "io/stability_output.h"
-#include "io/stability_settings.h"
+#include "scene_model/dda_model.h"
+#include "scene_model/scene_blocks.h"
+#include "scene_model/stability_settings.h"
 
 namespace rockmass::app {
 
@@ -53,15 +53,16 @@ std::string describe(const dda3d::FactorSearchResult& r) {
 }  // namespace
 
 dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const StabilityStart& start) {
-  dda3d::FactorSearch search = io::overloadSearch(scene);
+  dda3d::FactorSearch search = scene_model::overloadSearch(scene);
   search.start_contacts = start.contacts;
-  return dda3d::runOverload(start.model, start.settings, io::loadScaling(*scene.analysis.overload),
-                            search, progress("overload"));
+  return dda3d::runOverload(start.model, start.settings,
+                            scene_model::loadScaling(*scene.analysis.overload), search,
+                            progress("overload"));
 }
 
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                                     const StabilityStart& start) {
-  dda3d::FactorSearch search = io::strengthReductionSearch(scene);
+  dda3d::FactorSearch search = scene_model::strengthReductionSearch(scene);
   search.start_contacts = start.contacts;
   return dda3d::runStrengthReduction(start.model, start.settings, search, progress("strength"));
 }
@@ -78,13 +79,13 @@ void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) 
 
 StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& model) {
   checkWatchedMonitors(scene, model);
-  const dda3d::DdaSettings settings = io::equilibriumDdaSettings(scene);
+  const dda3d::DdaSettings settings = scene_model::equilibriumDdaSettings(scene);
   if (!scene.analysis.equilibrium || !scene.analysis.equilibrium->settled_start) {
     return {model, settings, {}, std::nullopt};
   }
   dda3d::Simulation sim(model, settings);
   const dda3d::EquilibriumResult settled =
-      dda3d::runToEquilibrium(sim, io::equilibriumSettings(scene));
+      dda3d::runToEquilibrium(sim, scene_model::equilibriumSettings(scene));
   std::fprintf(stderr,
                "stability: start state %s after %d steps (unbalanced ratio %.3g); every factor "
                "runs from it\n",
@@ -107,7 +108,7 @@ io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaMo
   summary.blocks = static_cast<int>(model.blocks.size());
   for (const dda3d::DdaBlock& b : model.blocks) summary.fixed_blocks += b.fixed;
   summary.pressures = static_cast<int>(model.pressures.size());
-  summary.equilibrium = io::equilibriumSettings(scene);
+  summary.equilibrium = scene_model::equilibriumSettings(scene);
   summary.overload = overload;
   if (overload) {
     summary.overload_scales = scene.analysis.overload->scales;
@@ -127,9 +128,9 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   const io::Scene scene = loadScene(options.common);
   // Every input check before any work: the settings throw for a missing analysis section.
   const dda3d::FactorSearch search =
-      overload ? io::overloadSearch(scene) : io::strengthReductionSearch(scene);
-  io::equilibriumDdaSettings(scene);
-  const std::string cutter = chooseCutter(scene, options.cutter, options.common.scene);
+      overload ? scene_model::overloadSearch(scene) : scene_model::strengthReductionSearch(scene);
+  scene_model::equilibriumDdaSettings(scene);
+  const std::string cutter = scene_model::chooseCutter(scene, options.cutter, options.common.scene);
   const std::filesystem::path out = prepareOutput(options.common.output);
   io::RunInfo run;
   run.command = overload ? "overload" : "strength";
@@ -142,14 +143,16 @@ int runStabilityCommand(const StabilityOptions& options, StabilityAnalysis analy
   const geometry::FractureNetwork network = generateNetwork(scene, options.common.scene);
   run.timings.emplace_back("dfn", secondsSince(start));
   // The network covers the whole domain; the DDA cuts it in its region when it has one.
-  const io::Scene dda_scene = ddaScene(scene);
+  const io::Scene dda_scene = scene_model::ddaScene(scene);
   start = Clock::now();
-  const SceneBlocks cut = cutSceneBlocks(dda_scene, network, cutter, options.common.scene);
+  const scene_model::SceneBlocks cut =
+      scene_model::cutSceneBlocks(dda_scene, network, cutter, options.common.scene);
   run.timings.emplace_back("cut", secondsSince(start));
   std::optional<blocks::MergeReport> glued;
   start = Clock::now();
   const StabilityStart begin = stabilityStart(
-      dda_scene, io::buildDdaModel(dda_scene, ddaBlocks(dda_scene, cut.model, glued), network));
+      dda_scene, scene_model::buildDdaModel(
+                     dda_scene, scene_model::ddaBlocks(dda_scene, cut.model, glued), network));
   const dda3d::DdaModel& model = begin.model;
   if (begin.settling) run.timings.emplace_back("stability_start", secondsSince(start));
   std::fprintf(stderr, "%s: %zu blocks, %zu wet faces, %zu factors to sweep\n", run.command.c_str(),

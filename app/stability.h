@@ -19,7 +19,7 @@ namespace rockmass::app {
 /// What the overload and strength-reduction runs start from.
 struct StabilityStart {
   dda3d::DdaModel model;  ///< the model of factor 1
-  /// The engine settings of every run (io::equilibriumDdaSettings: analysis.dda with the
+  /// The engine settings of every run (scene_model::equilibriumDdaSettings: analysis.dda with the
   /// equilibrium's dynamic ratio).
   dda3d::DdaSettings settings;
   std::vector<dda3d::Contact> contacts;  ///< contacts to start from (empty: none)
@@ -37,7 +37,7 @@ StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& mod
 /// the DDA stage, so that the error comes before minutes of work.
 void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model);
 
-/// The overload method of analysis.overload from `start` (io::buildDdaModel of the scene's
+/// The overload method of analysis.overload from `start` (scene_model::buildDdaModel of the scene's
 /// blocks): K_s and the K-displacement runs. Settings from analysis.dda, .equilibrium and
 /// .overload (io/stability_settings.h). Throws io::InputError naming the missing key when
 /// the scene lacks analysis.dda or analysis.overload.

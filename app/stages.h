@@ -10,7 +10,6 @@
 #include <utility>
 #include <vector>
 
-#include "app/scene_blocks.h"
 #include "geometry/fracture_network.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
@@ -20,6 +19,7 @@
 #include "io/scene.h"
 #include "io/summary.h"
 #include "rqd/rqd_volume.h"
+#include "scene_model/scene_blocks.h"
 
 namespace rockmass::app {
 
@@ -42,10 +42,10 @@ void writeDfnFiles(const std::filesystem::path& out, const io::Scene& scene,
                    const geometry::FractureNetwork& network);
 
 // ---------------------------------------------------------------------------------------------
-// Blocks (blocks_command.cpp; the cut itself is cutSceneBlocks in scene_blocks.h)
+// Blocks (blocks_command.cpp; the cut itself is scene_model::cutSceneBlocks in scene_blocks.h)
 
 /// What the blocks summary says about a cut made with `cutter`.
-io::CutInfo cutInfoOf(const SceneBlocks& cut, const std::string& cutter);
+io::CutInfo cutInfoOf(const scene_model::SceneBlocks& cut, const std::string& cutter);
 
 /// Writes blocks.csv, blocks.vtu and faces.vtu (the joint of every piece face, from the
 /// discs of `network`) into `out`.
@@ -126,7 +126,8 @@ struct DdaStage {
 /// Builds the DDA model of `blocks` (cut with the discs of `network`) from the scene (loads,
 /// supports, monitors, the joints of the piece faces) and runs
 /// analysis.dda (which must be present), writing dda.pvd and the frames into `out` as it
-/// goes (and the debug dump when asked). `glued`: what ddaBlocks glued, for the summary.
+/// goes (and the debug dump when asked). `glued`: what scene_model::ddaBlocks glued, for the
+/// summary.
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
                      const geometry::FractureNetwork& network, const DdaOverrides& overrides,
                      const std::filesystem::path& out,

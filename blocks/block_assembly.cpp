@@ -308,6 +308,85 @@ std::vector<Adjacency> blockAdjacency(
   return adjacency;
 }
 
+/// The clusters of glued pieces in the order of their roots (smallest piece): each lists its
+/// kept pieces ascending, and its folded ones.
+struct Clusters {
+  std::vector<std::vector<int>> kept;
+  std::vector<std::vector<int>> folded;
+};
+
+Clusters keptClusters(UnionFind& clusters, const std::vector<bool>& folded) {
+  Clusters out;
+  std::vector<int> cluster_of(folded.size(), -1);
+  for (std::size_t i = 0; i < folded.size(); ++i) {
+    if (folded[i]) continue;
+    const int root = clusters.find(static_cast<int>(i));
+    if (cluster_of[root] < 0) {
+      cluster_of[root] = static_cast<int>(out.kept.size());
+      out.kept.emplace_back();
+    }
+    out.kept[cluster_of[root]].push_back(static_cast<int>(i));
+  }
+  out.folded.resize(out.kept.size());
+  for (std::size_t i = 0; i < folded.size(); ++i) {
+    const int cluster = cluster_of[clusters.find(static_cast<int>(i))];
+    if (folded[i] && cluster >= 0) out.folded[cluster].push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+/// The bounding box of each piece: the cutter's (rock_facts) where the piece was not
+/// repaired, else computed.
+struct PieceBoxes {
+  const std::vector<Piece>& all;
+  std::size_t rock_count;
+  const std::vector<PieceFacts>* rock_facts;
+  const std::vector<char>& repaired;
+  geometry::Box operator()(int i) const {
+    return rock_facts != nullptr && static_cast<std::size_t>(i) < rock_count && !repaired[i]
+               ? (*rock_facts)[i].box
+               : geometry::bounds(all[i].shape);
+  }
+};
+
+/// The block of one cluster: mass properties (folded slivers keep their mass), bounds and
+/// material (a structure's, else the one holding the largest volume; ties go to the smaller
+/// material index).
+Block clusterBlock(const std::vector<int>& list, const std::vector<int>& folded_list,
+                   const std::vector<geometry::MassProperties>& mass, const PieceBoxes& boxes,
+                   const SlabMaterials& slabs, const std::vector<int>& structure_of,
+                   const CutInput& input) {
+  Block b;
+  b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  b.bounds.max = -b.bounds.min;
+  // Material volumes as SlabMaterials::ofBlock counts them (each convex piece with its
+  // volume for the material at its centroid), from the mass properties computed here.
+  std::map<int, double> material_volume;
+  for (int i : list) {
+    const geometry::MassProperties& m = mass[i];
+    b.mass += m;
+    material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
+    const geometry::Box box = boxes(i);
+    b.bounds.min = b.bounds.min.cwiseMin(box.min);
+    b.bounds.max = b.bounds.max.cwiseMax(box.max);
+  }
+  for (int i : folded_list) {
+    const geometry::MassProperties& m = mass[i];
+    b.mass += m;
+    b.folded_volume += m.volume;
+  }
+  const int structure = structure_of[list.front()];
+  if (structure >= 0) {
+    b.material = input.structures[structure].material;
+    b.structure = structure;
+  } else {
+    b.material = std::max_element(material_volume.begin(), material_volume.end(),
+                                  [](const auto& x, const auto& y) { return x.second < y.second; })
+                     ->first;
+  }
+  return b;
+}
+
 }  // namespace
 
 BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
@@ -346,61 +425,15 @@ BlockModel assembleBlocks(std::vector<Piece> rock_pieces,
 
   const SlabMaterials slabs(input.network, input.disc_segments, input.rock_material,
                             tolerances.distance);
-  // Clusters in the order of their roots (smallest piece), each listing its kept pieces
-  // ascending.
-  std::vector<int> cluster_of(all.size(), -1);
-  std::vector<std::vector<int>> unordered_pieces;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (folded[i]) continue;
-    const int root = clusters.find(static_cast<int>(i));
-    if (cluster_of[root] < 0) {
-      cluster_of[root] = static_cast<int>(unordered_pieces.size());
-      unordered_pieces.emplace_back();
-    }
-    unordered_pieces[cluster_of[root]].push_back(static_cast<int>(i));
-  }
-  std::vector<std::vector<int>> folded_pieces(unordered_pieces.size());
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const int cluster = cluster_of[clusters.find(static_cast<int>(i))];
-    if (folded[i] && cluster >= 0) folded_pieces[cluster].push_back(static_cast<int>(i));
-  }
+  const Clusters clustered = keptClusters(clusters, folded);
+  const std::vector<std::vector<int>>& unordered_pieces = clustered.kept;
+  const std::vector<std::vector<int>>& folded_pieces = clustered.folded;
   // Mass properties, boxes and materials per block, in parallel (each block on its own).
   std::vector<Block> unordered(unordered_pieces.size());
+  const PieceBoxes boxes{all, rock_count, rock_facts, repaired};
   tbb::parallel_for(std::size_t{0}, unordered.size(), [&](std::size_t k) {
-    const std::vector<int>& list = unordered_pieces[k];
-    Block& b = unordered[k];
-    b.bounds.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-    b.bounds.max = -b.bounds.min;
-    // Material volumes as SlabMaterials::ofBlock counts them (each convex piece with its
-    // volume for the material at its centroid), from the mass properties computed here.
-    std::map<int, double> material_volume;
-    for (int i : list) {
-      const geometry::MassProperties& m = mass[i];
-      b.mass += m;
-      material_volume[m.volume > 0.0 ? slabs.at(m.centroid()) : input.rock_material] += m.volume;
-      const geometry::Box box =
-          rock_facts != nullptr && static_cast<std::size_t>(i) < rock_count && !repaired[i]
-              ? (*rock_facts)[i].box
-              : geometry::bounds(all[i].shape);
-      b.bounds.min = b.bounds.min.cwiseMin(box.min);
-      b.bounds.max = b.bounds.max.cwiseMax(box.max);
-    }
-    for (int i : folded_pieces[k]) {  // folded slivers keep their mass
-      const geometry::MassProperties& m = mass[i];
-      b.mass += m;
-      b.folded_volume += m.volume;
-    }
-    const int structure = structure_of[list.front()];
-    if (structure >= 0) {
-      b.material = input.structures[structure].material;
-      b.structure = structure;
-    } else {
-      // The largest volume wins; ties go to the smaller material index.
-      b.material =
-          std::max_element(material_volume.begin(), material_volume.end(),
-                           [](const auto& x, const auto& y) { return x.second < y.second; })
-              ->first;
-    }
+    unordered[k] = clusterBlock(unordered_pieces[k], folded_pieces[k], mass, boxes, slabs,
+                                structure_of, input);
   });
   const std::vector<int> order = blockOrder(unordered, input.domain_box);
   struct Pending {

@@ -21,7 +21,7 @@
 // cracked region took 28 s for 30 discs. The Nef polyhedron is kept as a referee
 // (ExactCutOptions::nef_referee): it subtracts the discs from each region's rock, locates
 // every piece in it, and checks that its volumes group the pieces exactly as the cutter did.
-// CGAL stays inside exact_cutter.cpp.
+// CGAL stays inside blocks/exact/ (cut_parts.h names the parts).
 #pragma once
 
 #include <optional>
@@ -84,9 +84,5 @@ struct ExactCutReport {
 /// segments, or a structure overlaps the rock (checkStructuresOutsideRock).
 BlockModel cutExact(const CutInput& input, const ExactCutOptions& options = {},
                     ExactCutReport* report = nullptr);
-
-/// Convex decomposition of a closed, outward-oriented polyhedron (CGAL's
-/// convex_decomposition_3 over an exact kernel). The pieces' vertices are rounded to double.
-std::vector<geometry::Polyhedron> convexDecomposition(const geometry::Polyhedron& solid);
 
 }  // namespace rockmass::blocks

@@ -558,84 +558,69 @@ GatheredCut gatherCuts(std::vector<RegionCut>& cuts, UnionFind& plane_ids,
   return out;
 }
 
-BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
-                         const CutTolerances& tol, FastCutReport* report) {
-  FastCutReport counters;
-  const auto start = std::chrono::steady_clock::now();
-  CutStart setup = startCut(input, tol);
-  UnionFind& plane_ids = setup.plane_ids;
-  const std::vector<Piece>& domain = setup.domain;
-  const std::vector<std::vector<int>>& domain_planes = setup.domain_planes;
-  std::vector<CutPolygon>& polygons = setup.polygons;
-  // The domain is its bounding box (one piece of 6 faces and 8 vertices spanning it).
-  const bool box_domain = domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
-                          domain[0].shape.vertices.size() == 8 &&
-                          geometry::bounds(domain[0].shape).min == input.domain_box.min &&
-                          geometry::bounds(domain[0].shape).max == input.domain_box.max;
-  const std::vector<DiscGroup> groups = groupPolygons(polygons, tol.distance);
-  counters.cutting_polygons = static_cast<int>(polygons.size());
+/// The faces of all pieces in flat tables: face f of piece i is entry first_face[i] + f; its
+/// plane (a root id) and, for a disc plane, the disc group of that plane.
+struct FlatFaces {
+  const std::vector<Piece>& pieces;
+  const std::vector<int>& planes;  ///< per flat face: the root plane id
+  std::vector<std::size_t> first_face;
+  std::vector<int> group_of_root;  ///< per plane root id: its disc group (-1: none)
 
-  const std::vector<Region> regions = kdRegions(input, options, polygons, domain, tol, plane_ids);
-  counters.regions = static_cast<int>(regions.size());
-
-  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
-  std::vector<RegionCut> cuts(regions.size());
-  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
-    throwIfInterrupted("the block cut (fast cutter)");
-    cuts[r] = cutRegion(regions[r], polygons, domain, domain_planes, box_domain, tol, soundness,
-                        options.track_contacts);
-  });
-  GatheredCut gathered = gatherCuts(cuts, plane_ids, counters);
-  std::vector<Piece>& pieces = gathered.pieces;
-  std::vector<int>& planes = gathered.planes;
-  std::vector<ContactTablePart>& tracked = gathered.tracked;
-  std::vector<std::array<int, 4>>& twins = gathered.twins;
-  const std::vector<int>& piece_first = gathered.piece_first;
-  const std::vector<PieceFacts>& facts = gathered.facts;
-  counters.pieces = static_cast<int>(pieces.size());
-  for (int& id : planes) id = plane_ids.find(id);
-  // Face f of piece i is face first_face[i] + f of the flat per-face tables.
-  std::vector<std::size_t> first_face(pieces.size() + 1, 0);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+  FlatFaces(const std::vector<Piece>& pieces_in, const std::vector<int>& planes_in,
+            const std::vector<DiscGroup>& groups, UnionFind& plane_ids)
+      : pieces(pieces_in),
+        planes(planes_in),
+        first_face(pieces_in.size() + 1, 0),
+        group_of_root(plane_ids.size(), -1) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      first_face[i + 1] = first_face[i] + pieces[i].shape.faces.size();
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      int& slot = group_of_root[plane_ids.find(groups[g].plane_id)];
+      if (slot < 0) slot = static_cast<int>(g);  // the first group of a root
+    }
   }
-  const auto planeOf = [&](int piece, int face) {
-    return planes[first_face[piece] + static_cast<std::size_t>(face)];
-  };
-  counters.cut_seconds = secondsSince(start);
-
-  // Coverage of every face in a disc plane (a plane whose root is a group's).
-  const auto assemble_start = std::chrono::steady_clock::now();
-  std::vector<int> group_of_root(plane_ids.size(), -1);  // by plane root id
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    int& slot = group_of_root[plane_ids.find(groups[g].plane_id)];
-    if (slot < 0) slot = static_cast<int>(g);  // the first group of a root, as emplace kept
+  std::size_t index(int piece, int face) const {
+    return first_face[piece] + static_cast<std::size_t>(face);
   }
-  const auto groupOf = [&](int root) { return root < 0 ? -1 : group_of_root[root]; };
-  // cover_table / face_source [first_face[i] + f]: the coverage and source of face f of
-  // piece i (flat copies for the contact decisions: no cache miss per piece there).
-  std::vector<Cover> cover_table(first_face.back(), Cover::None);
-  std::vector<FaceSource> face_source(first_face.back());
-  const auto coverOf = [&](int piece, int face) -> Cover& {
-    return cover_table[first_face[piece] + static_cast<std::size_t>(face)];
-  };
-  // The second face of a pair of twins (the two sides of one cut) is not covered itself: it
-  // takes the coverage of the first, the same loop run backwards (a pair whose first face is
-  // itself a second, possible only for overlapping cells, is covered on both sides).
-  std::vector<char> second_twin(first_face.back(), 0);
+  /// The disc group of the plane of face `face` of piece `piece` (-1: not a disc plane).
+  int groupOf(int piece, int face) const {
+    const int root = planes[index(piece, face)];
+    return root < 0 ? -1 : group_of_root[root];
+  }
+};
+
+/// Coverage of every face in a disc plane, with flat copies of the faces' coverage and
+/// sources for the contact decisions (no cache miss per piece there).
+struct FaceCover {
+  std::vector<Cover> cover;
+  std::vector<FaceSource> source;
+};
+
+/// Covers every fictitious face in a disc plane by its group's discs; a wholly covered face
+/// becomes a Disc face. The second face of a pair of twins (the two sides of one cut) is not
+/// covered itself: it takes the coverage of the first, the same loop run backwards (a pair
+/// whose first face is itself a second, possible only for overlapping cells, is covered on
+/// both sides).
+FaceCover coverFaces(std::vector<Piece>& pieces, const FlatFaces& flat,
+                     std::vector<std::array<int, 4>>& twins, const std::vector<DiscGroup>& groups,
+                     const std::vector<CutPolygon>& polygons, const CutTolerances& tol) {
+  FaceCover out{std::vector<Cover>(flat.first_face.back(), Cover::None),
+                std::vector<FaceSource>(flat.first_face.back())};
+  std::vector<char> second_twin(flat.first_face.back(), 0);
   std::erase_if(twins, [&](const std::array<int, 4>& t) {
-    if (second_twin[first_face[t[0]] + static_cast<std::size_t>(t[1])]) return true;
-    second_twin[first_face[t[2]] + static_cast<std::size_t>(t[3])] = 1;
+    if (second_twin[flat.index(t[0], t[1])]) return true;
+    second_twin[flat.index(t[2], t[3])] = 1;
     return false;
   });
   tbb::parallel_for(std::size_t{0}, pieces.size(), [&](std::size_t i) {
     Piece& piece = pieces[i];
-    Cover* cover = &cover_table[first_face[i]];
-    const char* second = &second_twin[first_face[i]];
+    Cover* cover = &out.cover[flat.first_face[i]];
+    const char* second = &second_twin[flat.first_face[i]];
     thread_local std::vector<Vec3> loop;
     for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
       if (piece.face_sources[f].kind != FaceKind::Fictitious || second[f]) continue;
-      const int g = groupOf(planeOf(static_cast<int>(i), static_cast<int>(f)));
+      const int g = flat.groupOf(static_cast<int>(i), static_cast<int>(f));
       if (g < 0) continue;
       faceLoop(piece, static_cast<int>(f), loop);
       int disc = -1;
@@ -643,28 +628,31 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
       if (cover[f] == Cover::Whole) piece.face_sources[f] = {FaceKind::Disc, disc};
     }
     std::copy(piece.face_sources.begin(), piece.face_sources.end(),
-              face_source.begin() + static_cast<std::ptrdiff_t>(first_face[i]));
+              out.source.begin() + static_cast<std::ptrdiff_t>(flat.first_face[i]));
   });
   for (const auto& [i, f, j, g] : twins) {
-    const std::size_t from = first_face[i] + static_cast<std::size_t>(f);
-    const std::size_t to = first_face[j] + static_cast<std::size_t>(g);
+    const std::size_t from = flat.index(i, f);
+    const std::size_t to = flat.index(j, g);
     if (pieces[j].face_sources[g].kind != FaceKind::Fictitious) continue;
-    cover_table[to] = cover_table[from];
-    if (cover_table[to] == Cover::Whole) {
-      pieces[j].face_sources[g] = face_source[to] = face_source[from];
+    out.cover[to] = out.cover[from];
+    if (out.cover[to] == Cover::Whole) {
+      pieces[j].face_sources[g] = out.source[to] = out.source[from];
     }
   }
+  return out;
+}
 
-  counters.coverage_seconds = secondsSince(assemble_start);
-  const auto contact_start = std::chrono::steady_clock::now();
-  // Contacts; each one glues its pieces unless the discs wholly cover the shared part.
-  // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
-  const ContactDecision decide = [&](const PieceContact& c, bool same_loop) -> FaceSource {
-    const FaceSource& a = face_source[first_face[c.piece_a] + c.face_a];
-    const FaceSource& b = face_source[first_face[c.piece_b] + c.face_b];
-    const Cover ca = coverOf(c.piece_a, c.face_a);
-    const Cover cb = coverOf(c.piece_b, c.face_b);
-    const int g = groupOf(planeOf(c.piece_a, c.face_a));
+/// The rule that decides a contact: it glues its pieces unless the discs wholly cover the
+/// shared part (then it is a crack of that disc).
+ContactDecision contactRule(const FlatFaces& flat, const FaceCover& covers,
+                            const std::vector<DiscGroup>& groups,
+                            const std::vector<CutPolygon>& polygons, const CutTolerances& tol) {
+  return [&](const PieceContact& c, bool same_loop) -> FaceSource {
+    const FaceSource& a = covers.source[flat.index(c.piece_a, c.face_a)];
+    const FaceSource& b = covers.source[flat.index(c.piece_b, c.face_b)];
+    const Cover ca = covers.cover[flat.index(c.piece_a, c.face_a)];
+    const Cover cb = covers.cover[flat.index(c.piece_b, c.face_b)];
+    const int g = flat.groupOf(c.piece_a, c.face_a);
     if (g < 0 || a.kind == FaceKind::Boundary || a.kind == FaceKind::Structure ||
         b.kind == FaceKind::Boundary || b.kind == FaceKind::Structure) {
       // Not a disc plane: the face labels decide.
@@ -677,28 +665,74 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
     if (same_loop) return {FaceKind::Fictitious, -1};
     // Both partly covered: the coverage of their overlap decides.
     thread_local std::vector<Vec3> la, lb, shared;
-    faceLoop(pieces[c.piece_a], c.face_a, la);
-    faceLoop(pieces[c.piece_b], c.face_b, lb);
-    const Vec3 normal = geometry::faceNormal(pieces[c.piece_a].shape, c.face_a);
+    faceLoop(flat.pieces[c.piece_a], c.face_a, la);
+    faceLoop(flat.pieces[c.piece_b], c.face_b, lb);
+    const Vec3 normal = geometry::faceNormal(flat.pieces[c.piece_a].shape, c.face_a);
     faceOverlap(la, lb, normal, shared);
     int disc = -1;
     const bool whole =
         shared.size() >= 3 && coverage(shared, groups[g], polygons, tol, &disc) == Cover::Whole;
     return whole ? FaceSource{FaceKind::Disc, disc} : FaceSource{FaceKind::Fictitious, -1};
   };
+}
+
+/// True when the domain is its bounding box (one piece of 6 faces and 8 vertices spanning it).
+bool isBoxDomain(const std::vector<Piece>& domain, const Box& box) {
+  return domain.size() == 1 && domain[0].shape.faces.size() == 6 &&
+         domain[0].shape.vertices.size() == 8 && geometry::bounds(domain[0].shape).min == box.min &&
+         geometry::bounds(domain[0].shape).max == box.max;
+}
+
+BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
+                         const CutTolerances& tol, FastCutReport* report) {
+  FastCutReport counters;
+  const auto start = std::chrono::steady_clock::now();
+  CutStart setup = startCut(input, tol);
+  UnionFind& plane_ids = setup.plane_ids;
+  const std::vector<CutPolygon>& polygons = setup.polygons;
+  const bool box_domain = isBoxDomain(setup.domain, input.domain_box);
+  const std::vector<DiscGroup> groups = groupPolygons(setup.polygons, tol.distance);
+  counters.cutting_polygons = static_cast<int>(polygons.size());
+
+  const std::vector<Region> regions =
+      kdRegions(input, options, setup.polygons, setup.domain, tol, plane_ids);
+  counters.regions = static_cast<int>(regions.size());
+
+  const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
+  std::vector<RegionCut> cuts(regions.size());
+  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
+    throwIfInterrupted("the block cut (fast cutter)");
+    cuts[r] = cutRegion(regions[r], polygons, setup.domain, setup.domain_planes, box_domain, tol,
+                        soundness, options.track_contacts);
+  });
+  GatheredCut gathered = gatherCuts(cuts, plane_ids, counters);
+  std::vector<Piece>& pieces = gathered.pieces;
+  counters.pieces = static_cast<int>(pieces.size());
+  for (int& id : gathered.planes) id = plane_ids.find(id);
+  const FlatFaces flat(pieces, gathered.planes, groups, plane_ids);
+  counters.cut_seconds = secondsSince(start);
+
+  const auto assemble_start = std::chrono::steady_clock::now();
+  const FaceCover covers = coverFaces(pieces, flat, gathered.twins, groups, polygons, tol);
+  counters.coverage_seconds = secondsSince(assemble_start);
+
+  const auto contact_start = std::chrono::steady_clock::now();
+  // Pairs of pieces glued already are skipped (findContactsByPlane with a decision).
+  const ContactDecision decide = contactRule(flat, covers, groups, polygons, tol);
   std::vector<FaceSource> sources;
   std::vector<PieceContact> contacts;
   if (!options.track_contacts) {
-    contacts = findContactsByPlane(pieces, planes, tol.distance, tol.area, decide, &sources);
+    contacts =
+        findContactsByPlane(pieces, gathered.planes, tol.distance, tol.area, decide, &sources);
   } else {
-    contacts = trackedContacts(tracked, regions, cuts, piece_first, pieces.size(), plane_ids,
-                               planes, tol, decide, sources);
+    contacts = trackedContacts(gathered.tracked, regions, cuts, gathered.piece_first, pieces.size(),
+                               plane_ids, gathered.planes, tol, decide, sources);
   }
   counters.contact_seconds = secondsSince(contact_start);
-  tracked.clear();
+  gathered.tracked.clear();
   cuts.clear();
   return assembleCut(std::move(pieces), contacts, input, tol, counters, assemble_start, report,
-                     &sources, &facts);
+                     &sources, &gathered.facts);
 }
 
 }  // namespace

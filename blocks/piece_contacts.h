@@ -185,6 +185,13 @@ void faceOverlap(const std::vector<geometry::Vec3>& a, const std::vector<geometr
 /// origin: a degenerate polygon 1e-15 m across never passes as a compact one.
 bool thinnerThan(const std::vector<geometry::Vec3>& polygon, double tolerance);
 
+/// True when an overlap is a real contact: an area above `min_area` (m2), or a compact
+/// part, wider than `tolerance` (m). A small but compact contact (a 0.1 mm corner cut off a
+/// piece by a crack) joins what it touches, as in the exact cutter; a sliver along an edge,
+/// thinner than the tolerance, does not.
+bool realContact(const std::vector<geometry::Vec3>& overlap, double area, double tolerance,
+                 double min_area);
+
 /// Overlap area (m2) of two convex planar faces given counter-clockwise about `normal` (for
 /// `a`) and about -normal (for `b`), assumed coplanar.
 double faceOverlapArea(const std::vector<geometry::Vec3>& a, const std::vector<geometry::Vec3>& b,

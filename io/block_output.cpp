@@ -68,7 +68,8 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
   return formatVtu(vtu);
 }
 
-std::string formatFacesVtu(const blocks::BlockModel& model, const FaceJoints& joints) {
+std::string formatFacesVtu(const blocks::BlockModel& model,
+                           const std::function<int(const blocks::FaceSource&)>& joint_of) {
   VtuPiece vtu;
   std::vector<std::int32_t> block, piece_index, kind, source, joint;
   for (const blocks::Block& b : model.blocks) {
@@ -92,7 +93,7 @@ std::string formatFacesVtu(const blocks::BlockModel& model, const FaceJoints& jo
                        : from.kind == blocks::FaceKind::Boundary ? 1
                                                                  : 2);
         source.push_back(from.id);
-        joint.push_back(joints.of(from));
+        joint.push_back(joint_of(from));
       }
     }
   }

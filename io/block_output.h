@@ -1,12 +1,12 @@
 #pragma once
 /// Files of the `blocks` stage: blocks.csv, blocks.vtu and summary.json.
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "blocks/block_model.h"
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
-#include "io/scene_model.h"
 #include "io/summary.h"
 
 namespace rockmass::io {
@@ -25,8 +25,9 @@ std::string formatBlocksVtu(const blocks::BlockModel& model);
 /// cuts between pieces of one block are left out), CCW seen from outside the piece, with
 /// Int32 cell data block (block id), piece (index in the block), kind (0 disc, 1 domain
 /// boundary, 2 structure), source (disc id, boundary face id, structure index) and joint
-/// (index into Scene::joints from `joints`, -1 none).
-std::string formatFacesVtu(const blocks::BlockModel& model, const FaceJoints& joints);
+/// (index into Scene::joints as `joint_of` gives it, -1 none; scene_model::FaceJoints).
+std::string formatFacesVtu(const blocks::BlockModel& model,
+                           const std::function<int(const blocks::FaceSource&)>& joint_of);
 
 /// What the blocks summary says about the cut itself.
 struct CutInfo {

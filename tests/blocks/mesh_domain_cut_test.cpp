@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "blocks/convex_decomposition.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/polyhedron.h"

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "blocks/convex_decomposition.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/disc.h"

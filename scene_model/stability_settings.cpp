@@ -1,10 +1,12 @@
-#include "io/stability_settings.h"
+#include "scene_model/stability_settings.h"
 
 #include <algorithm>
 
 #include "io/input_error.h"
 
-namespace rockmass::io {
+namespace rockmass::scene_model {
+
+using namespace io;  // NOLINT: the scene's types
 
 namespace {
 
@@ -79,4 +81,4 @@ dda3d::FactorSearch strengthReductionSearch(const Scene& scene) {
   return search;
 }
 
-}  // namespace rockmass::io
+}  // namespace rockmass::scene_model

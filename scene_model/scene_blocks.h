@@ -6,14 +6,12 @@
 #include <optional>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
 #include "blocks/block_merge.h"
 #include "blocks/fast_cutter.h"
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
 
-namespace rockmass::app {
+namespace rockmass::scene_model {
 
 /// The blocks of a scene and how they were cut (by either cutter).
 struct SceneBlocks {
@@ -24,9 +22,6 @@ struct SceneBlocks {
   double split_seconds = 0.0;     ///< splitting (exact: summed over regions, i.e. CPU time)
   double assemble_seconds = 0.0;  ///< gluing, materials, adjacency
 };
-
-/// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
-void addCutterOption(CLI::App& command, std::string& cutter);
 
 /// The cutter to use: `option` when given, else the scene's analysis.blocks.cutter (exact
 /// by default). Both cutters handle every scene cutInput accepts; `scene_path` is kept for
@@ -60,4 +55,4 @@ io::Scene ddaScene(const io::Scene& scene);
 blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& model,
                              std::optional<blocks::MergeReport>& glued);
 
-}  // namespace rockmass::app
+}  // namespace rockmass::scene_model

@@ -1,7 +1,7 @@
 // Scene + blocks -> DDA model: materials, joints and the joint of every piece face, gravity present
 // or absent, supports.fixed by face provenance or by geometry, monitors located by
 // point-in-convex-polyhedron, and the errors a user can cause. Blocks are hand-built boxes.
-#include "io/scene_model.h"
+#include "scene_model/dda_model.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,8 @@
 
 #include "io/input_error.h"
 
-namespace rockmass::io {
+namespace rockmass::scene_model {
+using namespace io;  // NOLINT: the scene's types
 namespace {
 
 using geometry::Box;
@@ -386,4 +387,4 @@ TEST(SceneModel, ErrorsNameWhatIsWrong) {
 }
 
 }  // namespace
-}  // namespace rockmass::io
+}  // namespace rockmass::scene_model

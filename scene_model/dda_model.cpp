@@ -1,4 +1,4 @@
-#include "io/scene_model.h"
+#include "scene_model/dda_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,9 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 
-namespace rockmass::io {
+namespace rockmass::scene_model {
+
+using namespace io;  // NOLINT: the scene's types
 namespace {
 
 /// Most sub-contact points a model may have (analysis.dda.contact_point_spacing): 5e6 points
@@ -481,4 +483,4 @@ dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& bloc
   return model;
 }
 
-}  // namespace rockmass::io
+}  // namespace rockmass::scene_model

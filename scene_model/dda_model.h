@@ -10,7 +10,7 @@
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
 
-namespace rockmass::io {
+namespace rockmass::scene_model {
 
 /// Distances below this fraction of the domain diagonal count as contact: a point on a block
 /// face, a block face on a domain face. Loose enough for the cutters' snapping, far below
@@ -25,7 +25,7 @@ constexpr double kSceneModelRelativeTolerance = 1e-6;
 class FaceJoints {
  public:
   /// `network`: the discs the blocks were cut with (ids 1..N).
-  FaceJoints(const Scene& scene, const geometry::FractureNetwork& network);
+  FaceJoints(const io::Scene& scene, const geometry::FractureNetwork& network);
 
   /// The joint of a face made by `source`, or -1. Throws std::invalid_argument for a disc id
   /// or structure index that the network or scene does not have.
@@ -61,7 +61,7 @@ class FaceJoints {
 ///   internal and stay dry. The engine clips each face at the water line.
 /// Throws InputError naming the scene file (and the monitor's line) when a monitor or point
 /// load lies in no block, a block has no material, or the scene gives no default_joint.
-dda3d::DdaModel buildDdaModel(const Scene& scene, const blocks::BlockModel& blocks,
+dda3d::DdaModel buildDdaModel(const io::Scene& scene, const blocks::BlockModel& blocks,
                               const geometry::FractureNetwork& network);
 
 /// Index into blocks.blocks of the block with a piece containing `point` (within
@@ -80,4 +80,4 @@ int findContainingBlock(const blocks::BlockModel& blocks, const geometry::Vec3& 
 std::vector<bool> blocksOnDomainFaces(const blocks::BlockModel& blocks,
                                       const std::vector<std::string>& faces, bool box_domain);
 
-}  // namespace rockmass::io
+}  // namespace rockmass::scene_model

@@ -1,9 +1,10 @@
-#include "app/scene_blocks.h"
+#include "scene_model/scene_blocks.h"
 
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "blocks/convex_decomposition.h"
 #include "blocks/cut_budget.h"
 #include "blocks/exact_cutter.h"
 #include "blocks/fast_cutter.h"
@@ -11,15 +12,7 @@
 #include "blocks/prism.h"
 #include "io/input_error.h"
 
-namespace rockmass::app {
-
-void addCutterOption(CLI::App& command, std::string& cutter) {
-  command
-      .add_option("--cutter", cutter,
-                  "exact (exact-kernel splitting, CGAL Nef referee) or fast (floating-point "
-                  "convex splitting); overrides analysis.blocks.cutter")
-      ->check(CLI::IsMember({"exact", "fast"}));
-}
+namespace rockmass::scene_model {
 
 std::string chooseCutter(const io::Scene& scene, const std::string& option,
                          const std::string& /*scene_path*/) {
@@ -156,4 +149,4 @@ blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& m
   return out;
 }
 
-}  // namespace rockmass::app
+}  // namespace rockmass::scene_model
