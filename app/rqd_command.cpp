@@ -37,21 +37,6 @@ struct RqdOptions {
   RqdOverrides overrides;
 };
 
-/// Reports progress of a long evaluation on stderr (geometry/progress.h).
-class ProgressReporter {
- public:
-  explicit ProgressReporter(std::string what) : what_(std::move(what)) {}
-  void operator()(std::size_t done, std::size_t total) {
-    if (!progress_)
-      progress_.emplace("rqd: " + what_, static_cast<double>(total), "scanlines", 10.0);
-    progress_->update(static_cast<double>(done));
-  }
-
- private:
-  std::string what_;
-  std::optional<Progress> progress_;  ///< made at the first call, when the total is known
-};
-
 /// The scene's analysis.rqd with the command-line overrides applied and checked.
 io::RqdAnalysis rqdSettings(const io::Scene& scene, const RqdOverrides& options,
                             const std::string& file) {
@@ -167,7 +152,7 @@ std::vector<io::BallReport> evaluateBalls(const rqd::ScanlineScene& scene,
     report.name = ball.name;
     report.spec = {ball.center, ball.length, ball.directions, scene_file.dfn.domain};
     report.radius = ball.radius.value_or(0.5 * ball.length);
-    ProgressReporter progress("ball " + ball.name);
+    SharedProgress progress("rqd: ball " + ball.name, "scanlines", 10.0);
     report.result =
         rqd::evaluateBall(scene, report.spec, settings.thresholds, settings.merge_distance,
                           [&](std::size_t done, std::size_t total) { progress(done, total); });

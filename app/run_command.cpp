@@ -387,8 +387,8 @@ void sectionStage(RunContext& ctx, const scene_model::SceneBlocks& cut,
                   const geometry::FractureNetwork& network,
                   const std::pair<geometry::SectionPlane, std::string>& section) {
   const auto start = Clock::now();
-  const io::Section s =
-      io::sectionOf(cut.model, network, section.first, section.second, cut.input.disc_segments);
+  const blocks::Section s =
+      blocks::sectionOf(cut.model, network, section.first, section.second, cut.input.disc_segments);
   ctx.run.timings.emplace_back("section", secondsSince(start));
   ctx.timedWrite([&] {
     io::writeFileAtomically(ctx.out / "section.csv",

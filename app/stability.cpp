@@ -1,8 +1,12 @@
 #include "app/stability.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
+#include "geometry/progress.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/stability_output.h"
@@ -23,9 +27,27 @@ std::string movedText(const char* what, const dda3d::MovedBlock& moved) {
   return text;
 }
 
-/// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps".
-dda3d::FactorRunCallback progress(const char* label) {
-  return [label](const dda3d::FactorRun& run) {
+/// The runs a search will most likely make: its sweep (or, stopping at the first factor not
+/// at rest, all of it at worst), then the bisections that narrow the widest gap of the sweep
+/// to the tolerance.
+double expectedRuns(const dda3d::FactorSearch& search) {
+  double widest = 0.0;
+  for (std::size_t i = 1; i < search.factors.size(); ++i) {
+    widest = std::max(widest, search.factors[i] - search.factors[i - 1]);
+  }
+  const double bisections = search.tolerance > 0.0 && widest > search.tolerance
+                                ? std::ceil(std::log2(widest / search.tolerance))
+                                : 0.0;
+  return std::max(1.0, static_cast<double>(search.factors.size()) + bisections);
+}
+
+/// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps", then the
+/// search's progress (runs done of those expected, elapsed time, an estimate of what is left).
+dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& search) {
+  auto runs = std::make_shared<Progress>(label, expectedRuns(search), "expected factor runs", 0.0);
+  runs->setSafePoint(false);  // each run's DDA steps are the safe points
+  auto done = std::make_shared<int>(0);
+  return [label, runs, done](const dda3d::FactorRun& run) {
     const dda3d::EquilibriumResult& e = run.equilibrium;
     const std::string fastest =
         movedText("fastest block", e.fastest) + movedText("fastest watched block", e.watched);
@@ -40,6 +62,7 @@ dda3d::FactorRunCallback progress(const char* label) {
                  e.steps, e.unbalanced_ratio, e.all_blocks_ratio, e.min_time_step,
                  e.redone_open_close + e.redone_displacement + e.redone_penetration,
                  fastest.c_str());
+    runs->update(++*done);
   };
 }
 
@@ -57,14 +80,15 @@ dda3d::FactorSearchResult runSceneOverload(const io::Scene& scene, const Stabili
   search.start_contacts = start.contacts;
   return dda3d::runOverload(start.model, start.settings,
                             scene_model::loadScaling(*scene.analysis.overload), search,
-                            progress("overload"));
+                            progress("overload", search));
 }
 
 dda3d::FactorSearchResult runSceneStrengthReduction(const io::Scene& scene,
                                                     const StabilityStart& start) {
   dda3d::FactorSearch search = scene_model::strengthReductionSearch(scene);
   search.start_contacts = start.contacts;
-  return dda3d::runStrengthReduction(start.model, start.settings, search, progress("strength"));
+  return dda3d::runStrengthReduction(start.model, start.settings, search,
+                                     progress("strength", search));
 }
 
 void checkWatchedMonitors(const io::Scene& scene, const dda3d::DdaModel& model) {

@@ -3,6 +3,8 @@
 // with the same blocks.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "blocks/block_model.h"
@@ -32,6 +34,9 @@ struct CutInput {
   int disc_segments = 24;                              ///< polygon points per ellipse (>= 3)
   int rock_material = -1;                              ///< material of blocks outside every slab
   std::vector<StructureSolid> structures;              ///< each becomes its own block
+  /// Called as the cut's regions finish, (regions done, regions in all), from the worker
+  /// threads (the callee serializes: geometry/progress.h SharedProgress). None: silent.
+  std::function<void(std::size_t, std::size_t)> progress;
 };
 
 }  // namespace rockmass::blocks

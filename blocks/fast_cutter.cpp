@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <atomic>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -700,10 +702,12 @@ BlockModel cutFullPlanes(const CutInput& input, const FastCutOptions& options,
 
   const SoundnessTolerances soundness = soundnessTolerances(input.domain_box);
   std::vector<RegionCut> cuts(regions.size());
+  std::atomic<std::size_t> finished{0};
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
     throwIfInterrupted("the block cut (fast cutter)");
     cuts[r] = cutRegion(regions[r], polygons, setup.domain, setup.domain_planes, box_domain, tol,
                         soundness, options.track_contacts);
+    if (input.progress) input.progress(++finished, regions.size());
   });
   GatheredCut gathered = gatherCuts(cuts, plane_ids, counters);
   std::vector<Piece>& pieces = gathered.pieces;

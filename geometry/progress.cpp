@@ -70,12 +70,31 @@ std::string Progress::line(double done, const std::string& detail) const {
   return out;
 }
 
+SharedProgress::SharedProgress(std::string label, std::string unit, double interval, double quiet,
+                               Progress::Sink sink)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      interval_(interval),
+      quiet_(quiet),
+      sink_(std::move(sink)) {}
+
+void SharedProgress::operator()(std::size_t done, std::size_t total) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!progress_) {
+    progress_.emplace(label_, static_cast<double>(std::max<std::size_t>(total, 1)), unit_,
+                      interval_, sink_);
+    progress_->setQuietPeriod(quiet_);
+  }
+  progress_->update(static_cast<double>(done));
+}
+
 void Progress::update(double done, const std::string& detail) {
   if (safe_point_) throwIfInterrupted(label_);
   const int tenth = static_cast<int>(std::floor(10.0 * std::clamp(done / total_, 0.0, 1.0)));
   const double now = clock_();
   if (tenth <= last_tenth_ && now - last_time_ < interval_) return;
   last_tenth_ = std::max(last_tenth_, tenth);
+  if (now - start_ < quiet_) return;
   last_time_ = now;
   sink_(line(done, detail));
 }

@@ -4,7 +4,9 @@
 // (Ctrl-C, geometry/interrupt.h) stops the stage.
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -25,6 +27,9 @@ class Progress {
   /// Whether update() is a safe point (default). A stage whose own loop stops at a more
   /// telling safe point (the DDA: "the DDA at t = ... s") turns it off.
   void setSafePoint(bool on) { safe_point_ = on; }
+
+  /// No line before `seconds` have passed (a stage that may be quick says nothing then).
+  void setQuietPeriod(double seconds) { quiet_ = seconds; }
 
   /// Records `done` units of work (at most `total`); reports when a tenth more is done than
   /// at the last report or `interval` seconds have passed, with `detail` after the numbers.
@@ -51,6 +56,29 @@ class Progress {
   double last_time_;
   int last_tenth_ = 0;
   bool safe_point_ = true;
+  double quiet_ = 0.0;
+};
+
+/// A Progress for work whose total is known only when it starts, reported from several
+/// threads (the cutters' regions, the RQD balls' scanlines): callbacks of the form
+/// (done, total) call it; the Progress is made at the first call, and calls are serialized.
+class SharedProgress {
+ public:
+  /// `quiet`: Progress::setQuietPeriod.
+  SharedProgress(std::string label, std::string unit, double interval = 30.0, double quiet = 0.0,
+                 Progress::Sink sink = {});
+  /// Reports `done` of `total` units (Progress::update: a safe point, so it may throw
+  /// Interrupted on the calling thread).
+  void operator()(std::size_t done, std::size_t total);
+
+ private:
+  std::string label_;
+  std::string unit_;
+  double interval_;
+  double quiet_;
+  Progress::Sink sink_;
+  std::mutex mutex_;
+  std::optional<Progress> progress_;
 };
 
 }  // namespace rockmass

@@ -1,6 +1,7 @@
 #include "scene_model/scene_blocks.h"
 
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "blocks/fast_cutter.h"
 #include "blocks/piece_coarsening.h"
 #include "blocks/prism.h"
+#include "geometry/progress.h"
 #include "io/input_error.h"
 
 namespace rockmass::scene_model {
@@ -96,6 +98,11 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
   SceneBlocks cut;
   cut.input = cutInput(scene, network, scene_path);
   checkBlockBudget(scene, network, cut.input, scene_path);
+  auto progress = std::make_shared<SharedProgress>("blocks: cut (" + cutter + ")", "regions",
+                                                   /*interval=*/30.0, /*quiet=*/10.0);
+  cut.input.progress = [progress](std::size_t done, std::size_t total) {
+    (*progress)(done, total);
+  };
   try {
     if (cutter == "exact") {
       blocks::ExactCutReport report;
@@ -114,6 +121,7 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
   } catch (const std::invalid_argument& e) {
     throw io::InputError(scene_path + ": " + e.what());
   }
+  cut.input.progress = nullptr;
   return cut;
 }
 

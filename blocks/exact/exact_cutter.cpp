@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -249,11 +250,13 @@ BlockModel cutExact(const CutInput& input, const ExactCutOptions& options, Exact
                std::max(1, options.max_discs_per_region), regions);
 
   std::vector<RegionResult> results(regions.size());
+  std::atomic<std::size_t> finished{0};
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t r) {
       throwIfInterrupted("the block cut (exact cutter)");
       results[r] = cutRegion(context, regions[r], options.check_exact_volume, options.nef_referee);
+      if (input.progress) input.progress(++finished, regions.size());
     });
   });
 

@@ -55,7 +55,8 @@ const std::vector<Material> kMaterials = {{"rock", 2500.0, 1e10, 0.25}};
 
 TEST(SectionOutput, CubeCutByThreePlanesGivesTheKnownPolygons) {
   const CutCube cube;
-  const Section s = sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
+  const Section s =
+      blocks::sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
   std::vector<double> areas;
   std::set<int> blocks;
   for (const SectionPolygon& p : s.polygons) {
@@ -99,7 +100,8 @@ TEST(SectionOutput, CubeCutByThreePlanesGivesTheKnownPolygons) {
 
 TEST(SectionOutput, CsvReadsBackToThePolygons) {
   const CutCube cube;
-  const Section s = sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
+  const Section s =
+      blocks::sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
   std::istringstream in(formatSectionCsv(s, cube.network, kMaterials));
   std::string line;
   std::getline(in, line);
@@ -140,7 +142,8 @@ void XMLCALL onStart(void* data, const XML_Char* name, const XML_Char**) {
 
 TEST(SectionOutput, SvgIsWellFormed) {
   const CutCube cube;
-  const Section s = sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
+  const Section s =
+      blocks::sectionOf(cube.model, cube.network, geometry::axisPlane(1, 5.0), "y=5", 0);
   const std::string svg = formatSectionSvg(s, cube.network, kMaterials);
   std::map<std::string, int> elements;
   XML_Parser parser = XML_ParserCreate(nullptr);
@@ -169,7 +172,8 @@ TEST(SectionOutput, PlaneOnAFaceTakesThePiecesAboveIt) {
   // face on it. The section is the one just above: the upper block's 10 x 10 face (disc 3's
   // piece starts at x = 10 there, a line); before, a plane on a face gave no polygon at all.
   const CutCube cube;
-  const Section s = sectionOf(cube.model, cube.network, geometry::axisPlane(2, 4.0), "z=4", 0);
+  const Section s =
+      blocks::sectionOf(cube.model, cube.network, geometry::axisPlane(2, 4.0), "z=4", 0);
   ASSERT_FALSE(s.polygons.empty());
   // The domain's section is 100 m2; coordinates are small integers (round-off 1e-14).
   EXPECT_NEAR(sectionArea(s), 100.0, 1e-9);
@@ -204,7 +208,8 @@ TEST(SectionOutput, SectionsOfAMultiBlockModelTileTheDomainSection) {
   for (const auto& [axis, offset] :
        std::vector<std::pair<int, double>>{{0, 5.0}, {1, 5.0}, {2, 5.0}, {1, 3.7}, {0, 2.5}}) {
     for (const blocks::BlockModel* model : {&exact, &fast}) {
-      const Section s = sectionOf(*model, network, geometry::axisPlane(axis, offset), "", 24);
+      const Section s =
+          blocks::sectionOf(*model, network, geometry::axisPlane(axis, offset), "", 24);
       EXPECT_NEAR(sectionArea(s), 100.0, 1e-7) << "axis " << axis << " at " << offset;
       // Each polygon belongs to a block the plane crosses or bounds from below.
       EXPECT_GT(s.polygons.size(), 10u);
