@@ -12,7 +12,7 @@ bash scripts/setup-debian.sh
 if [ -d .git ]; then
   git ls-files -z '*.cpp' '*.h' | xargs -0 clang-format-14 --dry-run -Werror
 else
-  find app bench blocks dda3d fuzz geometry io rqd tests \( -name '*.cpp' -o -name '*.h' \) -print0 |
+  find app bench blocks dda3d fuzz geometry io rqd scenarios scene_model tests \( -name '*.cpp' -o -name '*.h' \) -print0 |
     xargs -0 clang-format-14 --dry-run -Werror
 fi
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
