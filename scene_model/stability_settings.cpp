@@ -59,26 +59,34 @@ dda3d::LoadScaling loadScaling(const OverloadAnalysis& overload) {
           .point_loads = named("point_loads")};
 }
 
-dda3d::FactorSearch overloadSearch(const Scene& scene) {
-  if (!scene.analysis.overload) missing(scene, "overload", "the overload method");
+namespace {
+
+/// The search over `factors` to `tolerance`; every factor runs (sweep_all) or the search
+/// stops at the first not at rest.
+dda3d::FactorSearch factorSearch(const Scene& scene, const std::vector<double>& factors,
+                                 double tolerance, bool sweep_all) {
   dda3d::FactorSearch search;
-  search.factors = scene.analysis.overload->factors;
-  search.tolerance = scene.analysis.overload->tolerance;
-  search.sweep_all = true;
+  search.factors = factors;
+  search.tolerance = tolerance;
+  search.sweep_all = sweep_all;
   search.equilibrium = equilibriumSettings(scene);
   return search;
+}
+
+}  // namespace
+
+dda3d::FactorSearch overloadSearch(const Scene& scene) {
+  if (!scene.analysis.overload) missing(scene, "overload", "the overload method");
+  return factorSearch(scene, scene.analysis.overload->factors, scene.analysis.overload->tolerance,
+                      /*sweep_all=*/true);
 }
 
 dda3d::FactorSearch strengthReductionSearch(const Scene& scene) {
   if (!scene.analysis.strength_reduction) {
     missing(scene, "strength_reduction", "the strength reduction");
   }
-  dda3d::FactorSearch search;
-  search.factors = scene.analysis.strength_reduction->factors;
-  search.tolerance = scene.analysis.strength_reduction->tolerance;
-  search.sweep_all = false;
-  search.equilibrium = equilibriumSettings(scene);
-  return search;
+  return factorSearch(scene, scene.analysis.strength_reduction->factors,
+                      scene.analysis.strength_reduction->tolerance, /*sweep_all=*/false);
 }
 
 }  // namespace rockmass::scene_model
