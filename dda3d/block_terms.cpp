@@ -1,5 +1,7 @@
 #include "dda3d/block_terms.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -63,31 +65,100 @@ BlockVector pointLoad(const BlockState& block, const Vec3& point, const Vec3& fo
   return displacementMatrix(point, block.centroid).transpose() * force;
 }
 
-BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
-                         double level, double unit_weight) {
-  const Vec3 normal = geometry::faceNormal(piece, face);
-  // Clip the polygon to z <= level (one Sutherland-Hodgman pass).
-  std::vector<Vec3> wet;
-  const std::vector<int>& ids = piece.faces[static_cast<std::size_t>(face)];
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    const Vec3& a = piece.vertices[ids[k]];
-    const Vec3& b = piece.vertices[ids[(k + 1) % ids.size()]];
-    const bool a_in = a.z() <= level, b_in = b.z() <= level;
-    if (a_in) wet.push_back(a);
-    if (a_in != b_in) wet.push_back(a + (level - a.z()) / (b.z() - a.z()) * (b - a));
+namespace {
+
+/// Keeps the part of a convex polygon with normal . x <= offset (Sutherland-Hodgman).
+std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Vec3& normal, double offset) {
+  std::vector<Vec3> out;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3& a = polygon[k];
+    const Vec3& b = polygon[(k + 1) % polygon.size()];
+    const double sa = normal.dot(a);
+    const double sb = normal.dot(b);
+    const bool a_in = sa <= offset, b_in = sb <= offset;
+    if (a_in) out.push_back(a);
+    if (a_in != b_in) out.push_back(a + (offset - sa) / (sb - sa) * (b - a));
   }
+  return out;
+}
+
+std::vector<Vec3> facePolygon(const geometry::Polyhedron& piece, int face) {
+  std::vector<Vec3> out;
+  for (const int v : piece.faces[static_cast<std::size_t>(face)]) out.push_back(piece.vertices[v]);
+  return out;
+}
+
+/// Integral of T(x)^T (-p(x) n) over a convex polygon, p quadratic at most in x: fanned into
+/// triangles, each by the edge-midpoint rule (exact for quadratic integrands).
+template <class Pressure>
+BlockVector integratePressure(const BlockState& block, const std::vector<Vec3>& polygon,
+                              const Vec3& normal, const Pressure& p) {
   BlockVector f = BlockVector::Zero();
   const auto integrand = [&](const Vec3& x) -> BlockVector {
-    const double p = unit_weight * (level - x.z());
-    return displacementMatrix(x, block.centroid).transpose() * (-p * normal);
+    return displacementMatrix(x, block.centroid).transpose() * (-p(x) * normal);
   };
-  for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
-    const Vec3& a = wet[0];
-    const Vec3& b = wet[k];
-    const Vec3& c = wet[k + 1];
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+    const Vec3& a = polygon[0];
+    const Vec3& b = polygon[k];
+    const Vec3& c = polygon[k + 1];
     const double area = 0.5 * (b - a).cross(c - a).norm();
     f += area / 3.0 *
          (integrand(0.5 * (a + b)) + integrand(0.5 * (b + c)) + integrand(0.5 * (c + a)));
+  }
+  return f;
+}
+
+}  // namespace
+
+BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
+                         const DdaPressure& pressure) {
+  const Vec3 normal = geometry::faceNormal(piece, face);
+  // Wet where h(x) - z >= 0, i.e. (e_z - grad h) . x <= level.
+  const Vec3 wet_normal = Vec3::UnitZ() - pressure.head_gradient;
+  std::vector<Vec3> wet = clipPolygon(facePolygon(piece, face), wet_normal, pressure.level);
+  for (const HalfSpace& h : pressure.within) {
+    if (wet.size() < 3) break;
+    wet = clipPolygon(wet, h.normal, h.offset);
+  }
+  const auto p = [&](const Vec3& x) {
+    return pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z());
+  };
+  return integratePressure(block, wet, normal, p);
+}
+
+BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
+                         double level, double unit_weight) {
+  DdaPressure pressure;
+  pressure.level = level;
+  pressure.unit_weight = unit_weight;
+  return pressureLoad(block, piece, face, pressure);
+}
+
+BlockVector hydrodynamicLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
+                             const DdaHydrodynamicPressure& pressure) {
+  const Vec3 normal = geometry::faceNormal(piece, face);
+  std::vector<Vec3> wet = clipPolygon(facePolygon(piece, face), Vec3::UnitZ(), pressure.level);
+  if (wet.size() >= 3) {
+    wet = clipPolygon(wet, -Vec3::UnitZ(), -(pressure.level - pressure.depth));
+  }
+  const double c = 7.0 / 8.0 * pressure.k_h * pressure.unit_weight;
+  const auto p = [&](const Vec3& x) {
+    return c * std::sqrt(std::max(0.0, pressure.depth * (pressure.level - x.z())));
+  };
+  constexpr int kSplits = 32;
+  BlockVector f = BlockVector::Zero();
+  for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
+    const Vec3 a = wet[0];
+    const Vec3 u = (wet[k] - a) / kSplits;
+    const Vec3 v = (wet[k + 1] - a) / kSplits;
+    for (int i = 0; i < kSplits; ++i) {
+      for (int j = 0; i + j < kSplits; ++j) {
+        const Vec3 o = a + i * u + j * v;
+        f += integratePressure(block, {o, o + u, o + v}, normal, p);
+        if (i + j + 1 < kSplits)
+          f += integratePressure(block, {o + u, o + u + v, o + v}, normal, p);
+      }
+    }
   }
   return f;
 }

@@ -111,11 +111,10 @@ double Simulation::pointSpringEnergy() const {
     energy += 0.5 * settings_.fixed_point_penalty_ratio * penalty_ * held;
   }
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
-    const DdaBolt& bolt = model_.bolts[k];
-    const double free_length =
-        (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
-    const double stretch = (bolt_b_[k].current - bolt_a_[k].current).norm() - free_length;
-    energy += 0.5 * bolt.stiffness * stretch * stretch;
+    if (bolt_state_[k].broken) continue;
+    const double stretch =
+        (bolt_b_[k].current - bolt_a_[k].current).norm() - bolt_state_[k].free_length;
+    energy += 0.5 * model_.bolts[k].stiffness * stretch * stretch;
   }
   return energy;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,17 +77,57 @@ struct DdaFixedPoint {
   geometry::Vec3 direction = geometry::Vec3::Zero();
 };
 
-/// Hydrostatic pressure p(z) = unit_weight * max(0, level - z) acting on one face of one
-/// piece, pushing against the face's outward normal. Integrated exactly over the wet part.
+/// The half-space normal . x <= offset (m).
+struct HalfSpace {
+  geometry::Vec3 normal = geometry::Vec3::UnitZ();
+  double offset = 0.0;
+};
+
+/// Water pressure p(x) = unit_weight * max(0, h(x) - z) acting on one face of one piece,
+/// pushing against the face's outward normal, with the piezometric head h(x) = level +
+/// head_gradient . x linear in position (a constant head: hydrostatic below the level).
+/// Acts on the part of the face inside every half-space of `within` (none: the whole face).
+/// Integrated exactly over that part (the integrand is quadratic in position).
 struct DdaPressure {
   int block = -1;             ///< index into DdaModel::blocks
   int piece = 0;              ///< index into DdaBlock::pieces
   int face = 0;               ///< index into Polyhedron::faces of that piece
-  double level = 0.0;         ///< z of the free water surface (m)
+  double level = 0.0;         ///< the head at x = 0: z of the free water surface (m)
   double unit_weight = 9810;  ///< N/m3
-  /// Uplift: water in a structure-rock interface rather than on an exposed face. The
-  /// overload method scales it only when asked (OverloadSettings::scale_uplift).
+  /// Uplift: water in a structure-rock interface or in the rock's discontinuities rather
+  /// than on an exposed face. The overload method scales it only when asked
+  /// (LoadScaling::uplift: the scene's scale_uplift).
   bool uplift = false;
+  /// Pore pressure in a discontinuity (a pore-pressure field), for the reports; uplift too.
+  bool pore = false;
+  geometry::Vec3 head_gradient = geometry::Vec3::Zero();  ///< dh/dx (m/m)
+  std::vector<HalfSpace> within;
+};
+
+/// A hydrostatic DdaPressure (no head gradient, the whole face).
+inline DdaPressure hydrostaticPressure(int block, int piece, int face, double level,
+                                       double unit_weight, bool uplift = false) {
+  DdaPressure p;
+  p.block = block;
+  p.piece = piece;
+  p.face = face;
+  p.level = level;
+  p.unit_weight = unit_weight;
+  p.uplift = uplift;
+  return p;
+}
+
+/// Westergaard's added hydrodynamic pressure of a pseudo-static earthquake on a face in a
+/// reservoir: p = 7/8 k_h unit_weight sqrt(depth (level - z)) for level - depth < z < level,
+/// pushing against the face's outward normal (Westergaard 1933; USBR Design of Small Dams).
+struct DdaHydrodynamicPressure {
+  int block = -1;
+  int piece = 0;
+  int face = 0;
+  double level = 0.0;         ///< z of the reservoir surface (m)
+  double depth = 0.0;         ///< reservoir depth at the face, H (m)
+  double k_h = 0.0;           ///< horizontal seismic coefficient
+  double unit_weight = 9810;  ///< N/m3
 };
 
 /// A bolt: an elastic spring between a material point of one block and one of another
@@ -98,6 +139,11 @@ struct DdaBolt {
   geometry::Vec3 point_b = geometry::Vec3::Zero();  ///< initial position (m)
   double stiffness = 0.0;                           ///< N/m
   double pretension = 0.0;                          ///< N, > 0 pulls the two points together
+  /// Axial force at which the bolt yields (perfectly plastic: the force stays there while it
+  /// lengthens); infinite: elastic.
+  double yield_force = std::numeric_limits<double>::infinity();
+  /// Axial force at which the bolt breaks (it carries nothing from then on); infinite: never.
+  double rupture_force = std::numeric_limits<double>::infinity();
 };
 
 /// A point attached to a block; its displacement and velocity are recorded.
@@ -117,10 +163,14 @@ struct DdaModel {
   std::vector<DdaJoint> joints;
   int default_joint = 0;
   geometry::Vec3 gravity = geometry::Vec3::Zero();  ///< m/s2 (zero: no body force)
+  /// Pseudo-static earthquake: a body acceleration (m/s2) every block carries with gravity
+  /// (k_h g horizontally, k_v g vertically); zero: none.
+  geometry::Vec3 seismic = geometry::Vec3::Zero();
   std::vector<DdaMonitor> monitors;
   std::vector<DdaPointLoad> point_loads;
   std::vector<DdaFixedPoint> fixed_points;
   std::vector<DdaPressure> pressures;
+  std::vector<DdaHydrodynamicPressure> hydrodynamic;  ///< Westergaard's added pressures
   std::vector<DdaBolt> bolts;
 };
 

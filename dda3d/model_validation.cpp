@@ -67,10 +67,23 @@ void checkAttachments(const DdaModel& model) {
       throw std::invalid_argument("a pressure entry names a piece or face that does not exist");
     }
   }
+  for (const DdaHydrodynamicPressure& p : model.hydrodynamic) {
+    checkBlockIndex(model, p.block, "a hydrodynamic pressure entry");
+    const DdaBlock& b = model.blocks[static_cast<std::size_t>(p.block)];
+    if (p.piece < 0 || p.piece >= static_cast<int>(b.pieces.size()) || p.face < 0 ||
+        p.face >= static_cast<int>(b.pieces[static_cast<std::size_t>(p.piece)].faces.size())) {
+      throw std::invalid_argument(
+          "a hydrodynamic pressure entry names a piece or face that does not exist");
+    }
+    if (!(p.depth >= 0.0)) throw std::invalid_argument("a reservoir depth must be >= 0 m");
+  }
   for (const DdaBolt& bolt : model.bolts) {
     checkBlockIndex(model, bolt.block_a, "a bolt");
     if (bolt.block_b >= 0) checkBlockIndex(model, bolt.block_b, "a bolt");
     if (!(bolt.stiffness > 0.0)) throw std::invalid_argument("bolt stiffness must be > 0 N/m");
+    if (!(bolt.yield_force > 0.0) || !(bolt.rupture_force > 0.0)) {
+      throw std::invalid_argument("a bolt's yield and rupture forces must be > 0 N");
+    }
   }
 }
 

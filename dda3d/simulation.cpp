@@ -148,6 +148,10 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
     bolt_a_.push_back(attach(bolt.block_a, bolt.point_a));
     bolt_b_.push_back(bolt.block_b >= 0 ? attach(bolt.block_b, bolt.point_b)
                                         : MaterialPoint{-1, bolt.point_b, bolt.point_b});
+    BoltState state;
+    state.free_length = (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
+    state.force = bolt.pretension;
+    bolt_state_.push_back(state);
   }
 
   system_ = std::make_unique<BlockSystem>(movable, dofs_);
@@ -336,8 +340,9 @@ void Simulation::assembleBlockTerms(double dt) {
     }
     inertiaTerms(staticMassScale(block) * massMatrix(block), block.velocity, block.acceleration, dt,
                  scheme_, k, f);
-    if (!model_.gravity.isZero(0.0)) {
-      loads += bodyForceLoad(block, model_.gravity);
+    if (!model_.gravity.isZero(0.0) || !model_.seismic.isZero(0.0)) {
+      loads += bodyForceLoad(
+          block, model_.seismic.isZero(0.0) ? model_.gravity : model_.gravity + model_.seismic);
       step.body_force = true;
     }
   }
@@ -351,8 +356,15 @@ void Simulation::assembleBlockTerms(double dt) {
   for (const DdaPressure& p : model_.pressures) {
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
     if (block.fixed) continue;
-    load_f_[static_cast<std::size_t>(block.dof_offset)] += pressureLoad(
-        block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p.level, p.unit_weight);
+    load_f_[static_cast<std::size_t>(block.dof_offset)] +=
+        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p);
+    step.surface_pressure = true;
+  }
+  for (const DdaHydrodynamicPressure& p : model_.hydrodynamic) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+    if (block.fixed) continue;
+    load_f_[static_cast<std::size_t>(block.dof_offset)] +=
+        hydrodynamicLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p);
     step.surface_pressure = true;
   }
   const double fixed_k = settings_.fixed_point_penalty_ratio * penalty_;
@@ -433,8 +445,8 @@ void Simulation::addBoltTerms() {
     if (length <= 0.0) continue;
     const Vec3 n = axis / length;
     const DdaBolt& bolt = model_.bolts[k];
-    const double free_length =
-        (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
+    if (bolt_state_[k].broken) continue;
+    const double free_length = bolt_state_[k].free_length;
     const int i = movableIndex(a.block);
     const int j = b.block >= 0 ? movableIndex(b.block) : -1;
     const BlockVector ea =
@@ -448,6 +460,25 @@ void Simulation::addBoltTerms() {
                              n)
                : BlockVector(BlockVector::Zero());
     system_->addSpring(i, ea, j, eb, bolt.stiffness, length - free_length);
+  }
+}
+
+void Simulation::updateBolts() {
+  for (std::size_t k = 0; k < bolt_state_.size(); ++k) {
+    BoltState& state = bolt_state_[k];
+    if (state.broken) continue;
+    const DdaBolt& bolt = model_.bolts[k];
+    const double length = (bolt_b_[k].current - bolt_a_[k].current).norm();
+    state.force = bolt.stiffness * (length - state.free_length);
+    if (state.force >= bolt.rupture_force) {
+      state.broken = true;
+      state.broken_at = time_;
+      state.force = 0.0;
+    } else if (state.force > bolt.yield_force) {
+      state.yielded = true;
+      state.free_length = length - bolt.yield_force / bolt.stiffness;
+      state.force = bolt.yield_force;
+    }
   }
 }
 
@@ -673,6 +704,7 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     last_dt_ = dt;
   }
   time_ += dt;
+  updateBolts();
   steps_at_min_ = dt <= settings_.min_time_step * (1.0 + 1e-12) ? steps_at_min_ + 1 : 0;
   if (steps_at_min_ >= settings_.max_steps_at_min_time_step) {
     throw StepFailure(stalledMessage(report));

@@ -27,6 +27,15 @@
 namespace rockmass::dda3d {
 
 /// A DDA run.
+/// The state of one bolt (DdaBolt) after the last accepted step.
+struct BoltState {
+  double free_length = 0.0;  ///< m: the force is stiffness * (length - free_length), >= 0 pulls
+  double force = 0.0;        ///< axial force now (N, > 0 tension)
+  bool yielded = false;      ///< reached its yield force (the free length grew)
+  bool broken = false;       ///< reached its rupture force: carries nothing from then on
+  double broken_at = -1.0;   ///< time of the rupture (s), -1 when intact
+};
+
 class Simulation {
  public:
   /// Validates the model (throws std::invalid_argument with what is wrong) and sets up.
@@ -72,6 +81,8 @@ class Simulation {
   /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
   /// the contact search distance of a pair is the sum of its two blocks' reaches (stepReach).
   const std::vector<double>& contactReach() const { return reach_; }
+  /// The bolts (model().bolts order) after the last accepted step.
+  const std::vector<BoltState>& bolts() const { return bolt_state_; }
   /// Contacts of the last accepted step, with states.
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// Starts from `contacts` (another run's, of a model with the same blocks and pieces): the
@@ -113,6 +124,9 @@ class Simulation {
   /// friction, the bolts.
   void assembleSystem();
   void addBoltTerms();
+  /// After an accepted step: each bolt's force; a bolt yields (its free length grows so that
+  /// it carries its yield force) or breaks (from then on it carries nothing).
+  void updateBolts();
   /// Solves the assembled system; the guess of an iterative solver is `previous` (later
   /// iterations) or the last step's solution scaled to dt (the first).
   Eigen::VectorXd solveSystem(double dt, int iteration, const Eigen::VectorXd& previous);
@@ -204,6 +218,7 @@ class Simulation {
   std::vector<ElasticMatrix> elastic_;
   std::vector<MaterialPoint> monitor_points_, load_points_, fixed_points_;
   std::vector<MaterialPoint> bolt_a_, bolt_b_;
+  std::vector<BoltState> bolt_state_;
   std::vector<Contact> contacts_;
   std::vector<double> reach_;  // per block, m (contactReach())
   std::unique_ptr<BlockSystem> system_;

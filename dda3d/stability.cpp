@@ -7,6 +7,10 @@ namespace rockmass::dda3d {
 DdaModel scaledLoads(const DdaModel& model, const LoadScaling& scaling, double factor) {
   DdaModel out = model;
   if (scaling.gravity) out.gravity *= factor;
+  if (scaling.seismic) {
+    out.seismic *= factor;
+    for (DdaHydrodynamicPressure& p : out.hydrodynamic) p.k_h *= factor;
+  }
   for (DdaPressure& p : out.pressures) {
     if (p.uplift ? scaling.uplift : scaling.water) p.unit_weight *= factor;
   }

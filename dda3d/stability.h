@@ -21,6 +21,7 @@ struct LoadScaling {
   bool water = false;        ///< pressures on exposed faces (DdaPressure, uplift = false)
   bool uplift = false;       ///< pressures in structure-rock interfaces (uplift = true)
   bool point_loads = false;  ///< DdaModel::point_loads
+  bool seismic = false;      ///< DdaModel::seismic and the hydrodynamic pressures' k_h
 };
 
 /// `model` with the loads named in `scaling` multiplied by `factor` (water through its

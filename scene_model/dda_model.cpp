@@ -314,8 +314,9 @@ void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::Bloc
           lowest = std::min(lowest, piece.shape.vertices[static_cast<std::size_t>(v)].z());
         }
         if (lowest >= water.level || internalFace(block, p, face, tol)) continue;
-        model.pressures.push_back({static_cast<int>(b), static_cast<int>(p), face, water.level,
-                                   water.unit_weight, uplift});
+        model.pressures.push_back(dda3d::hydrostaticPressure(static_cast<int>(b),
+                                                             static_cast<int>(p), face, water.level,
+                                                             water.unit_weight, uplift));
       }
     }
   }

@@ -88,7 +88,8 @@ TEST(WaterLoad, OverloadScalesOnlyTheNamedLoads) {
   DdaModel model;
   scenes::setRock(model, 30.0);
   model.gravity = Vec3(0, 0, -kG);
-  model.pressures = {{0, 0, 0, 1.0, kGammaW, false}, {0, 0, 1, 1.0, kGammaW, true}};
+  model.pressures = {hydrostaticPressure(0, 0, 0, 1.0, kGammaW),
+                     hydrostaticPressure(0, 0, 1, 1.0, kGammaW, /*uplift=*/true)};
   model.point_loads = {{0, Vec3::Zero(), Vec3(1, 2, 3)}};
   const DdaModel scaled = scaledLoads(model, {.water = true, .point_loads = true}, 2.5);
   EXPECT_EQ(scaled.gravity, model.gravity);                   // not named: unchanged

@@ -501,10 +501,10 @@ WedgeWaterRun wedgeWithWater(bool wet, AnalysisMode mode = AnalysisMode::Static,
     for (int v : piece.faces[static_cast<std::size_t>(f)]) polygon.push_back(piece.vertices[v]);
     if (n.dot(-wedge.n_a) > 1.0 - 1e-12) {
       u_a += waterForce(polygon, kLevel);
-      pressures.push_back({2, 0, f, kLevel, kGammaW, false});
+      pressures.push_back(hydrostaticPressure(2, 0, f, kLevel, kGammaW));
     } else if (n.dot(-wedge.n_b) > 1.0 - 1e-12) {
       u_b += waterForce(polygon, kLevel);
-      pressures.push_back({2, 0, f, kLevel, kGammaW, false});
+      pressures.push_back(hydrostaticPressure(2, 0, f, kLevel, kGammaW));
     }
   }
   EXPECT_EQ(pressures.size(), 2u);
