@@ -219,6 +219,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   summary.pieces = pieces;
   summary.unknowns = (summary.blocks - fixed_blocks) * sim.dofsPerBlock();
   summary.glued = glued;
+  summary.uplift = scene_model::structureUplift(scene, sim.model());
   summary.dynamic = dda.engine.mode == dda3d::AnalysisMode::Dynamic;
   summary.deformable = dda.engine.kinematics == dda3d::Kinematics::Deformable;
   summary.solver = sim.solverName();

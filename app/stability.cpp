@@ -42,10 +42,12 @@ double expectedRuns(const dda3d::FactorSearch& search) {
 }
 
 /// Prints one line per run: "<label>: factor K  at rest|not at rest after N steps", then the
-/// search's progress (runs done of those expected, elapsed time, an estimate of what is left).
+/// search's progress after its first 10 s (runs done of those expected, elapsed time, an
+/// estimate of what is left).
 dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& search) {
   auto runs = std::make_shared<Progress>(label, expectedRuns(search), "expected factor runs", 0.0);
-  runs->setSafePoint(false);  // each run's DDA steps are the safe points
+  runs->setSafePoint(false);   // each run's DDA steps are the safe points
+  runs->setQuietPeriod(10.0);  // a quick search says nothing more than its runs
   auto done = std::make_shared<int>(0);
   return [label, runs, done](const dda3d::FactorRun& run) {
     const dda3d::EquilibriumResult& e = run.equilibrium;
@@ -140,6 +142,7 @@ io::StabilitySummary stabilitySummary(const io::Scene& scene, const dda3d::DdaMo
   }
   summary.strength_reduction = strength_reduction;
   summary.glued = glued;
+  summary.uplift = scene_model::structureUplift(scene, model);
   return summary;
 }
 

@@ -110,20 +110,42 @@ BlockVector integratePressure(const BlockState& block, const std::vector<Vec3>& 
 
 }  // namespace
 
-BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
-                         const DdaPressure& pressure) {
-  const Vec3 normal = geometry::faceNormal(piece, face);
-  // Wet where h(x) - z >= 0, i.e. (e_z - grad h) . x <= level.
+/// The part of the face the pressure wets: below its water line (h(x) - z >= 0, i.e.
+/// (e_z - grad h) . x <= level) and inside its half-spaces.
+static std::vector<Vec3> wetPolygon(const geometry::Polyhedron& piece, int face,
+                                    const DdaPressure& pressure) {
   const Vec3 wet_normal = Vec3::UnitZ() - pressure.head_gradient;
   std::vector<Vec3> wet = clipPolygon(facePolygon(piece, face), wet_normal, pressure.level);
   for (const HalfSpace& h : pressure.within) {
     if (wet.size() < 3) break;
     wet = clipPolygon(wet, h.normal, h.offset);
   }
+  return wet;
+}
+
+BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
+                         const DdaPressure& pressure) {
+  const Vec3 normal = geometry::faceNormal(piece, face);
   const auto p = [&](const Vec3& x) {
     return pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z());
   };
-  return integratePressure(block, wet, normal, p);
+  return integratePressure(block, wetPolygon(piece, face, pressure), normal, p);
+}
+
+Vec3 pressureResultant(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
+  const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
+  Vec3 force = Vec3::Zero();
+  if (wet.size() < 3) return force;
+  const Vec3 normal = geometry::faceNormal(piece, face);
+  for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
+    const Vec3 centroid = (wet[0] + wet[k] + wet[k + 1]) / 3.0;
+    const double area = 0.5 * (wet[k] - wet[0]).cross(wet[k + 1] - wet[0]).norm();
+    // p is linear: its mean over a triangle is its value at the centroid.
+    const double p = pressure.unit_weight *
+                     (pressure.level + pressure.head_gradient.dot(centroid) - centroid.z());
+    force -= area * p * normal;
+  }
+  return force;
 }
 
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,

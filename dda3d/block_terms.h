@@ -75,6 +75,10 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
                          double level, double unit_weight);
 
+/// The force of the pressure on the face as the piece stands (N): integral of -p n dA.
+geometry::Vec3 pressureResultant(const geometry::Polyhedron& piece, int face,
+                                 const DdaPressure& pressure);
+
 /// Westergaard's added pressure (DdaHydrodynamicPressure) on face `face` of `piece`, as a
 /// load like pressureLoad's. The square root is integrated numerically: the wet part's
 /// triangles are each split into 32 x 32 and summed with the edge-midpoint rule (within

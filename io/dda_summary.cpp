@@ -74,6 +74,7 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   j["pieces"] = dda.pieces;
   j["unknowns"] = dda.unknowns;
   if (dda.glued) j["glued_blocks"] = gluedBlocksJson(*dda.glued);
+  if (!dda.uplift.empty()) j["uplift"] = upliftJson(dda.uplift);
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;

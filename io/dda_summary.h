@@ -56,6 +56,8 @@ struct DdaRunSummary {
   double duration = 0.0;         ///< simulated time reached (s)
   double penalty = 0.0;          ///< contact normal penalty at the end (N/m)
   std::vector<DdaMonitorResult> monitors;
+  /// The uplift on each structure (empty when no water acts in an interface).
+  std::vector<StructureUplift> uplift;
   /// The step records summary.json holds: every `step_stride`-th step (and the last); all of
   /// them when the stride is 1. steps.csv has every step.
   std::vector<DdaStepRecord> steps;

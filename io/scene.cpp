@@ -79,7 +79,10 @@ class SceneReader {
                 [&](const Cursor& c) { scene_.dfn.interlayers.push_back(readInterlayer(c)); });
     forEachItem(m, "structures",
                 [&](const Cursor& c) { scene_.structures.push_back(readStructure(c)); });
-    if (const auto loads = m.get("loads")) scene_.loads = readLoads(*loads);
+    if (const auto loads = m.get("loads")) {
+      scene_.loads = readLoads(*loads);
+      checkWaterOnce(*loads);
+    }
     if (const auto supports = m.get("supports")) {
       const Cursor s = supports->map({"fixed", "rollers"});
       const std::vector<std::string> names{"bottom", "top", "west", "east", "south", "north"};
@@ -338,9 +341,120 @@ class SceneReader {
     return water;
   }
 
+  /// A `loads.pore_pressure` entry.
+  PorePressure readPorePressure(const Cursor& c) const {
+    const Cursor m = c.map({"level", "uplift_diagram", "unit_weight", "region"});
+    PorePressure pore;
+    pore.key = locationOf(c);
+    pore.unit_weight = m.numberOr("unit_weight", pore.unit_weight, kPositive);
+    pore.region = m.valueOr("region", pore.region, &readRegion);
+    if (m.oneOf("level", "uplift_diagram") == 0) {
+      pore.level = m.at("level").number();
+      return pore;
+    }
+    const Cursor d =
+        m.at("uplift_diagram")
+            .map({"structure", "upstream_level", "downstream_level", "flow", "drains"});
+    UpliftDiagram diagram;
+    const Cursor structure = d.at("structure");
+    lookupName(structure, namesOf(scene_.structures), "structure");
+    diagram.structure = structure.string();
+    diagram.upstream_level = d.at("upstream_level").number();
+    const Cursor downstream = d.at("downstream_level");
+    diagram.downstream_level = downstream.number();
+    if (diagram.downstream_level > diagram.upstream_level) {
+      downstream.fail("the tailwater (" + formatDouble(diagram.downstream_level) +
+                      " m) lies above the reservoir (" + formatDouble(diagram.upstream_level) +
+                      " m); expected downstream_level <= upstream_level");
+    }
+    const Cursor flow = d.at("flow");
+    Vec3 direction = readDirection(flow);
+    direction.z() = 0.0;
+    if (direction.norm() < 1e-9) flow.fail("expected a horizontal direction (heel to toe)");
+    diagram.flow = direction.normalized();
+    if (const auto drains = d.get("drains")) {
+      const Cursor dm = drains->map({"distance", "efficiency"});
+      const Cursor distance = dm.at("distance");
+      diagram.drain_distance = distance.number(kPositive);
+      diagram.drain_key = locationOf(distance);
+      diagram.drain_efficiency = dm.at("efficiency").number(closed(0.0, 1.0));
+    }
+    pore.diagram = diagram;
+    return pore;
+  }
+
+  /// The `loads.seismic` section.
+  Seismic readSeismic(const Cursor& c) const {
+    const Cursor m = c.map({"k_h", "direction", "k_v", "westergaard"});
+    Seismic seismic;
+    seismic.k_h = m.numberOr("k_h", 0.0, kNonNegative);
+    if (const auto direction = m.get("direction")) {
+      Vec3 d = readDirection(*direction);
+      d.z() = 0.0;
+      if (d.norm() < 1e-9) direction->fail("expected a horizontal direction");
+      seismic.direction = d.normalized();
+    }
+    seismic.k_v = m.numberOr("k_v", 0.0, closed(-1.0, 1.0));
+    if (const auto w = m.get("westergaard")) {
+      const Cursor wm = w->map({"structure", "facing", "level", "bottom", "unit_weight"});
+      Westergaard westergaard;
+      const Cursor structure = wm.at("structure");
+      lookupName(structure, namesOf(scene_.structures), "structure");
+      westergaard.structure = structure.string();
+      westergaard.facing = readDirection(wm.at("facing"));
+      westergaard.level = wm.at("level").number();
+      if (const auto bottom = wm.get("bottom")) {
+        westergaard.bottom = bottom->number();
+        if (*westergaard.bottom >= westergaard.level) {
+          bottom->fail("the reservoir floor must lie below its level " +
+                       formatDouble(westergaard.level) + " m");
+        }
+      }
+      westergaard.unit_weight = wm.numberOr("unit_weight", westergaard.unit_weight, kPositive);
+      seismic.westergaard = westergaard;
+    }
+    return seismic;
+  }
+
+  /// Two pore-pressure fields that act on the same faces would count the water twice: their
+  /// regions must be disjoint in plan. Nor may a field and a water entry's `uplift` both load
+  /// the structure-rock interface.
+  void checkWaterOnce(const Cursor& loads) const {
+    const auto overlap = [](const Region& a, const Region& b) {
+      const auto apart = [](const std::optional<double>& a_min, const std::optional<double>& a_max,
+                            const std::optional<double>& b_min,
+                            const std::optional<double>& b_max) {
+        return (a_max && b_min && *a_max <= *b_min) || (b_max && a_min && *b_max <= *a_min);
+      };
+      return !apart(a.x_min, a.x_max, b.x_min, b.x_max) &&
+             !apart(a.y_min, a.y_max, b.y_min, b.y_max);
+    };
+    const std::vector<PorePressure>& pore = scene_.loads.pore_pressure;
+    for (std::size_t i = 0; i < pore.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (overlap(pore[i].region, pore[j].region)) {
+          loads.at("pore_pressure")
+              .fail("entries " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                    " act on the same faces (their regions overlap in plan); the water would count "
+                    "twice");
+        }
+      }
+    }
+    if (pore.empty()) return;
+    const std::vector<WaterLoad>& water = scene_.loads.water;
+    for (std::size_t i = 0; i < water.size(); ++i) {
+      if (water[i].uplift) {
+        loads.at("water").fail("entry " + std::to_string(i + 1) +
+                               " has 'uplift: true' and loads.pore_pressure also loads the "
+                               "structure-rock interface; the uplift would count twice (remove "
+                               "one of them)");
+      }
+    }
+  }
+
   /// The `loads` section.
   Loads readLoads(const Cursor& c) const {
-    const Cursor m = c.map({"gravity", "water", "point_loads"});
+    const Cursor m = c.map({"gravity", "water", "point_loads", "pore_pressure", "seismic"});
     Loads loads;
     if (const auto gravity = m.get("gravity")) {
       if (!gravity->isNumber() && !gravity->isList()) {
@@ -352,6 +466,9 @@ class SceneReader {
     forEachItem(m, "water", [&](const Cursor& v) { loads.water.push_back(readWater(v)); });
     forEachItem(m, "point_loads",
                 [&](const Cursor& v) { loads.point_loads.push_back(readPointLoad(v)); });
+    forEachItem(m, "pore_pressure",
+                [&](const Cursor& v) { loads.pore_pressure.push_back(readPorePressure(v)); });
+    if (const auto seismic = m.get("seismic")) loads.seismic = readSeismic(*seismic);
     return loads;
   }
 

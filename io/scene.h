@@ -72,6 +72,57 @@ struct WaterLoad {
   bool uplift = false;          ///< also the structure-rock interface
 };
 
+/// Where a key is in the scene file, for messages about it raised after reading (budgets).
+struct KeyLocation {
+  std::string path;  ///< key path, e.g. "joint_sets[0].spacing"
+  int line = 0;      ///< 1-based line
+  int column = 0;    ///< 1-based column
+};
+
+/// The uplift diagram under a structure (USBR, Design of Small Dams, ch. 8; USACE EM
+/// 1110-2-2200): the piezometric head of the reservoir at the heel, of the tailwater at the
+/// toe, linear between; with a drainage curtain, the head at the drain line is the
+/// tailwater's plus (1 - efficiency) of the difference, linear from the heel to the drains
+/// and from the drains to the toe. Upstream of the heel the head stays the reservoir's,
+/// downstream of the toe the tailwater's.
+struct UpliftDiagram {
+  std::string structure;                 ///< the structure whose heel and toe it spans
+  double upstream_level = 0.0;           ///< z of the reservoir (m)
+  double downstream_level = 0.0;         ///< z of the tailwater (m)
+  Vec3 flow = Vec3::UnitX();             ///< horizontal unit vector, heel -> toe
+  std::optional<double> drain_distance;  ///< drain line, m downstream of the heel
+  double drain_efficiency = 0.0;         ///< in [0, 1]
+  KeyLocation drain_key;                 ///< `drains.distance` (messages)
+};
+
+/// Water pressure in the discontinuities (joints, faults, interlayers, FAB fractures, the
+/// structure-rock interface): p = unit_weight * max(0, h(x) - z) on both sides of every
+/// such face, with the head h a phreatic level (hydrostatic below it) or an uplift diagram.
+struct PorePressure {
+  std::optional<double> level;           ///< phreatic level (m)
+  std::optional<UpliftDiagram> diagram;  ///< exactly one of level and diagram
+  double unit_weight = 9810.0;           ///< N/m3
+  Region region;                         ///< restricts the field in plan
+  KeyLocation key;                       ///< the entry (messages)
+};
+
+/// Westergaard's added hydrodynamic pressure on a structure's upstream face.
+struct Westergaard {
+  std::string structure;         ///< the structure
+  std::optional<Vec3> facing;    ///< its faces with outward normal n . facing > 0
+  double level = 0.0;            ///< z of the reservoir (m)
+  std::optional<double> bottom;  ///< z of the reservoir floor (m); none: the structure's lowest
+  double unit_weight = 9810.0;   ///< N/m3
+};
+
+/// Pseudo-static earthquake loads.
+struct Seismic {
+  double k_h = 0.0;                ///< horizontal coefficient: k_h g along `direction`
+  Vec3 direction = Vec3::UnitX();  ///< horizontal unit vector
+  double k_v = 0.0;                ///< vertical coefficient: k_v g, upward when > 0
+  std::optional<Westergaard> westergaard;
+};
+
 /// A concentrated force.
 struct PointLoad {
   Vec3 point = Vec3::Zero();  ///< m
@@ -80,9 +131,11 @@ struct PointLoad {
 
 /// Loads of the scene.
 struct Loads {
-  std::optional<Vec3> gravity;         ///< m/s2 vector (a number g means (0, 0, -g))
-  std::vector<WaterLoad> water;        ///< water pressure entries
-  std::vector<PointLoad> point_loads;  ///< point loads
+  std::optional<Vec3> gravity;              ///< m/s2 vector (a number g means (0, 0, -g))
+  std::vector<WaterLoad> water;             ///< water pressure entries
+  std::vector<PointLoad> point_loads;       ///< point loads
+  std::vector<PorePressure> pore_pressure;  ///< water in the discontinuities
+  std::optional<Seismic> seismic;           ///< pseudo-static earthquake
 };
 
 /// A measure point attached to the block that contains it.
@@ -195,13 +248,6 @@ struct Analysis {
   std::optional<OverloadAnalysis> overload;
   std::optional<StrengthReductionAnalysis> strength_reduction;
   std::optional<EquilibriumAnalysis> equilibrium;
-};
-
-/// Where a key is in the scene file, for messages about it raised after reading (budgets).
-struct KeyLocation {
-  std::string path;  ///< key path, e.g. "joint_sets[0].spacing"
-  int line = 0;      ///< 1-based line
-  int column = 0;    ///< 1-based column
 };
 
 /// The keys of a joint set that drive how many discs it draws.

@@ -427,9 +427,9 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
 /// analysis.overload
 OverloadAnalysis readOverloadAnalysis(const Cursor& c) {
   const Cursor m = c.map({"factors", "scales", "tolerance", "scale_uplift"});
-  OverloadAnalysis overload{
-      .factors = m.at("factors").increasingNumbers(kPositive),
-      .scales = m.at("scales").distinctChoices("load", {"water", "gravity", "point_loads"})};
+  OverloadAnalysis overload{.factors = m.at("factors").increasingNumbers(kPositive),
+                            .scales = m.at("scales").distinctChoices(
+                                "load", {"water", "gravity", "point_loads", "seismic"})};
   overload.tolerance = m.numberOr("tolerance", overload.tolerance, kNonNegative);
   overload.scale_uplift = m.valueOr("scale_uplift", overload.scale_uplift, &Cursor::boolean);
   return overload;

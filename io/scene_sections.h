@@ -22,9 +22,9 @@ using geometry::DistributionSpec;
 // ---------------------------------------------------------------------------------------------
 
 /// The families a distribution map can name, in the order error messages list them.
-constexpr std::array kDistributionKinds{DistributionKind::Normal, DistributionKind::Lognormal,
-                                        DistributionKind::Uniform, DistributionKind::Exponential,
-                                        DistributionKind::Constant};
+inline constexpr std::array kDistributionKinds{
+    DistributionKind::Normal, DistributionKind::Lognormal, DistributionKind::Uniform,
+    DistributionKind::Exponential, DistributionKind::Constant};
 
 /// The names of kDistributionKinds as written in scenes.
 std::vector<std::string> distributionNames();

@@ -134,6 +134,7 @@ std::string formatStabilitySummary(const RunInfo& run, const StabilitySummary& s
   j["fixed_blocks"] = summary.fixed_blocks;
   if (summary.glued) j["glued_blocks"] = gluedBlocksJson(*summary.glued);
   j["pressures"] = summary.pressures;
+  if (!summary.uplift.empty()) j["uplift"] = upliftJson(summary.uplift);
   appendStability(j, summary);
   appendTimings(j, run.timings);
   return j.dump(2) + "\n";

@@ -31,6 +31,8 @@ struct StabilitySummary {
   const dda3d::FactorSearchResult* strength_reduction = nullptr;  ///< when it ran
   /// The small blocks glued before the runs (analysis.dda.min_block_volume > 0).
   std::optional<blocks::MergeReport> glued;
+  /// The uplift on each structure (empty when no water acts in an interface).
+  std::vector<StructureUplift> uplift;
 };
 
 /// summary.json of `overload` / `strength`: the header, blocks, fixed_blocks, glued_blocks

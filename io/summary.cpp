@@ -102,6 +102,16 @@ std::string formatDfnSummary(const RunInfo& run, const geometry::FractureNetwork
   return j.dump(2) + "\n";
 }
 
+SummaryJson upliftJson(const std::vector<StructureUplift>& uplift) {
+  SummaryJson list = SummaryJson::array();
+  for (const StructureUplift& u : uplift) {
+    list.push_back({{"structure", u.structure},
+                    {"force", {u.force.x(), u.force.y(), u.force.z()}},
+                    {"vertical", u.force.z()}});
+  }
+  return list;
+}
+
 SummaryJson gluedBlocksJson(const blocks::MergeReport& glued) {
   return {{"min_volume", glued.min_volume},       {"blocks_before", glued.blocks_before},
           {"blocks_after", glued.blocks_after},   {"merged", glued.merged},

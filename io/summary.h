@@ -16,6 +16,13 @@ namespace rockmass::io {
 using Timings = std::vector<std::pair<std::string, double>>;
 
 /// What every summary says about the run itself.
+/// The uplift on one structure: the water pressure in its interface with the rock
+/// (loads.pore_pressure, or loads.water with uplift) summed as the model starts.
+struct StructureUplift {
+  std::string structure;                          ///< its name
+  geometry::Vec3 force = geometry::Vec3::Zero();  ///< resultant on the structure (N)
+};
+
 struct RunInfo {
   std::string command;               ///< sub-command, e.g. "dfn"
   std::string scene;                 ///< scene file as given on the command line

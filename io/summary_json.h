@@ -26,4 +26,8 @@ SummaryJson finiteOrNull(double value);
 /// blocks_after, merged, merged_volume, left_small (blocks::MergeReport).
 SummaryJson gluedBlocksJson(const blocks::MergeReport& glued);
 
+/// The `uplift` list of a DDA or stability summary: per structure {structure, force [3] (N),
+/// vertical (N, upward > 0)}.
+SummaryJson upliftJson(const std::vector<StructureUplift>& uplift);
+
 }  // namespace rockmass::io

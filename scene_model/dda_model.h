@@ -9,6 +9,7 @@
 #include "dda3d/model.h"
 #include "geometry/fracture_network.h"
 #include "io/scene.h"
+#include "io/summary.h"
 
 namespace rockmass::scene_model {
 
@@ -63,6 +64,11 @@ class FaceJoints {
 /// load lies in no block, a block has no material, or the scene gives no default_joint.
 dda3d::DdaModel buildDdaModel(const io::Scene& scene, const blocks::BlockModel& blocks,
                               const geometry::FractureNetwork& network);
+
+/// The uplift on each structure of the scene: the resultant of the uplift and pore pressures
+/// on its faces (DdaPressure::uplift) as the model starts. Empty when there are none.
+std::vector<io::StructureUplift> structureUplift(const io::Scene& scene,
+                                                 const dda3d::DdaModel& model);
 
 /// Index into blocks.blocks of the block with a piece containing `point` (within
 /// kSceneModelRelativeTolerance of the domain diagonal); when several do (a point on a

@@ -56,7 +56,8 @@ dda3d::LoadScaling loadScaling(const OverloadAnalysis& overload) {
   return {.gravity = named("gravity"),
           .water = named("water"),
           .uplift = named("water") && overload.scale_uplift,
-          .point_loads = named("point_loads")};
+          .point_loads = named("point_loads"),
+          .seismic = named("seismic")};
 }
 
 namespace {
