@@ -67,6 +67,21 @@ io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blo
   return frame;
 }
 
+/// Each bolt as the last accepted step left it.
+std::vector<io::BoltSample> boltSamples(const dda3d::Simulation& sim,
+                                        const std::vector<std::string>& names) {
+  std::vector<io::BoltSample> out;
+  for (std::size_t k = 0; k < sim.bolts().size(); ++k) {
+    const dda3d::BoltState& b = sim.bolts()[k];
+    out.push_back({names.at(k), b.force,
+                   b.broken    ? "broken"
+                   : b.yielded ? "yielded"
+                               : "intact",
+                   b.broken_at, sim.model().bolts[k].point_a, sim.model().bolts[k].point_b});
+  }
+  return out;
+}
+
 /// One history row per monitor at the simulation's current time, appended to history.csv.
 void recordMonitors(const dda3d::Simulation& sim, const std::vector<std::string>& names,
                     io::StreamedFile& history) {
@@ -151,6 +166,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     pieces += static_cast<int>(b.pieces.size());
   }
   for (const dda3d::DdaMonitor& m : model.monitors) stage.monitor_names.push_back(m.name);
+  for (const io::BoltSpec& b : scene.bolts) stage.bolt_names.push_back(b.name);
   dda3d::Simulation sim(std::move(model), settingsOf(dda, options));
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
@@ -161,6 +177,11 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   stage.steps_csv = std::make_shared<io::StreamedFile>(out / "steps.csv");
   stage.steps_csv->write(io::stepsCsvHeader());
   recordMonitors(sim, stage.monitor_names, *stage.history);
+  if (!stage.bolt_names.empty()) {
+    stage.bolts_csv = std::make_shared<io::StreamedFile>(out / "bolts.csv");
+    stage.bolts_csv->write(io::boltsCsvHeader());
+    stage.bolts_csv->write(io::formatBoltRows(sim.time(), boltSamples(sim, stage.bolt_names)));
+  }
   frames.write(frameOf(sim, blocks, 0));
 
   io::DdaRunSummary& summary = stage.summary;
@@ -191,6 +212,9 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     }
     io::keepStepRecord(summary.steps, summary.step_stride, last);
     recordMonitors(sim, stage.monitor_names, *stage.history);
+    if (stage.bolts_csv) {
+      stage.bolts_csv->write(io::formatBoltRows(sim.time(), boltSamples(sim, stage.bolt_names)));
+    }
     if (frames.due(step)) frames.write(frameOf(sim, blocks, step));
     if (options.debug_step && *options.debug_step == step) {
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
@@ -220,6 +244,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   summary.unknowns = (summary.blocks - fixed_blocks) * sim.dofsPerBlock();
   summary.glued = glued;
   summary.uplift = scene_model::structureUplift(scene, sim.model());
+  summary.bolts = boltSamples(sim, stage.bolt_names);
   summary.dynamic = dda.engine.mode == dda3d::AnalysisMode::Dynamic;
   summary.deformable = dda.engine.kinematics == dda3d::Kinematics::Deformable;
   summary.solver = sim.solverName();
@@ -243,6 +268,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
 void writeDdaFiles(const fs::path& /*out*/, const DdaStage& stage) {
   stage.history->commit();
   stage.steps_csv->commit();
+  if (stage.bolts_csv) stage.bolts_csv->commit();
 }
 
 namespace {

@@ -120,6 +120,9 @@ struct DdaStage {
   /// history.csv and steps.csv, written as the run went; writeDdaFiles commits them.
   std::shared_ptr<io::StreamedFile> history;
   std::shared_ptr<io::StreamedFile> steps_csv;
+  /// bolts.csv (only when the scene has bolts), written as the run went.
+  std::shared_ptr<io::StreamedFile> bolts_csv;
+  std::vector<std::string> bolt_names;   ///< in model order
   std::vector<std::string> frame_files;  ///< dda.pvd's frames (dda_<step>.vtu)
 };
 

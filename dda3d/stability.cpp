@@ -44,6 +44,7 @@ FactorRun runFactor(const std::function<DdaModel(double)>& make, const DdaSettin
   run.equilibrium = runToEquilibrium(sim, equilibrium);
   run.monitors = sim.monitors();
   run.terms = sim.activeTerms();
+  run.bolts = sim.bolts();
   return run;
 }
 

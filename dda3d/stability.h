@@ -54,6 +54,7 @@ struct FactorRun {
   EquilibriumResult equilibrium;       ///< how the run ended
   std::vector<MonitorState> monitors;  ///< at the end of the run
   ActiveTerms terms;                   ///< the sub-matrices the run assembled
+  std::vector<BoltState> bolts;        ///< each bolt at the end of the run
 };
 
 /// The result of a search.

@@ -89,6 +89,19 @@ std::string formatHistoryRow(const std::vector<std::string>& monitor_names,
   return out;
 }
 
+std::string boltsCsvHeader() {
+  return "time,bolt,force,state\n";
+}
+
+std::string formatBoltRows(double time, const std::vector<BoltSample>& bolts) {
+  std::string out;
+  for (const BoltSample& b : bolts) {
+    out += formatDouble(time) + ',' + csvField(b.name) + ',' + formatDouble(b.force) + ',' +
+           b.state + '\n';
+  }
+  return out;
+}
+
 std::string formatHistoryCsv(const std::vector<std::string>& monitor_names,
                              const std::vector<MonitorSample>& samples) {
   std::string out = historyCsvHeader();

@@ -11,6 +11,7 @@
 #include "dda3d/linear_solver.h"
 #include "geometry/polyhedron.h"
 #include "geometry/vec.h"
+#include "io/summary.h"
 
 namespace rockmass::io {
 
@@ -34,6 +35,11 @@ std::string historyCsvHeader();
 /// One history.csv row, with its newline.
 std::string formatHistoryRow(const std::vector<std::string>& monitor_names,
                              const MonitorSample& sample);
+
+/// bolts.csv's header line: `time,bolt,force,state`, with its newline.
+std::string boltsCsvHeader();
+/// One bolts.csv row per bolt at `time`, each with its newline.
+std::string formatBoltRows(double time, const std::vector<BoltSample>& bolts);
 
 // ---------------------------------------------------------------------------------------------
 // dda.pvd + frames

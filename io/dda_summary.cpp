@@ -75,6 +75,22 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
   j["unknowns"] = dda.unknowns;
   if (dda.glued) j["glued_blocks"] = gluedBlocksJson(*dda.glued);
   if (!dda.uplift.empty()) j["uplift"] = upliftJson(dda.uplift);
+  if (!dda.bolts.empty()) {
+    Json bolts = Json::array();
+    int broken = 0;
+    for (const BoltSample& b : dda.bolts) {
+      Json entry = {{"name", b.name},
+                    {"head", {b.head.x(), b.head.y(), b.head.z()}},
+                    {"end", {b.end.x(), b.end.y(), b.end.z()}},
+                    {"force", b.force},
+                    {"state", b.state}};
+      if (b.broken_at >= 0.0) entry["broken_at"] = b.broken_at;
+      broken += b.state == "broken";
+      bolts.push_back(entry);
+    }
+    j["bolts_broken"] = broken;
+    j["bolts"] = bolts;
+  }
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;

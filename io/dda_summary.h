@@ -58,6 +58,8 @@ struct DdaRunSummary {
   std::vector<DdaMonitorResult> monitors;
   /// The uplift on each structure (empty when no water acts in an interface).
   std::vector<StructureUplift> uplift;
+  /// Each bolt at the end of the run (empty without bolts).
+  std::vector<BoltSample> bolts;
   /// The step records summary.json holds: every `step_stride`-th step (and the last); all of
   /// them when the stride is 1. steps.csv has every step.
   std::vector<DdaStepRecord> steps;

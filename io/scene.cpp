@@ -50,7 +50,7 @@ class SceneReader {
     const Cursor m =
         root.map({"version", "name", "seed", "domain", "materials", "rock_material", "joints",
                   "default_joint", "joint_sets", "fractures", "faults", "interlayers", "structures",
-                  "loads", "supports", "monitors", "analysis"});
+                  "loads", "supports", "monitors", "bolts", "bolt_patterns", "analysis"});
     scene_.file = file;
     const Cursor version = m.at("version");
     if (const int number = version.integer(); number != 1) {
@@ -109,6 +109,20 @@ class SceneReader {
       scene_.monitors.push_back(
           {monitor_names.claimName(monitor), monitor.at("point").vec3(), c.line()});
     });
+    UniqueNames bolt_names;
+    forEachItem(m, "bolts", [&](const Cursor& c) {
+      const Cursor bolt =
+          c.map({"name", "head", "end", "stiffness", "pretension", "yield_force", "rupture_force"});
+      BoltSpec spec = readBoltSteel(bolt);
+      spec.name = bolt_names.claimName(bolt);
+      spec.head = bolt.at("head").vec3();
+      const Cursor end = bolt.at("end");
+      spec.end = end.vec3();
+      if ((spec.end - spec.head).norm() <= 0.0) end.fail("the end must differ from the head");
+      spec.key = locationOf(c);
+      scene_.bolts.push_back(spec);
+    });
+    forEachItem(m, "bolt_patterns", [&](const Cursor& c) { readBoltPattern(c, bolt_names); });
     if (const auto analysis = m.get("analysis")) {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
                                      !scene_.domain_mesh.empty(), !scene_.monitors.empty());
@@ -339,6 +353,57 @@ class SceneReader {
     }
     water.region = on.valueOr("region", water.region, &readRegion);
     return water;
+  }
+
+  /// The steel of a bolt or pattern: stiffness, pretension, yield and rupture forces.
+  static BoltSpec readBoltSteel(const Cursor& m) {
+    BoltSpec spec;
+    spec.stiffness = m.at("stiffness").number(kPositive);
+    spec.pretension = m.numberOr("pretension", 0.0, kNonNegative);
+    if (const auto y = m.get("yield_force")) spec.yield_force = y->number(kPositive);
+    if (const auto r = m.get("rupture_force")) {
+      spec.rupture_force = r->number(kPositive);
+      if (spec.yield_force && *spec.rupture_force < *spec.yield_force) {
+        r->fail("the rupture force must not be below the yield force " +
+                formatDouble(*spec.yield_force) + " N");
+      }
+      if (spec.pretension >= *spec.rupture_force) {
+        r->fail("the pretension " + formatDouble(spec.pretension) + " N would break the bolt");
+      }
+    }
+    return spec;
+  }
+
+  /// A `bolt_patterns` entry: rows x columns bolts, head k = origin + i along + j across,
+  /// each `length` m along `direction`; named "<name>.<row>.<column>" from 1.
+  void readBoltPattern(const Cursor& c, UniqueNames& names) {
+    const Cursor m = c.map({"name", "origin", "along", "across", "count", "direction", "length",
+                            "stiffness", "pretension", "yield_force", "rupture_force"});
+    const BoltSpec steel = readBoltSteel(m);
+    const std::string name = names.claimName(m);
+    const Vec3 origin = m.at("origin").vec3();
+    const Vec3 along = m.at("along").vec3();
+    const Vec3 across = m.at("across").vec3();
+    const Cursor count = m.at("count");
+    const std::vector<Cursor> counts = count.items();
+    if (counts.size() != 2) count.failExpected("[rows, columns]");
+    const int rows = counts[0].integer(atLeast(1));
+    const int columns = counts[1].integer(atLeast(1));
+    if (static_cast<double>(rows) * columns > 1e5) {
+      count.fail("more than 100000 bolts; expected a coarser pattern");
+    }
+    const Vec3 direction = readDirection(m.at("direction")).normalized();
+    const double length = m.at("length").number(kPositive);
+    for (int i = 0; i < rows; ++i) {
+      for (int j = 0; j < columns; ++j) {
+        BoltSpec spec = steel;
+        spec.name = name + "." + std::to_string(i + 1) + "." + std::to_string(j + 1);
+        spec.head = origin + i * along + j * across;
+        spec.end = spec.head + length * direction;
+        spec.key = locationOf(c);
+        scene_.bolts.push_back(spec);
+      }
+    }
   }
 
   /// A `loads.pore_pressure` entry.

@@ -138,6 +138,19 @@ struct Loads {
   std::optional<Seismic> seismic;           ///< pseudo-static earthquake
 };
 
+/// A rock bolt or anchor: a spring from its head (in the block it holds) to its end (in the
+/// block, or the fixed rock, it is anchored to), pulling the two together.
+struct BoltSpec {
+  std::string name;                     ///< e.g. "B1", or "P.2.3" (pattern P, row 2, column 3)
+  Vec3 head = Vec3::Zero();             ///< m
+  Vec3 end = Vec3::Zero();              ///< m
+  double stiffness = 0.0;               ///< axial stiffness (N/m)
+  double pretension = 0.0;              ///< N
+  std::optional<double> yield_force;    ///< N; none: elastic
+  std::optional<double> rupture_force;  ///< N; none: never breaks
+  KeyLocation key;                      ///< the entry (messages)
+};
+
 /// A measure point attached to the block that contains it.
 struct Monitor {
   std::string name;           ///< e.g. "P4"
@@ -283,6 +296,7 @@ struct Scene {
   std::vector<std::string> roller_faces;
   std::vector<std::string> fixed_faces;  ///< supports.fixed: bottom, top, west, east, south, north
   std::vector<Monitor> monitors;         ///< measure points
+  std::vector<BoltSpec> bolts;           ///< bolts, then the patterns' bolts row by row
   Analysis analysis;                     ///< what to compute
 };
 

@@ -59,6 +59,16 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
            {"penetration", r.equilibrium.redone_penetration}}},
          {"fastest_block", movedBlockJson(r.equilibrium.fastest)},
          {"fastest_watched_block", movedBlockJson(r.equilibrium.watched)}});
+    if (!r.bolts.empty()) {
+      int broken = 0, yielded = 0;
+      double largest = 0.0;
+      for (const dda3d::BoltState& b : r.bolts) {
+        broken += b.broken;
+        yielded += b.yielded && !b.broken;
+        largest = std::max(largest, b.force);
+      }
+      runs.back()["bolts"] = {{"broken", broken}, {"yielded", yielded}, {"largest_force", largest}};
+    }
   }
   return runs;
 }

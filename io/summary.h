@@ -23,6 +23,16 @@ struct StructureUplift {
   geometry::Vec3 force = geometry::Vec3::Zero();  ///< resultant on the structure (N)
 };
 
+/// The state of one bolt at one time, for bolts.csv and the summary.
+struct BoltSample {
+  std::string name;
+  double force = 0.0;                            ///< axial force (N, > 0 tension)
+  std::string state;                             ///< intact | yielded | broken
+  double broken_at = -1.0;                       ///< time of the rupture (s), -1 when intact
+  geometry::Vec3 head = geometry::Vec3::Zero();  ///< where it was set (m)
+  geometry::Vec3 end = geometry::Vec3::Zero();
+};
+
 struct RunInfo {
   std::string command;               ///< sub-command, e.g. "dfn"
   std::string scene;                 ///< scene file as given on the command line

@@ -1,6 +1,7 @@
 // Dam-foundation loads through the command line, each against its hand calculation: water
 // pressure in the discontinuities (a phreatic level; the USBR / USACE uplift diagram with a
-// drainage curtain), a pseudo-static earthquake, and the errors a bad field gives.
+// drainage curtain; a wedge with water in both joints), bolts and anchors (statics, rupture,
+// patterns), a pseudo-static earthquake, and the errors bad fields and bolts give.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -355,6 +356,108 @@ TEST_F(WaterLoadsCli, BadPorePressureFieldsAreRefusedAtTheirKey) {
         damScene("  pore_pressure:\n    - {level: 1.0}\n    - {level: 2.0, region: {x_min: 4}}\n");
     const std::string out = refusal("overload", "overlap", scene);
     EXPECT_NE(out.find("entries 1 and 2 act on the same faces"), std::string::npos) << out;
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bolts and anchors.
+
+/// The block on the 30 deg joint above, the joint frictionless, held by one anchor from
+/// (12, 5, -4) in the block to (6, 5, -8) in the rock below; `steel`: the bolt's stiffness
+/// and forces; `analysis`: the analysis section's body.
+std::string boltedScene(const std::string& steel, const std::string& analysis) {
+  std::string scene = inclineScene("");
+  scene.replace(scene.find("friction: " + std::to_string(kFriction)),
+                ("friction: " + std::to_string(kFriction)).size(), "friction: 0");
+  scene.replace(scene.find("analysis:\n"), std::string::npos, "analysis:\n" + analysis);
+  return scene + "bolts:\n  - {name: B1, head: [12, 5, -4], end: [6, 5, -8], " + steel + "}\n";
+}
+
+/// Damped dynamic runs (the equilibrium's dynamic ratio 0.95): a static run loads a bolt
+/// 1e-6 m a step, far too slowly for a 3000 t block.
+const std::string kAtRest = R"(  blocks: {cutter: fast}
+  dda: {mode: dynamic, kinematics: rigid, steps: 300, time_step: 0.002}
+  equilibrium: {max_steps: 1000}
+  strength_reduction: {factors: [1.0], tolerance: 0.01}
+)";
+
+TEST_F(WaterLoadsCli, AnAnchoredBlockHoldsAtTheStaticForceAndSlidesWhenItsBoltBreaks) {
+  // Statics of a frictionless block on a plane held by an anchor along d (Hoek & Bray, Rock
+  // Slope Engineering, ch. 6, "reinforcement"): along the down-dip direction t, W sin psi +
+  // F d . t = 0, so F = W sin psi / (-d . t); the anchor also presses the block on the plane.
+  const double psi = kPsi * kPi / 180.0;
+  const double weight = 2600.0 * kG * 0.5 * 20.0 * 20.0 * std::tan(psi) * 10.0;
+  const Vec3 d = Vec3(-6.0, 0.0, -4.0).normalized();
+  const Vec3 t(std::cos(psi), 0.0, -std::sin(psi));
+  const double force = weight * std::sin(psi) / -d.dot(t);  // 33.2 MN
+  const nlohmann::json held =
+      summaryOf("strength", "anchored", boltedScene("stiffness: 1.0e10", kAtRest));
+  const nlohmann::json& run = held["strength_reduction"]["runs"][0];
+  ASSERT_TRUE(run["at_rest"].get<bool>()) << held.dump(2);
+  EXPECT_NEAR(run["bolts"]["largest_force"].get<double>(), force, 0.02 * force);  // the issue's
+  EXPECT_EQ(run["bolts"]["broken"].get<int>(), 0);
+  record("frictionless block on a 30 deg joint held by one anchor: anchor force at rest",
+         "F = W sin psi / (-d . t) (statics; Hoek & Bray, Rock Slope Engineering, ch. 6)", force,
+         run["bolts"]["largest_force"].get<double>(), 0.02);
+  // A rupture force below it: the bolt breaks and the block slides (not at rest).
+  const nlohmann::json broke = summaryOf(
+      "strength", "broken",
+      boltedScene("stiffness: 1.0e10, rupture_force: " + std::to_string(0.8 * force), kAtRest));
+  const nlohmann::json& failed = broke["strength_reduction"]["runs"][0];
+  EXPECT_FALSE(failed["at_rest"].get<bool>()) << broke.dump(2);
+  EXPECT_EQ(failed["bolts"]["broken"].get<int>(), 1);
+}
+
+TEST_F(WaterLoadsCli, ABoltPatternGivesTheBoltsItDeclaresAndTheirForcesEveryStep) {
+  // A 3 x 4 pattern across the joint, 1.5 m by 2 m, each 10 m long along (-1, 0, -1).
+  std::string scene = boltedScene("stiffness: 1.0e9", R"(  blocks: {cutter: fast}
+  dda: {mode: static, kinematics: rigid, steps: 3, time_step: 0.001}
+)");
+  scene += R"(bolt_patterns:
+  - {name: P, origin: [14, 2, -3], along: [1.5, 0, 0], across: [0, 2, 0], count: [3, 4],
+     direction: [-1, 0, -1], length: 10, stiffness: 1.0e8, pretension: 1.0e5}
+)";
+  const nlohmann::json s = summaryOf("dda", "pattern", scene);
+  const nlohmann::json& bolts = s["bolts"];
+  ASSERT_EQ(bolts.size(), 1u + 12u) << s.dump(2);  // B1, then the pattern row by row
+  const double l = 10.0 / std::sqrt(2.0);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const nlohmann::json& b = bolts[static_cast<std::size_t>(1 + 4 * i + j)];
+      EXPECT_EQ(b["name"], "P." + std::to_string(i + 1) + "." + std::to_string(j + 1));
+      const Vec3 head(14.0 + 1.5 * i, 2.0 + 2.0 * j, -3.0);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_DOUBLE_EQ(b["head"][static_cast<std::size_t>(k)].get<double>(), head[k]);
+      }
+      EXPECT_NEAR(b["end"][0].get<double>(), head.x() - l, 1e-12);
+      EXPECT_NEAR(b["end"][2].get<double>(), head.z() - l, 1e-12);
+      EXPECT_EQ(b["state"], "intact");
+    }
+  }
+  // bolts.csv: the header, then every bolt at t = 0 and after each of the 3 steps.
+  const std::string csv = test::readFile(dir.path() / "pattern" / "bolts.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 4 * 13);
+  EXPECT_EQ(csv.rfind("time,bolt,force,state\n0,B1,0,intact\n", 0), 0u) << csv.substr(0, 80);
+}
+
+TEST_F(WaterLoadsCli, BadBoltsAreRefusedAtTheirKey) {
+  // An end above the domain, in no block.
+  {
+    std::string scene = boltedScene("stiffness: 1.0e9", kAtRest);
+    scene.replace(scene.find("end: [6, 5, -8]"), 15, "end: [6, 5, 8]");
+    const std::string out = refusal("strength", "no-block", scene);
+    EXPECT_NE(out.find(":" + std::to_string(lineOf(scene, "{name: B1")) + ":"), std::string::npos)
+        << out;
+    EXPECT_NE(out.find("bolt B1: its end (6, 5, 8) lies in no block"), std::string::npos) << out;
+  }
+  // A negative stiffness.
+  {
+    const std::string scene = boltedScene("stiffness: -1.0e9", kAtRest);
+    const std::string out = refusal("strength", "negative", scene);
+    EXPECT_NE(out.find(":" + std::to_string(lineOf(scene, "stiffness: -1.0e9")) + ":"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("stiffness"), std::string::npos) << out;
   }
 }
 
