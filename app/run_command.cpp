@@ -146,6 +146,15 @@ std::vector<std::string> makeQuick(io::Scene& scene) {
     if (box.contains(load.point) || !full.contains(load.point)) continue;
     load.point = clampInto(box, load.point);
   }
+  // A bolt outside the quick box would hold nothing there: left out, and said.
+  const std::size_t bolts = scene.bolts.size();
+  std::erase_if(scene.bolts, [&](const io::BoltSpec& b) {
+    return !box.contains(b.head) || !box.contains(b.end);
+  });
+  if (scene.bolts.size() < bolts) {
+    notes.push_back("quick: " + std::to_string(bolts - scene.bolts.size()) +
+                    " bolts outside the quick box left out");
+  }
   if (scene.analysis.rqd) {
     io::RqdAnalysis& rqd = *scene.analysis.rqd;
     for (io::RqdBall& ball : rqd.balls) {

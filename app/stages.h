@@ -136,7 +136,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
                      const std::filesystem::path& out,
                      const std::optional<blocks::MergeReport>& glued = std::nullopt);
 
-/// Writes history.csv into `out`.
+/// Commits history.csv, steps.csv and (with bolts) bolts.csv, written as the run went.
 void writeDdaFiles(const std::filesystem::path& out, const DdaStage& stage);
 
 }  // namespace rockmass::app

@@ -145,6 +145,7 @@ struct DdaBolt {
   double yield_force = std::numeric_limits<double>::infinity();
   /// Axial force at which the bolt breaks (it carries nothing from then on); infinite: never.
   double rupture_force = std::numeric_limits<double>::infinity();
+  bool broken = false;  ///< already broken (a settled start after a rupture): carries nothing
 };
 
 /// A point attached to a block; its displacement and velocity are recorded.

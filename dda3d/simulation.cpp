@@ -150,7 +150,8 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
                                         : MaterialPoint{-1, bolt.point_b, bolt.point_b});
     BoltState state;
     state.free_length = (bolt.point_b - bolt.point_a).norm() - bolt.pretension / bolt.stiffness;
-    state.force = bolt.pretension;
+    state.force = bolt.broken ? 0.0 : bolt.pretension;
+    state.broken = bolt.broken;
     bolt_state_.push_back(state);
   }
 
@@ -176,7 +177,7 @@ void Simulation::initialAccelerations() {
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
     const DdaBolt& bolt = model_.bolts[k];
     const Vec3 axis = bolt.point_b - bolt.point_a;
-    if (axis.norm() <= 0.0) continue;
+    if (axis.norm() <= 0.0 || bolt.broken) continue;
     // The pretension pulls point a towards b and b towards a.
     const Vec3 pull = bolt.pretension * axis.normalized();
     const BlockState& a = blocks_[static_cast<std::size_t>(bolt.block_a)];

@@ -81,6 +81,14 @@ class Simulation {
   /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
   /// the contact search distance of a pair is the sum of its two blocks' reaches (stepReach).
   const std::vector<double>& contactReach() const { return reach_; }
+  /// Where each bolt's two points are now (m), in model().bolts order.
+  std::vector<std::pair<geometry::Vec3, geometry::Vec3>> boltPositions() const {
+    std::vector<std::pair<geometry::Vec3, geometry::Vec3>> out;
+    for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
+      out.emplace_back(bolt_a_[k].current, bolt_b_[k].current);
+    }
+    return out;
+  }
   /// The bolts (model().bolts order) after the last accepted step.
   const std::vector<BoltState>& bolts() const { return bolt_state_; }
   /// Contacts of the last accepted step, with states.

@@ -119,6 +119,15 @@ DdaModel settledModel(const Simulation& sim) {
   for (std::size_t k = 0; k < out.point_loads.size() && k < loads.size(); ++k) {
     out.point_loads[k].point = loads[k];
   }
+  // Bolts carry their force on: set between their points as they are now, pretensioned to the
+  // force they hold (the same spring), broken ones still broken.
+  const auto positions = sim.boltPositions();
+  for (std::size_t k = 0; k < out.bolts.size(); ++k) {
+    out.bolts[k].point_a = positions[k].first;
+    out.bolts[k].point_b = positions[k].second;
+    out.bolts[k].pretension = sim.bolts()[k].force;
+    out.bolts[k].broken = sim.bolts()[k].broken;
+  }
   return out;
 }
 

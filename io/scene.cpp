@@ -363,9 +363,11 @@ class SceneReader {
     if (const auto y = m.get("yield_force")) spec.yield_force = y->number(kPositive);
     if (const auto r = m.get("rupture_force")) {
       spec.rupture_force = r->number(kPositive);
-      if (spec.yield_force && *spec.rupture_force < *spec.yield_force) {
-        r->fail("the rupture force must not be below the yield force " +
-                formatDouble(*spec.yield_force) + " N");
+      if (spec.yield_force) {
+        r->fail(
+            "give yield_force or rupture_force, not both: a bolt that yields holds its yield "
+            "force (" +
+            formatDouble(*spec.yield_force) + " N) and never reaches a rupture force above it");
       }
       if (spec.pretension >= *spec.rupture_force) {
         r->fail("the pretension " + formatDouble(spec.pretension) + " N would break the bolt");

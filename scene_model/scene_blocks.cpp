@@ -130,6 +130,15 @@ io::Scene ddaScene(const io::Scene& scene) {
   if (scene.analysis.dda && scene.analysis.dda->region) {
     out.dfn.domain = *scene.analysis.dda->region;
     out.analysis.dda->region.reset();
+    // A bolt outside the region holds nothing the DDA computes: left out, and said.
+    const std::size_t bolts = out.bolts.size();
+    std::erase_if(out.bolts, [&](const io::BoltSpec& b) {
+      return !out.dfn.domain.contains(b.head) || !out.dfn.domain.contains(b.end);
+    });
+    if (out.bolts.size() < bolts) {
+      std::fprintf(stderr, "dda: %zu bolts outside analysis.dda.region left out\n",
+                   bolts - out.bolts.size());
+    }
   }
   return out;
 }

@@ -43,7 +43,8 @@ SceneBlocks cutSceneBlocks(const io::Scene& scene, const geometry::FractureNetwo
 
 /// The scene a DDA runs on (`dda`, `overload`, `strength`, `run`): `scene` itself, or, with
 /// analysis.dda.region, a copy whose domain box is the region: cut from the same network and
-/// structures, with supports and `domain_top` loads on the region's faces.
+/// structures, with supports and `domain_top` loads on the region's faces; bolts with an end
+/// outside the region are left out (one line on stderr says how many).
 io::Scene ddaScene(const io::Scene& scene);
 
 /// The blocks a DDA of the scene runs on (`dda`, `overload`, `strength`, `run`): `model`

@@ -450,6 +450,15 @@ TEST_F(WaterLoadsCli, BadBoltsAreRefusedAtTheirKey) {
         << out;
     EXPECT_NE(out.find("bolt B1: its end (6, 5, 8) lies in no block"), std::string::npos) << out;
   }
+  // Both a yield and a rupture force: a yielding bolt would never reach the rupture force.
+  {
+    const std::string scene =
+        boltedScene("stiffness: 1.0e9, yield_force: 1.0e6, rupture_force: 2.0e6", kAtRest);
+    const std::string out = refusal("strength", "yield-and-rupture", scene);
+    EXPECT_NE(out.find(":" + std::to_string(lineOf(scene, "{name: B1")) + ":"), std::string::npos)
+        << out;
+    EXPECT_NE(out.find("give yield_force or rupture_force, not both"), std::string::npos) << out;
+  }
   // A negative stiffness.
   {
     const std::string scene = boltedScene("stiffness: -1.0e9", kAtRest);

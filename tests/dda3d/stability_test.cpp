@@ -192,6 +192,43 @@ TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
   EXPECT_LE(restart.steps, equilibrium.settle_steps);
 }
 
+TEST(SettledStart, BoltsCarryTheirPointsAndForceIntoTheSettledModel) {
+  // A cube hung from a fixed slab above by a bolt (k = 1e8 N/m, no pretension) and resting on
+  // nothing: the bolt takes the cube's weight (W = 2600 kg/m3 x 8 m3 x g = 204 kN) once it
+  // has stretched W / k = 2 mm. The settled model's bolt starts between the points as they
+  // are, pretensioned to that force, so the next run starts where the first ended.
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-2, -2, 2}, {2, 2, 3}, 0, true));
+  model.blocks.push_back(scenes::boxBlock({-1, -1, -1}, {1, 1, 1}, 0, false));
+  model.gravity = Vec3(0, 0, -kG);
+  DdaBolt bolt;
+  bolt.block_a = 1;
+  bolt.point_a = Vec3(0, 0, 0.5);
+  bolt.block_b = 0;
+  bolt.point_b = Vec3(0, 0, 2.5);
+  bolt.stiffness = 1e8;
+  model.bolts = {bolt};
+  DdaSettings settings = dampedRigid();
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 2000;
+  Simulation first(model, settings);
+  ASSERT_TRUE(runToEquilibrium(first, equilibrium).reached);
+  const double weight = 2600.0 * 8.0 * kG;
+  EXPECT_NEAR(first.bolts()[0].force, weight, 0.01 * weight);  // statics, within 1 %
+  const DdaModel settled = settledModel(first);
+  EXPECT_EQ(settled.bolts[0].point_a, first.boltPositions()[0].first);
+  EXPECT_EQ(settled.bolts[0].pretension, first.bolts()[0].force);
+  Simulation again(settled, settings);
+  EXPECT_EQ(again.bolts()[0].force, first.bolts()[0].force);
+  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
+  EXPECT_TRUE(restart.reached);
+  // It stays where it settled: within 1 % of the bolt's 2 mm stretch (a scene start would
+  // drop the cube by the whole stretch again).
+  EXPECT_LT(again.centroidDisplacement(1).norm(), 0.01 * weight / 1e8);
+  EXPECT_NEAR(again.bolts()[0].force, weight, 0.01 * weight);
+}
+
 // The early stop of a failing static run. In a static run (velocities reset every step) the
 // unbalanced ratio is the unbalanced acceleration over g: a block sliding on a 60 degree slope
 // at phi = 10 degrees has a = g (sin 60 - cos 60 tan 10) = 0.78 g at every step, so with
