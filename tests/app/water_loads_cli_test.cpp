@@ -321,6 +321,16 @@ TEST_F(WaterLoadsCli, DamWithAnUpliftDiagramAndADrainageCurtain) {
   EXPECT_EQ(s["uplift"][0]["structure"], "dam");
   EXPECT_NEAR(s["uplift"][0]["vertical"].get<double>(), uplift, 1e-9 * uplift);
   EXPECT_NEAR(s["uplift"][0]["force"][0].get<double>(), 0.0, 1e-9 * uplift);
+  // A vertical joint in the rock right under the middle of the base (x = 4): the interface is
+  // found on both sides of it, not only where the base's centre meets unjointed rock.
+  std::string jointed = damScene(kDrainedDiagram);
+  jointed.replace(jointed.find("structures:"), 11,
+                  "faults:\n  - {name: F, center: [4, 2, -1], dip_direction: 90, dip: 90}\n"
+                  "structures:");
+  jointed.replace(jointed.find("steps: 300"), 10, "steps: 1");
+  const nlohmann::json j = summaryOf("dda", "jointed", jointed);
+  ASSERT_EQ(j["uplift"].size(), 1u) << j.dump(2);
+  EXPECT_NEAR(j["uplift"][0]["vertical"].get<double>(), uplift, 1e-9 * uplift);
 }
 
 TEST_F(WaterLoadsCli, BadPorePressureFieldsAreRefusedAtTheirKey) {
