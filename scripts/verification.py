@@ -32,8 +32,12 @@ GROUPS = [
     ("Deformable column", "Elastic blocks under their own weight."),
     ("Slivers in stacks",
      "Columns of boxes with a thin sliver (1:100, 1:1000 of the width) between them."),
-    ("Bolts and fixed points", "A block held by a bolt (a linear spring)."),
-    ("Water loads", "Hydrostatic forces and moments on faces (fluid statics)."),
+    ("Bolts and fixed points",
+     "A block held by a bolt (a linear spring) or an anchor across a joint (statics)."),
+    ("Water loads",
+     "Hydrostatic forces and moments on faces (fluid statics); water in the joints: a phreatic "
+     "level, the uplift diagram with drains (rockmass CLI)."),
+    ("Earthquakes", "Pseudo-static seismic coefficients and Westergaard's added pressure."),
     ("Dams", "A gravity-dam block on a rock slab: overload and strength reduction (rockmass CLI)."),
 ]
 

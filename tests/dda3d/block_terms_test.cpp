@@ -80,7 +80,7 @@ TEST(BlockTerms, WestergaardResultantOnAVerticalFace) {
   // Westergaard (1933), as USBR Design of Small Dams (ch. 8) uses it: on a vertical face in a
   // reservoir of depth h, p = 7/8 k_h gw sqrt(h y) at depth y; the resultant per unit width is
   // 7/12 k_h gw h^2, acting 0.4 h above the base. Face x = 0 (outward -x) of a 1 x 1 x 10 m
-  // block, water to its top: 7/12 * 0.1 * 9810 * 100 = 5722.5 N along +x.
+  // block, water to its top: 7/12 * 0.1 * 9810 * 100 = 57 225 N along +x.
   BlockState b;
   b.pieces.push_back(geometry::boxPolyhedron({Vec3::Zero(), Vec3(1.0, 1.0, 10.0)}));
   b.updateMassProperties();
@@ -94,7 +94,7 @@ TEST(BlockTerms, WestergaardResultantOnAVerticalFace) {
   const BlockVector f = hydrodynamicLoad(b, b.pieces[0], 0, w);
   const double resultant = 7.0 / 12.0 * 0.1 * 9810.0 * 100.0;
   EXPECT_NEAR(f[0], resultant, 0.01 * resultant);  // the 1 %
-  test::recordVerification({.group = "Water and earthquake loads",
+  test::recordVerification({.group = "Earthquakes",
                             .name = "Westergaard added pressure on a vertical face 10 m deep, "
                                     "k_h = 0.1: resultant per unit width",
                             .source = "7/12 k_h gamma_w h^2 (Westergaard 1933; USBR, Design of "

@@ -76,7 +76,7 @@ TEST(SceneErrors, UnknownTopLevelKeyHasNoPath) {
   EXPECT_EQ(errorOf(valid_head + "joint_set: []\n"),
             "bad.yaml:3:1: unknown key 'joint_set'; expected one of: version, name, seed, domain, "
             "materials, rock_material, joints, default_joint, joint_sets, fractures, faults, "
-            "interlayers, structures, loads, supports, monitors, analysis "
+            "interlayers, structures, loads, supports, monitors, bolts, bolt_patterns, analysis "
             "(did you mean 'joint_sets'?)");
 }
 
@@ -401,7 +401,7 @@ TEST(SceneErrors, UnknownLoadInOverloadScales) {
   EXPECT_EQ(errorOf(valid_head + "analysis:\n  overload: {factors: [1, 2], scales: [water, "
                                  "wind]}\n"),
             "bad.yaml:4:47: analysis.overload.scales[1]: unknown load 'wind'; expected one of: "
-            "water, gravity, point_loads");
+            "water, gravity, point_loads, seismic");
 }
 
 TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
