@@ -181,9 +181,16 @@ bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int
   for (int b : members[static_cast<std::size_t>(owner + 1)]) {
     const blocks::Block& block = blocks.blocks[static_cast<std::size_t>(b)];
     if (block.bounds.distance(point) > 0.0) continue;
+    // On a face between two pieces of the block (a cutter's region plane runs through the
+    // rock at the domain's halves and quarters) the point is inside the block, though on the
+    // boundary of each piece.
+    int touching = 0;
     for (const blocks::Piece& piece : block.pieces) {
-      if (geometry::convexPlaneDistance(piece.shape, point) < -depth) return true;
+      const double distance = geometry::convexPlaneDistance(piece.shape, point);
+      if (distance < -depth) return true;
+      touching += distance <= 1e-3 * depth;
     }
+    if (touching >= 2) return true;
   }
   return false;
 }

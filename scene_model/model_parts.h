@@ -53,8 +53,8 @@ int structureOf(const blocks::Block& block);
 /// structure s.
 using Members = std::vector<std::vector<int>>;
 
-/// True when `point` lies inside a piece of a block of `owner` (structure index, or -1 for
-/// rock) by more than `depth` m.
+/// True when `point` lies inside a block of `owner` (structure index, or -1 for rock): inside
+/// one of its pieces by more than `depth` m, or on a face between two of its pieces.
 bool insideOwnedBy(const blocks::BlockModel& blocks, const Members& members, int owner,
                    const geometry::Vec3& point, double depth);
 

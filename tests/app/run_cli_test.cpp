@@ -349,6 +349,15 @@ TEST(RunCli, XiangjiabaQuick) {
   EXPECT_TRUE(std::isfinite(s["safety_factor"].get<double>()));
   EXPECT_GT(s["safety_factor"].get<double>(), 1.0);
   EXPECT_TRUE(s["overload"]["runs"][0]["at_rest"].get<bool>());
+  // The dam's uplift (loads.pore_pressure: the USBR diagram, reservoir z = 158 at the heel
+  // x = 60, drains 10 m downstream at tailwater + (1 - 0.667) x 110 m, tailwater z = 48 at the
+  // toe x = 180; the base at z = 0, 20 m wide): gw * 20 * ((158 + h_d) / 2 * 10 + (h_d + 48) /
+  // 2 * 110). The quick box's region planes run through the base's centre and quarter points:
+  // the interface is still found there.
+  const double h_d = 48.0 + (1.0 - 0.667) * 110.0;
+  const double uplift = 9810.0 * 20.0 * ((158.0 + h_d) / 2.0 * 10.0 + (h_d + 48.0) / 2.0 * 110.0);
+  ASSERT_EQ(s["uplift"].size(), 1u) << s.dump().substr(0, 200);
+  EXPECT_NEAR(s["uplift"][0]["vertical"].get<double>(), uplift, 1e-9 * uplift);
   // The sides are on rollers (supports.rollers), the base fixed.
   EXPECT_NE(std::find(s["effects"].begin(), s["effects"].end(), "rollers"), s["effects"].end());
   // The DDA runs on coarsened pieces (blocks::coarsenPieces): the glued blocks' 30 068 cut
