@@ -20,6 +20,31 @@ using namespace parts;  // NOLINT: the adapters' shared parts
 
 namespace {
 
+/// Calls visit(b, p, face, source) for every face of every piece of the model (source: the
+/// face's FaceSource, fictitious where it has none).
+template <class Visit>
+void forEachFace(const blocks::BlockModel& blocks, Visit&& visit) {
+  for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+    const blocks::Block& block = blocks.blocks[b];
+    for (std::size_t p = 0; p < block.pieces.size(); ++p) {
+      const blocks::Piece& piece = block.pieces[p];
+      for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
+        visit(b, p, static_cast<int>(f),
+              f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{});
+      }
+    }
+  }
+}
+
+/// The lowest z of face `f` of `shape` (m).
+double lowestZ(const geometry::Polyhedron& shape, int f) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int v : shape.faces[static_cast<std::size_t>(f)]) {
+    lowest = std::min(lowest, shape.vertices[static_cast<std::size_t>(v)].z());
+  }
+  return lowest;
+}
+
 /// Pressure entries of one water load: every outer piece face it wets (see buildDdaModel).
 void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::BlockModel& blocks,
                   const std::vector<int>& owner, const Members& members, dda3d::DdaModel& model) {
@@ -30,54 +55,42 @@ void addWaterLoad(const Scene& scene, const WaterLoad& water, const blocks::Bloc
   const bool box_domain = scene.domain_mesh.empty();
   const DomainFace top = domainFace("top");
   const int structure = water.domain_top ? -1 : structureIndex(scene, water.structure);
-  for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+  forEachFace(blocks, [&](std::size_t b, std::size_t p, int face,
+                          const blocks::FaceSource& source) {
     const blocks::Block& block = blocks.blocks[b];
-    for (std::size_t p = 0; p < block.pieces.size(); ++p) {
-      const blocks::Piece& piece = block.pieces[p];
-      for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-        const int face = static_cast<int>(f);
-        const blocks::FaceSource source =
-            f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
-        const geometry::Vec3 normal = geometry::faceNormal(piece.shape, face);
-        const geometry::Vec3 center = faceCenter(piece.shape, face);
-        const geometry::Vec3 beyond = center + probe * normal;
-        bool wet = false;
-        if (water.domain_top) {
-          // The reservoir floor: the rock surface not covered by a structure.
-          wet = (box_domain && source.kind == blocks::FaceKind::Boundary && source.id == 5) ||
-                liesOnDomainFace(piece, face, top, blocks.domain, tol);
-          for (std::size_t s = 0; s < scene.structures.size() && wet; ++s) {
-            wet = !insideOwnedBy(blocks, members, static_cast<int>(s), beyond, 0.5 * probe);
-          }
-        } else if (owner[b] == structure) {
-          wet = source.kind == blocks::FaceKind::Structure && water.facing &&
-                normal.dot(*water.facing) > 0.0;
-        }
-        wet = wet && inRegion(water.region, center);
-        // Uplift (under the named structure, or under every structure for domain_top): the
-        // structure's faces resting on rock and the rock's faces under the structure.
-        bool uplift = false;
-        if (!wet && water.uplift) {
-          for (std::size_t s = 0; s < scene.structures.size() && !uplift; ++s) {
-            const int under = static_cast<int>(s);
-            if (structure >= 0 && under != structure) continue;
-            uplift =
-                (owner[b] == under && backsOnto(blocks, members, -1, piece.shape, face, probe)) ||
-                (owner[b] < 0 && backsOnto(blocks, members, under, piece.shape, face, probe));
-          }
-        }
-        if (!wet && !uplift) continue;
-        double lowest = std::numeric_limits<double>::infinity();
-        for (int v : piece.shape.faces[f]) {
-          lowest = std::min(lowest, piece.shape.vertices[static_cast<std::size_t>(v)].z());
-        }
-        if (lowest >= water.level || internalFace(block, p, face, tol)) continue;
-        model.pressures.push_back(dda3d::hydrostaticPressure(static_cast<int>(b),
-                                                             static_cast<int>(p), face, water.level,
-                                                             water.unit_weight, uplift));
+    const blocks::Piece& piece = block.pieces[p];
+    const geometry::Vec3 normal = geometry::faceNormal(piece.shape, face);
+    const geometry::Vec3 center = faceCenter(piece.shape, face);
+    const geometry::Vec3 beyond = center + probe * normal;
+    bool wet = false;
+    if (water.domain_top) {
+      // The reservoir floor: the rock surface not covered by a structure.
+      wet = (box_domain && source.kind == blocks::FaceKind::Boundary && source.id == 5) ||
+            liesOnDomainFace(piece, face, top, blocks.domain, tol);
+      for (std::size_t s = 0; s < scene.structures.size() && wet; ++s) {
+        wet = !insideOwnedBy(blocks, members, static_cast<int>(s), beyond, 0.5 * probe);
+      }
+    } else if (owner[b] == structure) {
+      wet = source.kind == blocks::FaceKind::Structure && water.facing &&
+            normal.dot(*water.facing) > 0.0;
+    }
+    wet = wet && inRegion(water.region, center);
+    // Uplift (under the named structure, or under every structure for domain_top): the
+    // structure's faces resting on rock and the rock's faces under the structure.
+    bool uplift = false;
+    if (!wet && water.uplift) {
+      for (std::size_t s = 0; s < scene.structures.size() && !uplift; ++s) {
+        const int under = static_cast<int>(s);
+        if (structure >= 0 && under != structure) continue;
+        uplift = (owner[b] == under && backsOnto(blocks, members, -1, piece.shape, face, probe)) ||
+                 (owner[b] < 0 && backsOnto(blocks, members, under, piece.shape, face, probe));
       }
     }
-  }
+    if (!wet && !uplift) return;
+    if (lowestZ(piece.shape, face) >= water.level || internalFace(block, p, face, tol)) return;
+    model.pressures.push_back(dda3d::hydrostaticPressure(
+        static_cast<int>(b), static_cast<int>(p), face, water.level, water.unit_weight, uplift));
+  });
 }
 
 /// The extent of a structure along `direction` (m): its blocks' vertices projected.
@@ -162,42 +175,33 @@ void addPorePressure(const Scene& scene, const PorePressure& pore, const blocks:
   const std::vector<dda3d::DdaPressure> pieces = headPieces(scene, pore, blocks, members);
   // The head never rises above the level, or the reservoir's for a diagram.
   const double highest_head = pore.level ? *pore.level : pore.diagram->upstream_level;
-  for (std::size_t b = 0; b < blocks.blocks.size(); ++b) {
+  forEachFace(blocks, [&](std::size_t b, std::size_t p, int face,
+                          const blocks::FaceSource& source) {
     const blocks::Block& block = blocks.blocks[b];
-    for (std::size_t p = 0; p < block.pieces.size(); ++p) {
-      const blocks::Piece& piece = block.pieces[p];
-      for (std::size_t f = 0; f < piece.shape.faces.size(); ++f) {
-        const int face = static_cast<int>(f);
-        const blocks::FaceSource source =
-            f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
-        bool joint = owner[b] < 0 && source.kind == blocks::FaceKind::Disc;
-        if (!joint && source.kind != blocks::FaceKind::Fictitious) {
-          // The structure-rock interface, from either side.
-          if (owner[b] >= 0) {
-            joint = source.kind == blocks::FaceKind::Structure &&
-                    backsOnto(blocks, members, -1, piece.shape, face, probe);
-          } else {
-            for (std::size_t s = 0; s < scene.structures.size() && !joint; ++s) {
-              joint = backsOnto(blocks, members, static_cast<int>(s), piece.shape, face, probe);
-            }
-          }
-        }
-        if (!joint) continue;
-        double lowest = std::numeric_limits<double>::infinity();
-        for (int v : piece.shape.faces[f]) {
-          lowest = std::min(lowest, piece.shape.vertices[static_cast<std::size_t>(v)].z());
-        }
-        if (lowest >= highest_head || internalFace(block, p, face, tol)) continue;
-        for (dda3d::DdaPressure entry : pieces) {
-          entry.block = static_cast<int>(b);
-          entry.piece = static_cast<int>(p);
-          entry.face = face;
-          if (dda3d::pressureResultant(piece.shape, face, entry).isZero(0.0)) continue;
-          model.pressures.push_back(std::move(entry));
+    const blocks::Piece& piece = block.pieces[p];
+    bool joint = owner[b] < 0 && source.kind == blocks::FaceKind::Disc;
+    if (!joint && source.kind != blocks::FaceKind::Fictitious) {
+      // The structure-rock interface, from either side.
+      if (owner[b] >= 0) {
+        joint = source.kind == blocks::FaceKind::Structure &&
+                backsOnto(blocks, members, -1, piece.shape, face, probe);
+      } else {
+        for (std::size_t s = 0; s < scene.structures.size() && !joint; ++s) {
+          joint = backsOnto(blocks, members, static_cast<int>(s), piece.shape, face, probe);
         }
       }
     }
-  }
+    if (!joint || lowestZ(piece.shape, face) >= highest_head || internalFace(block, p, face, tol)) {
+      return;
+    }
+    for (dda3d::DdaPressure entry : pieces) {
+      entry.block = static_cast<int>(b);
+      entry.piece = static_cast<int>(p);
+      entry.face = face;
+      if (dda3d::pressureResultant(piece.shape, face, entry).isZero(0.0)) continue;
+      model.pressures.push_back(std::move(entry));
+    }
+  });
 }
 
 /// Westergaard's added pressure on the structure's faces that face the reservoir.
