@@ -1,5 +1,7 @@
 #include "io/dda_output.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <cstdio>
 #include <stdexcept>
 
@@ -109,10 +111,20 @@ std::string formatHistoryCsv(const std::vector<std::string>& monitor_names,
   return out;
 }
 
+geometry::Vec3 principalStresses(const std::array<double, 6>& voigt) {
+  Eigen::Matrix3d s;
+  s << voigt[0], voigt[5], voigt[4],  //
+      voigt[5], voigt[1], voigt[3],   //
+      voigt[4], voigt[3], voigt[2];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(s, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d ascending = solver.eigenvalues();
+  return {ascending[2], ascending[1], ascending[0]};
+}
+
 std::string formatDdaFrameVtu(const DdaFrame& frame) {
   VtuPiece piece;
   std::vector<std::int32_t> ids, materials;
-  std::vector<double> displacement, velocity, stress;
+  std::vector<double> displacement, velocity, stress, principal;
   for (const DdaBlockState& block : frame.blocks) {
     for (const geometry::Polyhedron& shape : block.pieces) {
       appendPolyhedronCell(piece, shape);
@@ -122,6 +134,8 @@ std::string formatDdaFrameVtu(const DdaFrame& frame) {
                           {block.displacement.x(), block.displacement.y(), block.displacement.z()});
       velocity.insert(velocity.end(), {block.velocity.x(), block.velocity.y(), block.velocity.z()});
       stress.insert(stress.end(), block.stress.begin(), block.stress.end());
+      const geometry::Vec3 s = principalStresses(block.stress);
+      principal.insert(principal.end(), {s.x(), s.y(), s.z()});
     }
   }
   piece.cell_data.push_back(makeVtuArray("block", ids));
@@ -129,6 +143,9 @@ std::string formatDdaFrameVtu(const DdaFrame& frame) {
   piece.cell_data.push_back(makeVtuArray("displacement", displacement, 3));
   piece.cell_data.push_back(makeVtuArray("velocity", velocity, 3));
   piece.cell_data.push_back(makeVtuArray("stress", stress, 6));
+  piece.cell_data.back().component_names = {"xx", "yy", "zz", "yz", "zx", "xy"};
+  piece.cell_data.push_back(makeVtuArray("principal_stress", principal, 3));
+  piece.cell_data.back().component_names = {"s1", "s2", "s3"};
   return formatVtu(piece);
 }
 

@@ -62,9 +62,14 @@ struct DdaFrame {
   std::vector<DdaBlockState> blocks;  ///< in block order
 };
 
+/// The principal stresses s1 >= s2 >= s3 (Pa, tension positive) of a stress in Voigt order
+/// (xx, yy, zz, yz, zx, xy).
+geometry::Vec3 principalStresses(const std::array<double, 6>& voigt);
+
 /// A frame as VTK XML unstructured grid: one polyhedron cell (type 42) per convex piece, with
-/// cell data block (id), material, displacement (3), velocity (3), stress (6), the block's
-/// values repeated on each of its pieces.
+/// cell data block (id), material, displacement (3), velocity (3), stress (6: components
+/// named xx, yy, zz, yz, zx, xy, Pa, tension positive) and principal_stress (3: s1 >= s2 >=
+/// s3), the block's values repeated on each of its pieces.
 std::string formatDdaFrameVtu(const DdaFrame& frame);
 
 /// "dda_<step, 6 digits>.vtu"; wider steps keep all their digits.

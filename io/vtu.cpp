@@ -19,6 +19,9 @@ void appendArray(std::string& out, const VtuArray& array) {
   if (array.components != 1) {
     out += " NumberOfComponents=\"" + std::to_string(array.components) + "\"";
   }
+  for (std::size_t c = 0; c < array.component_names.size(); ++c) {
+    out += " ComponentName" + std::to_string(c) + "=\"" + array.component_names[c] + "\"";
+  }
   out += " format=\"binary\">\n          ";
   out += base64Encode(std::string_view(reinterpret_cast<const char*>(&size), sizeof size));
   out += base64Encode(array.bytes);

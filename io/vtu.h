@@ -16,6 +16,9 @@ struct VtuArray {
   std::string type;    ///< VTK type name: Float64, Float32, Int64, Int32 or UInt8
   int components = 1;  ///< values per tuple
   std::string bytes;   ///< the values' bytes (x86-64 and ARM are little-endian)
+  /// Names of the components (VTK's ComponentName0.. attributes: ParaView labels them);
+  /// empty, or one per component.
+  std::vector<std::string> component_names;
 };
 
 /// VTK type name of a C++ scalar type.
@@ -38,8 +41,13 @@ constexpr const char* vtkTypeName() {
 /// An array named `name` holding `values` (`components` per tuple).
 template <class T>
 VtuArray makeVtuArray(std::string name, const std::vector<T>& values, int components = 1) {
-  return {std::move(name), vtkTypeName<T>(), components,
-          std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T))};
+  VtuArray array;
+  array.name = std::move(name);
+  array.type = vtkTypeName<T>();
+  array.components = components;
+  array.bytes =
+      std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  return array;
 }
 
 /// One piece of an unstructured grid.

@@ -182,11 +182,37 @@ TEST(DdaFrameVtu, PolyhedronCellsWithBlockData) {
   ASSERT_EQ(stress.size(), 18u);
   EXPECT_EQ(stress[2], -3e5);
   EXPECT_EQ(stress[5], 30.0);
+  // The stress components are named for ParaView, and the principal stresses follow.
+  EXPECT_NE(xml.find("Name=\"stress\" NumberOfComponents=\"6\" ComponentName0=\"xx\" "
+                     "ComponentName1=\"yy\" ComponentName2=\"zz\" ComponentName3=\"yz\" "
+                     "ComponentName4=\"zx\" ComponentName5=\"xy\""),
+            std::string::npos);
+  const std::vector<double> principal = test::dataArray(xml, "principal_stress");
+  ASSERT_EQ(principal.size(), 9u);
+  // The cube's stress is nearly diagonal (-1e5, -2e5, -3e5; shears of 10-30 Pa): s1 the least
+  // compressive, shifted by the shears to second order (xy^2 / (xx - yy) + zx^2 / (xx - zz) =
+  // 0.011 Pa for s1).
+  EXPECT_NEAR(principal[0], -1e5 + 0.011, 1e-3);
+  EXPECT_NEAR(principal[2], -3e5, 0.01);
   // The last point is the (4, 1, 1) corner of the L's second piece.
   const std::vector<double> points = test::dataArray(xml, "Points");
   ASSERT_EQ(points.size(), 72u);
   const Vec3 last = box.vertices.back();
   EXPECT_EQ(Vec3(points[69], points[70], points[71]), Vec3(3, 0, 0) + last);
+}
+
+TEST(DdaFrame, PrincipalStressesOfARotatedUniaxialStress) {
+  // A uniaxial tension of 1 MPa along (1, 1, 0) / sqrt(2): xx = yy = xy = 0.5 MPa. Its
+  // principal stresses are (1 MPa, 0, 0) whatever the frame (the eigenvalues of the tensor).
+  const Vec3 s = principalStresses({0.5e6, 0.5e6, 0.0, 0.0, 0.0, 0.5e6});
+  EXPECT_NEAR(s.x(), 1e6, 1e-6);
+  EXPECT_NEAR(s.y(), 0.0, 1e-6);
+  EXPECT_NEAR(s.z(), 0.0, 1e-6);
+  // Pure shear yz = 2 MPa: +2, 0, -2 MPa, in descending order.
+  const Vec3 shear = principalStresses({0.0, 0.0, 0.0, 2e6, 0.0, 0.0});
+  EXPECT_NEAR(shear.x(), 2e6, 1e-6);
+  EXPECT_NEAR(shear.y(), 0.0, 1e-6);
+  EXPECT_NEAR(shear.z(), -2e6, 1e-6);
 }
 
 TEST(DdaFrameWriter, CollectionListsOnlyWrittenFrames) {
