@@ -7,16 +7,17 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
-
-#include <chrono>
 
 #include "app/command.h"
 #include "app/stages.h"
 #include "dda3d/simulation.h"
+#include "dda3d/stability.h"
 #include "geometry/progress.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
+#include "io/damage_output.h"
 #include "io/dda_output.h"
 #include "io/dda_summary.h"
 #include "io/input_error.h"
@@ -65,6 +66,86 @@ io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blo
     frame.blocks.push_back(std::move(out));
   }
   return frame;
+}
+
+/// The damage map of the simulation's current state: every contact that is closed or has
+/// been closed.
+io::DamageMap damageMapOf(const dda3d::Simulation& sim, const blocks::BlockModel& blocks,
+                          int step) {
+  io::DamageMap map;
+  map.step = step;
+  map.time = sim.time();
+  for (const dda3d::Contact& c : sim.contacts()) {
+    if (c.state == dda3d::ContactState::Open && !c.was_closed) continue;
+    const dda3d::DdaJoint& joint = sim.jointOf(c);
+    io::DamagePoint p;
+    p.point = c.point;
+    p.normal = c.normal;
+    p.block_i = blocks.blocks[static_cast<std::size_t>(c.block_i)].id;
+    p.block_j = blocks.blocks[static_cast<std::size_t>(c.block_j)].id;
+    p.joint = c.joint >= 0 ? c.joint : sim.model().default_joint;
+    p.state = c.state == dda3d::ContactState::Open      ? io::ContactState::Open
+              : c.state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
+                                                        : io::ContactState::Locked;
+    p.bond_broken = !c.bonded && (joint.cohesion > 0.0 || joint.tensile_strength > 0.0);
+    p.damage = io::damageOf(p.state, c.was_closed, p.bond_broken);
+    p.opening = p.damage == io::ContactDamage::Opened ? std::max(0.0, c.gap) : 0.0;
+    p.slip = c.slipped;
+    p.normal_force = c.state == dda3d::ContactState::Open ? 0.0 : c.normal_force;
+    map.contacts.push_back(p);
+  }
+  return map;
+}
+
+/// The summary's counts of a damage map.
+io::DdaRunSummary::Damage damageCounts(const io::DamageMap& map, int maps) {
+  io::DdaRunSummary::Damage d;
+  d.maps = maps;
+  for (const io::DamagePoint& p : map.contacts) {
+    d.intact += p.damage == io::ContactDamage::Intact;
+    d.bond_broken += p.damage == io::ContactDamage::BondBroken;
+    d.sliding += p.damage == io::ContactDamage::Sliding;
+    d.opened += p.damage == io::ContactDamage::Opened;
+    d.max_opening = std::max(d.max_opening, p.opening);
+    d.max_slip = std::max(d.max_slip, p.slip);
+  }
+  return d;
+}
+
+/// analysis.dda.settle: `model` brought to rest in static mode under its loads less those the
+/// scene names, then given every load of `model` back; the run starts from it and from Returns how
+/// the settling ended and the contacts to start from.
+std::pair<io::DdaRunSummary::Settled, std::vector<dda3d::Contact>> settleFirst(
+    const io::DdaAnalysis& dda, dda3d::DdaModel& model, const dda3d::DdaSettings& settings) {
+  const io::DdaAnalysis::Settle& settle = *dda.settle;
+  dda3d::LoadScaling without;
+  without.water = without.uplift = settle.without_water;
+  without.seismic = settle.without_seismic;
+  without.point_loads = settle.without_point_loads;
+  dda3d::DdaSettings quiet = settings;
+  quiet.mode = dda3d::AnalysisMode::Static;
+  dda3d::Simulation sim(dda3d::scaledLoads(model, without, 0.0), quiet);
+  dda3d::EquilibriumSettings rest;
+  rest.max_steps = settle.max_steps;
+  const dda3d::EquilibriumResult result = dda3d::runToEquilibrium(sim, rest);
+  io::DdaRunSummary::Settled out{result.steps, result.reached, result.unbalanced_ratio, {}};
+  if (settle.without_water) out.without.push_back("water");
+  if (settle.without_seismic) out.without.push_back("seismic");
+  if (settle.without_point_loads) out.without.push_back("point_loads");
+  std::fprintf(stderr, "dda: settled first %s after %d static steps (unbalanced ratio %.3g)\n",
+               result.reached ? "at rest" : "NOT at rest", result.steps, result.unbalanced_ratio);
+  dda3d::DdaModel settled = dda3d::settledModel(sim);
+  // Every load back, acting on the settled geometry (the pressures and point loads name
+  // their faces and points, which the settled model keeps).
+  settled.gravity = model.gravity;
+  settled.seismic = model.seismic;
+  settled.pressures = model.pressures;
+  settled.hydrodynamic = model.hydrodynamic;
+  for (std::size_t k = 0; k < settled.point_loads.size(); ++k) {
+    settled.point_loads[k].force = model.point_loads[k].force;
+  }
+  model = std::move(settled);
+  return {out, sim.contacts()};
 }
 
 /// Each bolt as the last accepted step left it.
@@ -167,7 +248,12 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   }
   for (const dda3d::DdaMonitor& m : model.monitors) stage.monitor_names.push_back(m.name);
   for (const io::BoltSpec& b : scene.bolts) stage.bolt_names.push_back(b.name);
-  dda3d::Simulation sim(std::move(model), settingsOf(dda, options));
+  const dda3d::DdaSettings settings = settingsOf(dda, options);
+  std::vector<dda3d::Contact> start_contacts;
+  if (dda.settle)
+    std::tie(stage.summary.settled, start_contacts) = settleFirst(dda, model, settings);
+  dda3d::Simulation sim(std::move(model), settings);
+  if (!start_contacts.empty()) sim.adoptContacts(std::move(start_contacts));
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   io::DdaFrameWriter frames(out, frame_every);
@@ -183,6 +269,13 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     stage.bolts_csv->write(io::formatBoltRows(sim.time(), boltSamples(sim, stage.bolt_names)));
   }
   frames.write(frameOf(sim, blocks, 0));
+  std::optional<io::DamageMapWriter> damage;
+  if (dda.damage_every) damage.emplace(out);
+  io::DamageMap last_map;
+  const auto writeDamage = [&](int at) {
+    last_map = damageMapOf(sim, blocks, at);
+    damage->write(last_map);
+  };
 
   io::DdaRunSummary& summary = stage.summary;
   const double duration = steps * dda.engine.time_step;
@@ -216,6 +309,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
       stage.bolts_csv->write(io::formatBoltRows(sim.time(), boltSamples(sim, stage.bolt_names)));
     }
     if (frames.due(step)) frames.write(frameOf(sim, blocks, step));
+    if (damage && step % *dda.damage_every == 0) writeDamage(step);
     if (options.debug_step && *options.debug_step == step) {
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
                             contactRecords(sim, blocks));
@@ -230,6 +324,11 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     progress.update(sim.time(), detail);
   }
   frames.write(frameOf(sim, blocks, step));
+  if (damage) {
+    if (last_map.step != step || damage->entries().empty()) writeDamage(step);
+    io::writeFileAtomically(out / "damage.csv", io::formatDamageCsv(last_map));
+    summary.damage = damageCounts(last_map, static_cast<int>(damage->entries().size()));
+  }
   if (step > 0 && (summary.steps.empty() || summary.steps.back().step != step)) {
     summary.steps.push_back(last);
   }

@@ -66,6 +66,12 @@ struct Contact {
   /// Length of the rigid part of the slip in the last solve while sliding (m); 0 unknown.
   /// Sets the friction's transverse tangent stiffness f N / slip (docs/dda3d.md).
   double slip_length = 0.0;
+  /// Closed (locked or sliding) at the end of some accepted step: a contact open now that
+  /// was closed has opened (the damage map's "opened").
+  bool was_closed = false;
+  /// Sliding distance accumulated over the accepted steps the contact ended sliding (m): the
+  /// length of its tangential relative displacement in those steps.
+  double slipped = 0.0;
   int flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
   /// Open <-> closed changes in the current step (reset every step); after two, the contact
   /// stays closed for the rest of the step while its pull is below Simulation::holdLimit

@@ -246,6 +246,16 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   return changes;
 }
 
+void Simulation::recordContactHistory(const Eigen::VectorXd& solution) {
+  for (Contact& c : contacts_) {
+    if (c.state == ContactState::Open) continue;
+    c.was_closed = true;
+    if (c.state == ContactState::Sliding && solution.size() > 0) {
+      c.slipped += tangential(relativeDisplacement(c, solution), c.normal).norm();
+    }
+  }
+}
+
 double Simulation::holdLimit(const Contact& c) const {
   double lighter = std::numeric_limits<double>::infinity();
   for (int b : {c.block_i, c.block_j}) {

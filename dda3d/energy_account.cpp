@@ -58,7 +58,7 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   for (const BlockState& block : blocks_) {
     if (block.fixed) continue;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
-    const BlockMatrix m = staticMassScale(block) * massMatrix(block);
+    const BlockMatrix m = inertiaMatrix(block);
     const BlockVector a1 = endAcceleration(d, block.velocity, block.acceleration, dt, scheme_);
     const BlockVector v1 = endVelocity(block.velocity, block.acceleration, a1, dt, scheme_);
     const BlockVector weighted =

@@ -1,5 +1,6 @@
 #include "dda3d/simulation.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +55,9 @@ constexpr double kRestingReachRatio = 0.1;
 /// walked across its base, and the strength reduction found 2.20 where f W / H = 2.42 (2.45
 /// with dt = 10 ms). Held to one penalty: 2.45 at dt = 2 ms.
 constexpr double kStaticInertiaRatio = 1.0;
+/// Static mode: a deformable block's strain inertia is held to at most this many times the
+/// smallest stiffness of its strain (Simulation::inertiaMatrix).
+constexpr double kStaticStrainInertiaRatio = 1.0;
 
 /// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
 double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
@@ -253,6 +257,8 @@ int Simulation::detectContacts() {
       c.slide_direction = slide.norm() > 0.0 ? Vec3(slide.normalized()) : Vec3(Vec3::Zero());
       c.normal_force = old.normal_force;
       c.slip_length = old.slip_length;
+      c.was_closed = old.was_closed;
+      c.slipped = old.slipped;
       c.overlap = std::min(old.overlap, std::max(0.0, -c.gap0));
     } else if (c.gap0 < -late_depth) {
       // First seen deeper than the allowed penetration: the detection missed it while it
@@ -307,6 +313,33 @@ int Simulation::detectContacts() {
   return late;
 }
 
+BlockMatrix Simulation::inertiaMatrix(const BlockState& block) const {
+  BlockMatrix m = massMatrix(block);
+  if (settings_.mode != AnalysisMode::Static) return m;
+  m *= staticMassScale(block);
+  if (dofs_ != kBlockDofs) return m;
+  // The strain unknowns: their inertia c0 M_ee grows with the block's size squared (M_ee ~
+  // rho V L^2) and their stiffness with its volume (V D), so at dt = 2 ms a 10 m block of
+  // E = 7 GPa has 1.6 times more inertia than stiffness in its strain, and each static step
+  // relieved a third of its out-of-balance strain: the Xiangjiaba quick box took 300 steps to
+  // rest. The strain rows and columns are scaled by sqrt(t) (S M S, S = diag(1, sqrt(t)),
+  // which keeps M positive definite) so that c0 t M_ee is at most kStaticStrainInertiaRatio
+  // times the shear stiffness of the strain, V G (density scaling of dynamic
+  // relaxation: the masses only set the path, not the state of rest).
+  const double dt = settings_.time_step;
+  const double c0 = (1.0 - scheme_.alpha_m) / (scheme_.beta * dt * dt);
+  const ElasticMatrix& d = elastic_[static_cast<std::size_t>(block.material)];
+  const double stiffness = block.volume * d.diagonal().tail<3>().minCoeff();
+  const Eigen::Matrix<double, kVoigtSize, kVoigtSize> strain = m.bottomRightCorner<6, 6>();
+  const double inertia = c0 * strain.selfadjointView<Eigen::Lower>().eigenvalues().maxCoeff();
+  const double cap = kStaticStrainInertiaRatio * stiffness;
+  if (!(inertia > cap)) return m;
+  const double root = std::sqrt(cap / inertia);
+  m.bottomRows<6>() *= root;
+  m.rightCols<6>() *= root;
+  return m;
+}
+
 double Simulation::staticMassScale(const BlockState& block) const {
   if (settings_.mode != AnalysisMode::Static) return 1.0;
   // At the run's time step: a step redone at a smaller one still gets more inertia, which is
@@ -339,8 +372,7 @@ void Simulation::assembleBlockTerms(double dt) {
         step.initial_stress = true;
       }
     }
-    inertiaTerms(staticMassScale(block) * massMatrix(block), block.velocity, block.acceleration, dt,
-                 scheme_, k, f);
+    inertiaTerms(inertiaMatrix(block), block.velocity, block.acceleration, dt, scheme_, k, f);
     if (!model_.gravity.isZero(0.0) || !model_.seismic.isZero(0.0)) {
       loads += bodyForceLoad(
           block, model_.seismic.isZero(0.0) ? model_.gravity : model_.gravity + model_.seismic);
@@ -653,6 +685,7 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
   {
     PhaseTimer timer(step_profile_, StepPhase::UpdateBlocks);
     accountDissipation(solution, dt);
+    recordContactHistory(solution);
     updateBlocks(solution, dt);
     springs_after_step_ = springEnergy();
     last_solution_ = solution;

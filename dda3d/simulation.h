@@ -93,6 +93,8 @@ class Simulation {
   const std::vector<BoltState>& bolts() const { return bolt_state_; }
   /// Contacts of the last accepted step, with states.
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// The joint a contact acts with: its own (Contact::joint), else the model's default.
+  const DdaJoint& jointOf(const Contact& c) const;
   /// Starts from `contacts` (another run's, of a model with the same blocks and pieces): the
   /// next step's detection carries their states, shear springs and forces over to the entries
   /// it finds again, as between two steps of one run. Call before the first step.
@@ -127,7 +129,13 @@ class Simulation {
   /// Static mode: the factor on a block's mass matrix in its inertia term (kStaticInertiaRatio,
   /// at the run's time step).
   double staticMassScale(const BlockState& block) const;
+  /// The mass matrix of a block's inertia term: M, or in static mode M scaled by
+  /// staticMassScale with a deformable block's strain inertia held to its stiffness.
+  BlockMatrix inertiaMatrix(const BlockState& block) const;
   void assembleBlockTerms(double dt);
+  /// After an accepted step (before the blocks move): marks the closed contacts as having
+  /// been closed and adds the slip of the sliding ones (Contact::was_closed, slipped).
+  void recordContactHistory(const Eigen::VectorXd& solution);
   /// The system of one open-close iteration: the block terms, every contact's springs or
   /// friction, the bolts.
   void assembleSystem();
@@ -187,7 +195,6 @@ class Simulation {
   void updateBlocks(const Eigen::VectorXd& solution, double dt);
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;
   int movableIndex(int block) const { return blocks_[static_cast<std::size_t>(block)].dof_offset; }
-  const DdaJoint& jointOf(const Contact& c) const;
   /// The largest vertex displacement of the step `report` accounts for (m).
   double stepDisplacement(const StepReport& report) const;
   /// "block b (centroid ..., volume ...)" and a contact's description, for messages.

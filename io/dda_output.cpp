@@ -168,18 +168,24 @@ std::string formatPvd(const std::vector<PvdEntry>& entries) {
   return out;
 }
 
+PvdSeries::PvdSeries(std::filesystem::path folder, std::string pvd_name)
+    : folder_(std::move(folder)), pvd_name_(std::move(pvd_name)) {}
+
+void PvdSeries::add(double time, const std::string& file, const std::string& text) {
+  writeFileAtomically(folder_ / file, text);
+  entries_.push_back({time, file});
+  writeFileAtomically(folder_ / pvd_name_, formatPvd(entries_));
+}
+
 DdaFrameWriter::DdaFrameWriter(std::filesystem::path folder, int every)
-    : folder_(std::move(folder)), every_(every) {
+    : series_(std::move(folder), "dda.pvd"), every_(every) {
   if (every < 1) throw std::invalid_argument("DdaFrameWriter: frame interval must be >= 1");
 }
 
 void DdaFrameWriter::write(const DdaFrame& frame) {
   if (frame.step <= last_step_) return;
-  const std::string file = ddaFrameFileName(frame.step);
-  writeFileAtomically(folder_ / file, formatDdaFrameVtu(frame));
-  entries_.push_back({frame.time, file});
+  series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
   last_step_ = frame.step;
-  writeFileAtomically(folder_ / "dda.pvd", formatPvd(entries_));
 }
 
 std::string formatMatrixMarket(const dda3d::SparseMatrix& k) {

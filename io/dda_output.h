@@ -84,9 +84,23 @@ struct PvdEntry {
 /// A ParaView collection file (.pvd) listing `entries` as time steps.
 std::string formatPvd(const std::vector<PvdEntry>& entries);
 
-/// Writes dda_<step>.vtu frames into a folder and keeps dda.pvd listing them: after every
-/// frame the .pvd is rewritten (atomically), so an interrupted run leaves a collection whose
-/// every entry exists.
+/// A time series of files in a folder listed by a .pvd collection: after every file the
+/// .pvd is rewritten (atomically), so an interrupted run leaves a collection whose every
+/// entry exists.
+class PvdSeries {
+ public:
+  PvdSeries(std::filesystem::path folder, std::string pvd_name);
+  /// Writes `text` to folder/file (atomically) and lists it at `time`.
+  void add(double time, const std::string& file, const std::string& text);
+  const std::vector<PvdEntry>& entries() const { return entries_; }
+
+ private:
+  std::filesystem::path folder_;
+  std::string pvd_name_;
+  std::vector<PvdEntry> entries_;
+};
+
+/// Writes dda_<step>.vtu frames into a folder and keeps dda.pvd listing them (PvdSeries).
 class DdaFrameWriter {
  public:
   /// Frames go to `folder` (which must exist); a frame is due every `every` steps (>= 1).
@@ -97,13 +111,12 @@ class DdaFrameWriter {
   /// ignored, so the caller may always write the last step.
   void write(const DdaFrame& frame);
   /// The frames written so far.
-  const std::vector<PvdEntry>& entries() const { return entries_; }
+  const std::vector<PvdEntry>& entries() const { return series_.entries(); }
 
  private:
-  std::filesystem::path folder_;
+  PvdSeries series_;
   int every_ = 1;
   int last_step_ = -1;
-  std::vector<PvdEntry> entries_;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -91,6 +91,18 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
     j["bolts_broken"] = broken;
     j["bolts"] = bolts;
   }
+  if (dda.settled) {
+    j["settled"] = {{"steps", dda.settled->steps},
+                    {"at_rest", dda.settled->at_rest},
+                    {"unbalanced_ratio", dda.settled->unbalanced_ratio},
+                    {"without", dda.settled->without}};
+  }
+  if (dda.damage) {
+    const auto& d = *dda.damage;
+    j["damage"] = {{"maps", d.maps},        {"intact", d.intact}, {"bond_broken", d.bond_broken},
+                   {"sliding", d.sliding},  {"opened", d.opened}, {"max_opening", d.max_opening},
+                   {"max_slip", d.max_slip}};
+  }
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;

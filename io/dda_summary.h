@@ -72,6 +72,23 @@ struct DdaRunSummary {
   std::vector<std::pair<std::string, double>> phase_totals;
   /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).
   std::optional<blocks::MergeReport> glued;
+  /// analysis.dda.settle: how the static run that settled the model before the run ended.
+  struct Settled {
+    int steps = 0;                     ///< static steps taken
+    bool at_rest = false;              ///< came to rest within max_steps
+    double unbalanced_ratio = 0.0;     ///< of its last step
+    std::vector<std::string> without;  ///< the loads left out while settling
+  };
+  std::optional<Settled> settled;
+  /// The last damage map's counts (analysis.dda.damage_map): contacts that have been closed,
+  /// by damage class (intact, bond_broken, sliding, opened), and the largest opening and slip.
+  struct Damage {
+    int maps = 0;
+    int intact = 0, bond_broken = 0, sliding = 0, opened = 0;
+    double max_opening = 0.0;  ///< m
+    double max_slip = 0.0;     ///< m
+  };
+  std::optional<Damage> damage;
 };
 
 /// summary.json keeps at most this many step records (keepStepRecord).

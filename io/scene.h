@@ -216,6 +216,19 @@ struct DdaAnalysis {
   /// region as the domain, so supports and `domain_top` loads act on the region's faces.
   /// None: the whole domain.
   std::optional<geometry::Box> region;
+  /// damage_map {every}: a damage map (damage_<step>.vtu, damage.pvd; damage.csv of the last)
+  /// every this many steps and at the last step; none: no damage map.
+  std::optional<int> damage_every;
+  /// settle {without, max_steps}: before the run, the model is brought to rest in static
+  /// mode under its loads less those of `without`, and the run starts from that state with
+  /// every load (the service-period run: the settled foundation loaded by the reservoir).
+  struct Settle {
+    bool without_water = false;        ///< water on faces, uplift and pore pressure
+    bool without_seismic = false;      ///< the seismic body force and Westergaard pressures
+    bool without_point_loads = false;  ///< the point loads
+    int max_steps = 200;               ///< at most this many static steps
+  };
+  std::optional<Settle> settle;
 };
 
 /// analysis.overload

@@ -353,9 +353,10 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
-  const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
-                          "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
-                          "region", "min_time_step", "contact_point_spacing"});
+  const Cursor m =
+      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
+             "time_integration", "min_block_volume", "open_close_tolerance", "region",
+             "min_time_step", "contact_point_spacing", "damage_map", "settle"});
   DdaAnalysis dda;
   dda3d::DdaSettings& e = dda.engine;
   e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
@@ -407,6 +408,22 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
       }
     }
     dda.region = read;
+  }
+  if (const auto damage = m.get("damage_map")) {
+    const Cursor d = damage->map({"every"});
+    dda.damage_every = d.integerOr("every", std::max(1, dda.steps / 10), closed(1, 1e7));
+  }
+  if (const auto settle = m.get("settle")) {
+    const Cursor s = settle->map({"without", "max_steps"});
+    DdaAnalysis::Settle read;
+    for (const std::string& load :
+         s.at("without").distinctChoices("load", {"water", "seismic", "point_loads"})) {
+      read.without_water |= load == "water";
+      read.without_seismic |= load == "seismic";
+      read.without_point_loads |= load == "point_loads";
+    }
+    read.max_steps = s.integerOr("max_steps", read.max_steps, closed(1, 1e6));
+    dda.settle = read;
   }
   if (const auto integration = m.get("time_integration")) {
     const Cursor t = integration->map({"scheme", "spectral_radius"});

@@ -12,6 +12,7 @@ Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
 | histories.png (Figure 8) | histories.py | history.csv |
 | overload_curve.png (Figure 10) | overload_curve.py | overload.csv, summary.json |
 | section.png (Figure 5) | section.py | section.csv |
+| damage_map.png (Figure 9) | damage_map.py | damage.csv (section.csv, summary.json) |
 
 Prints `figure: NAME` for every PNG written; a script that fails is reported and the others
 still run (exit status 1 then).
@@ -19,6 +20,8 @@ still run (exit status 1 then).
 import os
 import subprocess
 import sys
+
+from figure_io import read_summary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -49,6 +52,14 @@ def jobs(out):
                        [path("overload.csv"), "--summary", path("summary.json")]))
     if has("section.csv"):
         result.append(("section.png", "section.py", [path("section.csv")]))
+    if has("damage.csv"):
+        arguments = [path("damage.csv")]
+        if has("section.csv"):
+            arguments += ["--section", path("section.csv")]
+        plane = read_summary(path("summary.json")).get("run", {}).get("section", "")
+        if "=" in plane:
+            arguments += ["--plane", plane]
+        result.append(("damage_map.png", "damage_map.py", arguments))
     return result
 
 
