@@ -124,14 +124,17 @@ void updateLockedContact(Contact& c, const Vec3& slip, double limit, const DdaJo
 }
 
 /// A sliding contact: sticks where its friction would drive it back, else follows its slip.
-void updateSlidingContact(Contact& c, const Vec3& rigid_slip, double limit,
+void updateSlidingContact(Contact& c, const Vec3& slip, const Vec3& rigid_slip, double limit,
                           const StateRules& rules) {
   // A contact at its friction limit with no slip velocity can flip between locked
   // and sliding forever; after two flips in a step it stays sliding (the friction
   // force then holds it at the limit, which is what both states mean there), unless its
   // friction then drives it back (below).
   const bool frozen = c.flips >= 2;
-  const double back = -rigid_slip.dot(c.slide_direction);
+  // Reversal is read on the whole slip of the point, strain included: a deformable block's
+  // corner that the strain carries back against the friction would have the friction do work
+  // on it (positive work); it sticks instead, as Coulomb's law has it.
+  const double back = -slip.dot(c.slide_direction);
   if (limit > 0.0 && (frozen ? back > std::max(rules.reverse_tolerance, limit / rules.ks)
                              : back > rules.reverse_tolerance)) {
     // Friction alone would drive it back: it sticks, its spring carrying the friction.
@@ -187,7 +190,7 @@ void updateClosedContact(Contact& c, double d, const Vec3& slip, const Vec3& rig
   if (c.state == ContactState::Locked) {
     updateLockedContact(c, slip, limit, joint, rules);
   } else {
-    updateSlidingContact(c, rigid_slip, limit, rules);
+    updateSlidingContact(c, slip, rigid_slip, limit, rules);
   }
 }
 

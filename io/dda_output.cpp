@@ -124,7 +124,7 @@ geometry::Vec3 principalStresses(const std::array<double, 6>& voigt) {
 std::string formatDdaFrameVtu(const DdaFrame& frame) {
   VtuPiece piece;
   std::vector<std::int32_t> ids, materials;
-  std::vector<double> displacement, velocity, stress, principal;
+  std::vector<double> displacement, velocity, stress, principal, eccentricity;
   for (const DdaBlockState& block : frame.blocks) {
     for (const geometry::Polyhedron& shape : block.pieces) {
       appendPolyhedronCell(piece, shape);
@@ -136,6 +136,7 @@ std::string formatDdaFrameVtu(const DdaFrame& frame) {
       stress.insert(stress.end(), block.stress.begin(), block.stress.end());
       const geometry::Vec3 s = principalStresses(block.stress);
       principal.insert(principal.end(), {s.x(), s.y(), s.z()});
+      eccentricity.push_back(block.eccentricity);
     }
   }
   piece.cell_data.push_back(makeVtuArray("block", ids));
@@ -146,6 +147,7 @@ std::string formatDdaFrameVtu(const DdaFrame& frame) {
   piece.cell_data.back().component_names = {"xx", "yy", "zz", "yz", "zx", "xy"};
   piece.cell_data.push_back(makeVtuArray("principal_stress", principal, 3));
   piece.cell_data.back().component_names = {"s1", "s2", "s3"};
+  piece.cell_data.push_back(makeVtuArray("eccentricity", eccentricity));
   return formatVtu(piece);
 }
 

@@ -53,6 +53,9 @@ struct DdaBlockState {
   geometry::Vec3 velocity = geometry::Vec3::Zero();      ///< of the centroid (m/s)
   /// Stress (Pa) in Voigt order sx, sy, sz, tyz, tzx, txy (tension positive).
   std::array<double, 6> stress{};
+  /// The largest eccentricity ratio e / h of its interfaces (dda3d::interfaceEccentricity):
+  /// above 1/3 the block bends more than one strain field shows.
+  double eccentricity = 0.0;
 };
 
 /// The state of every block after `step` accepted steps.
@@ -68,8 +71,9 @@ geometry::Vec3 principalStresses(const std::array<double, 6>& voigt);
 
 /// A frame as VTK XML unstructured grid: one polyhedron cell (type 42) per convex piece, with
 /// cell data block (id), material, displacement (3), velocity (3), stress (6: components
-/// named xx, yy, zz, yz, zx, xy, Pa, tension positive) and principal_stress (3: s1 >= s2 >=
-/// s3), the block's values repeated on each of its pieces.
+/// named xx, yy, zz, yz, zx, xy, Pa, tension positive), principal_stress (3: s1 >= s2 >=
+/// s3) and eccentricity (the interfaces' e / h), the block's values repeated on each of its
+/// pieces.
 std::string formatDdaFrameVtu(const DdaFrame& frame);
 
 /// "dda_<step, 6 digits>.vtu"; wider steps keep all their digits.

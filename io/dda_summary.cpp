@@ -103,6 +103,14 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
                    {"sliding", d.sliding},  {"opened", d.opened}, {"max_opening", d.max_opening},
                    {"max_slip", d.max_slip}};
   }
+  if (dda.deformable) {
+    Json coarse = Json::array();
+    for (const auto& b : dda.coarse_strain) {
+      coarse.push_back(
+          {{"block", b.block}, {"volume", b.volume}, {"eccentricity", b.eccentricity}});
+    }
+    j["coarse_strain"] = coarse;
+  }
   j["mode"] = dda.dynamic ? "dynamic" : "static";
   j["kinematics"] = dda.deformable ? "deformable" : "rigid";
   j["solver"] = dda.solver;

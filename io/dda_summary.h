@@ -89,6 +89,14 @@ struct DdaRunSummary {
     double max_slip = 0.0;     ///< m
   };
   std::optional<Damage> damage;
+  /// Deformable runs: the blocks whose single strain field is too coarse at the end (an
+  /// interface's e / h above 1/3, dda3d::interfaceEccentricity), by block id.
+  struct CoarseStrain {
+    int block = 0;              ///< block id
+    double volume = 0.0;        ///< m3
+    double eccentricity = 0.0;  ///< e / h of its most eccentric interface
+  };
+  std::vector<CoarseStrain> coarse_strain;
 };
 
 /// summary.json keeps at most this many step records (keepStepRecord).

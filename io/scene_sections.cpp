@@ -356,7 +356,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   const Cursor m =
       c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
              "time_integration", "min_block_volume", "open_close_tolerance", "region",
-             "min_time_step", "contact_point_spacing", "damage_map", "settle"});
+             "min_time_step", "contact_point_spacing", "damage_map", "settle", "dynamic_ratio"});
   DdaAnalysis dda;
   dda3d::DdaSettings& e = dda.engine;
   e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
@@ -409,6 +409,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
     }
     dda.region = read;
   }
+  e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio, {.low = 0, .high = 1});
   if (const auto damage = m.get("damage_map")) {
     const Cursor d = damage->map({"every"});
     dda.damage_every = d.integerOr("every", std::max(1, dda.steps / 10), closed(1, 1e7));

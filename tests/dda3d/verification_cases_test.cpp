@@ -405,8 +405,14 @@ TEST_P(VerificationSliver, SettlesInPlaceWithTheElasticSettlement) {
     // holds the interfaces to one width, the lateral stresses that takes sum to zero over the
     // height, and so does their effect on the total settlement. The top also sinks by the
     // interfaces' contact springs (~3e-6 m, ~0.6 % here), not in the hand value: 2 %.
+    // Static with nu > 0, the interfaces stick from the first step (a contact whose slip
+    // turns back against its friction sticks), and the bottom cube, one uniform strain held
+    // at its base by the fixed block, cannot widen: measured lateral stresses -2.3e4 Pa in
+    // it (1/6 of its vertical stress) down to +5e3 Pa in the top cube, which stiffen the
+    // column by 2.4 %: 3 % there. Fully dynamic, the ringing interfaces slide and widen.
     const double expected = kDensity * kG * height * height / (2.0 * kYoung);
-    EXPECT_NEAR(settlement, expected, 0.02 * expected);
+    const double tolerance = c.poisson > 0.0 && c.mode == AnalysisMode::Static ? 0.03 : 0.02;
+    EXPECT_NEAR(settlement, expected, tolerance * expected);
     test::recordVerification({.group = group,
                               .name = name + ": settlement of the top" +
                                       (c.mode == AnalysisMode::Static ? "" : " (mean, last 0.2 s)"),
@@ -414,7 +420,7 @@ TEST_P(VerificationSliver, SettlesInPlaceWithTheElasticSettlement) {
                                         "(Timoshenko & Goodier, Theory of Elasticity)",
                               .expected = expected,
                               .measured = settlement,
-                              .tolerance = 0.02,
+                              .tolerance = tolerance,
                               .relative = true,
                               .unit = "m"});
   } else {

@@ -87,6 +87,14 @@ def make_inputs(d):
              ("interlayer", 4, "P1", 0, 0, 0, -2, 0, 1, -2, "cutting"),
              ("interlayer", 4, "P1", 0, 1, 2, -2.2, 2, 1, -2.2, "cutting")]
     write(os.path.join(d, "section.csv"), "kind,id,label,part,vertex,u,v,x,y,z,source", rows)
+    # The last damage map of a run: contacts of every class, some off the section's slab.
+    classes = [("locked", "intact"), ("locked", "bond_broken"), ("sliding", "sliding"),
+               ("open", "opened")]
+    write(os.path.join(d, "damage.csv"),
+          "step,time,x,y,z,nx,ny,nz,block_i,block_j,joint,state,damage,opening,slip,normal_force",
+          [(100, 1.0, 0.05 * i, 1 + (i % 7) * 0.4, -3 + 0.02 * i, 0, 0, 1, 1, 2, 0,
+            *classes[i % 4], 1e-4 * (i % 4 == 3), 2e-4 * (i % 4 == 2), 1e5)
+           for i in range(120)])
 
 
 COMMANDS = {
@@ -97,6 +105,7 @@ COMMANDS = {
     "histories": lambda d: ["history.csv"],
     "overload_curve": lambda d: ["overload.csv", "--summary", "summary.json"],
     "section": lambda d: ["section.csv"],
+    "damage_map": lambda d: ["damage.csv", "--section", "section.csv", "--plane", "y=1"],
 }
 
 

@@ -40,7 +40,7 @@ supports:
   fixed: [bottom]
 analysis:
   blocks: {cutter: fast}
-  dda: {mode: static, steps: 4, time_step: 0.01}
+  dda: {mode: static, steps: 4, time_step: 0.01, damage_map: {every: 2}}
 """
 
 
@@ -88,6 +88,22 @@ def main():
             failures.append(f"expected DDA frames, found {frames}")
         for frame in frames:
             check(frame, None, ["block", "displacement", "velocity", "stress"])
+        # The damage maps: one vertex cell per contact that has been closed, with its data.
+        maps = sorted(f for f in os.listdir(out) if f.startswith("damage_") and f.endswith(".vtu"))
+        damage_rows = rows(os.path.join(out, "damage.csv"))
+        if maps != ["damage_000002.vtu", "damage_000004.vtu"]:
+            failures.append(f"expected the damage maps of steps 2 and 4, found {maps}")
+        for name in maps:
+            try:
+                mesh = meshio.read(os.path.join(out, name))
+            except Exception as error:  # meshio raises many kinds
+                failures.append(f"{name}: meshio cannot read it: {type(error).__name__}: {error}")
+                continue
+            if name == maps[-1] and (cells(mesh) != len(damage_rows) or not damage_rows):
+                failures.append(f"{name}: {cells(mesh)} points, damage.csv {len(damage_rows)}")
+            for array in ("state", "damage", "opening", "slip", "normal_force", "normal"):
+                if array not in mesh.point_data:
+                    failures.append(f"{name}: no point array '{array}' ({list(mesh.point_data)})")
         # The data stay with their cells: each block's pieces add up to its volume.
         mesh = meshio.read(os.path.join(out, "blocks.vtu"))
         ids = [int(x) for part in mesh.cell_data["id"] for x in part]
@@ -104,7 +120,7 @@ def main():
             failures.append(f"too small a check: {len(blocks)} blocks, {len(fractures)} fractures")
         for failure in failures:
             print(failure)
-        print(f"meshio read {3 + len(frames)} files: {len(fractures)} fractures, "
+        print(f"meshio read {3 + len(frames) + len(maps)} files: {len(fractures)} fractures, "
               f"{len(blocks)} blocks ({pieces} pieces), {len(frames)} frames")
         return 1 if failures else 0
 
