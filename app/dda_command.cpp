@@ -148,7 +148,14 @@ std::pair<io::DdaRunSummary::Settled, std::vector<dda3d::Contact>> settleFirst(
     settled.point_loads[k].force = model.point_loads[k].force;
   }
   model = std::move(settled);
-  return {out, sim.contacts()};
+  // The damage map tells what the run did: contacts open at its start have not opened in it,
+  // and slip counts from the settled state, as the displacements do.
+  std::vector<dda3d::Contact> contacts = sim.contacts();
+  for (dda3d::Contact& c : contacts) {
+    c.was_closed = c.state != dda3d::ContactState::Open;
+    c.slipped = 0.0;
+  }
+  return {out, std::move(contacts)};
 }
 
 /// Deformable runs: the movable blocks whose interfaces bend them more than one strain field
@@ -165,7 +172,7 @@ std::vector<io::DdaRunSummary::CoarseStrain> coarseStrainBlocks(const dda3d::Sim
   if (!out.empty()) {
     std::fprintf(stderr,
                  "dda: %zu deformable blocks are bent by their contacts more than one strain field "
-                 "shows (an interface's resultant outside its middle third; summary.json "
+                 "shows (a side's contact resultant outside its middle third; summary.json "
                  "coarse_strain, frames' eccentricity): their stress is a mean; split them or "
                  "read their stress with care\n",
                  out.size());

@@ -114,9 +114,11 @@ void setPhaseShares(benchmark::State& state, const StepProfile& t) {
 /// One pile run: warm_up_steps untimed, then kTimedSteps timed. Counters: block-steps/s,
 /// steps/s, the share of each phase of the engine's own timers, contacts, open-close
 /// iterations per step.
-void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks) {
+void pileRun(benchmark::State& state, const SolverOptions& solver, int blocks,
+             Kinematics kinematics = Kinematics::Rigid) {
   DdaSettings settings = pileSettings();
   settings.solver = solver;
+  settings.kinematics = kinematics;
   int steps = 0, iterations = 0;
   StepProfile timings;
   for (auto _ : state) {
@@ -248,6 +250,9 @@ int main(int argc, char** argv) {
   for (std::string item; std::getline(list, item, ',');) {
     solvers.push_back(parseSolver(item, pileSettings()));
   }
+  // --dda_deformable=1: the same piles with 12-unknown blocks too (BM_PileDeformable), and
+  // their time per step over the rigid piles' (same run).
+  const bool deformable = takeFlag(argc, argv, "dda_deformable", "0") == "1";
   const std::vector<int> sizes{100, 1000, 5000};
   for (const SolverSpec& spec : solvers) {
     for (int blocks : sizes) {
@@ -256,6 +261,15 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(
           ("BM_Pile/" + spec.label + "/" + std::to_string(blocks)).c_str(),
           [options, blocks](benchmark::State& state) { pileRun(state, options, blocks); })
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+      // (The direct solvers stop at 1000 blocks, as for rigid piles.)
+      if (!deformable) continue;
+      benchmark::RegisterBenchmark(
+          ("BM_PileDeformable/" + spec.label + "/" + std::to_string(blocks)).c_str(),
+          [options, blocks](benchmark::State& state) {
+            pileRun(state, options, blocks, Kinematics::Deformable);
+          })
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
     }
@@ -308,6 +322,23 @@ int main(int argc, char** argv) {
             std::log(seconds_per_step[i] / seconds_per_step[i - 1]) / std::log(n[i] / n[i - 1]));
       }
       std::printf("\n");
+    }
+  }
+  if (deformable) {
+    std::printf("\nDeformable piles (12 unknowns a block) against rigid (same run, same steps):\n");
+    std::printf("  %-12s %6s %12s %12s %8s %8s\n", "solver", "blocks", "rigid ms/st",
+                "deform ms/st", "ratio", "it/st");
+    for (const SolverSpec& spec : solvers) {
+      for (int blocks : sizes) {
+        const std::string tail = spec.label + "/" + std::to_string(blocks);
+        const rockmass::bench::Record* rigid = reporter.find("BM_Pile/" + tail);
+        const rockmass::bench::Record* twelve = reporter.find("BM_PileDeformable/" + tail);
+        if (!rigid || !twelve) continue;
+        const double a = rigid->cpu_time / rigid->counters.at("steps");
+        const double b = twelve->cpu_time / twelve->counters.at("steps");
+        std::printf("  %-12s %6d %12.2f %12.2f %8.2f %8.2f\n", spec.label.c_str(), blocks, a, b,
+                    b / a, twelve->counters.at("iter_per_step"));
+      }
     }
   }
   if (const rockmass::bench::Record* settling = reporter.find(settling_name)) {

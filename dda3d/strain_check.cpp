@@ -1,51 +1,76 @@
 #include "dda3d/strain_check.h"
 
 #include <algorithm>
-#include <map>
-#include <utility>
-
-#include "dda3d/contact_detection.h"
+#include <cmath>
+#include <vector>
 
 namespace rockmass::dda3d {
 
 using geometry::Vec3;
 
-std::vector<double> interfaceEccentricity(const Simulation& sim) {
-  std::vector<double> ratio(sim.blocks().size(), 0.0);
-  // The contact points of each pair of blocks (an ordered map: deterministic), open or
-  // closed: together they span the interface; the closed ones carry its force.
-  std::map<std::pair<int, int>, std::vector<const Contact*>> interfaces;
-  for (const Contact& c : sim.contacts()) {
-    interfaces[std::minmax(c.block_i, c.block_j)].push_back(&c);
+namespace {
+
+/// Contact directions within this angle of a side's first contact belong to that side.
+const double kSideCosine = std::cos(20.0 * 3.14159265358979323846 / 180.0);
+
+/// One contact point as its block sees it: where, which way out of the block, how hard.
+struct Touch {
+  Vec3 point;
+  Vec3 outward;
+  double force;  ///< N, > 0 for a closed, compressed contact, else 0
+};
+
+/// e / h of one side of a block: its points' centroid, the resultant of their forces.
+double sideEccentricity(const std::vector<const Touch*>& side) {
+  if (side.size() < 3) return 0.0;
+  Vec3 normal = Vec3::Zero(), centre = Vec3::Zero(), resultant_at = Vec3::Zero();
+  double force = 0.0;
+  for (const Touch* t : side) {
+    normal += t->outward;
+    centre += t->point;
+    resultant_at += t->force * t->point;
+    force += t->force;
   }
-  for (const auto& [pair, contacts] : interfaces) {
-    if (contacts.size() < 3) continue;
-    Vec3 normal = Vec3::Zero(), centre = Vec3::Zero(), resultant_at = Vec3::Zero();
-    double force = 0.0;
-    for (const Contact* c : contacts) {
-      // Normals of the two directions of the pair (out of i's or j's face) point opposite
-      // ways: oriented from the lower block index to the higher before summing.
-      normal += c->block_j == pair.first ? c->normal : Vec3(-c->normal);
-      centre += c->point;
-      if (c->state == ContactState::Open || !(c->normal_force > 0.0)) continue;
-      resultant_at += c->normal_force * c->point;
-      force += c->normal_force;
+  if (!(force > 0.0) || normal.norm() <= 0.0) return 0.0;
+  normal.normalize();
+  centre /= static_cast<double>(side.size());
+  Vec3 offset = resultant_at / force - centre;
+  offset -= normal * normal.dot(offset);  // in the side's plane
+  const double e = offset.norm();
+  if (e <= 0.0) return 0.0;
+  const Vec3 along = offset / e;
+  double h = 0.0;
+  for (const Touch* t : side) h = std::max(h, std::abs(along.dot(t->point - centre)));
+  return h > 0.0 ? e / h : 0.0;
+}
+
+}  // namespace
+
+std::vector<double> interfaceEccentricity(const Simulation& sim) {
+  // Each block's contact points, in contact order (deterministic).
+  std::vector<std::vector<Touch>> touches(sim.blocks().size());
+  for (const Contact& c : sim.contacts()) {
+    const double force =
+        c.state != ContactState::Open && c.normal_force > 0.0 ? c.normal_force : 0.0;
+    // n points out of j: into i.
+    touches[static_cast<std::size_t>(c.block_i)].push_back({c.point, -c.normal, force});
+    touches[static_cast<std::size_t>(c.block_j)].push_back({c.point, c.normal, force});
+  }
+  std::vector<double> ratio(sim.blocks().size(), 0.0);
+  for (std::size_t b = 0; b < touches.size(); ++b) {
+    // Sides: the points whose outward directions lie within 20 deg of a side's first point.
+    std::vector<std::vector<const Touch*>> sides;
+    for (const Touch& t : touches[b]) {
+      auto side = std::find_if(sides.begin(), sides.end(), [&](const auto& s) {
+        return s.front()->outward.dot(t.outward) >= kSideCosine;
+      });
+      if (side == sides.end()) {
+        sides.push_back({&t});
+      } else {
+        side->push_back(&t);
+      }
     }
-    if (normal.norm() <= 0.0 || !(force > 0.0)) continue;
-    normal.normalize();
-    centre /= static_cast<double>(contacts.size());
-    Vec3 offset = resultant_at / force - centre;
-    offset -= normal * normal.dot(offset);  // in the interface plane
-    const double e = offset.norm();
-    if (e <= 0.0) continue;
-    const Vec3 along = offset / e;
-    double h = 0.0;
-    for (const Contact* c : contacts) h = std::max(h, std::abs(along.dot(c->point - centre)));
-    if (h <= 0.0) continue;
-    for (const int b : {pair.first, pair.second}) {
-      double& r = ratio[static_cast<std::size_t>(b)];
-      r = std::max(r, e / h);
-    }
+    for (const auto& side : sides) ratio[b] = std::max(ratio[b], sideEccentricity(side));
   }
   return ratio;
 }

@@ -537,3 +537,112 @@ TEST(DdaInterrupt, CtrlCStopsAtASafePointWithExit130AndAMarker) {
 
 }  // namespace
 }  // namespace rockmass
+
+namespace rockmass {
+namespace {
+
+/// A dam on a foundation of six rock blocks (two vertical faults and a horizontal one), the
+/// reservoir on its upstream face and the foundation's pore pressure: the service-period run
+/// of examples/xiangjiaba/service.yaml at a small scale.
+constexpr const char* kServiceScene = R"(version: 1
+name: service
+seed: 1
+domain:
+  box: {min: [0, 0, -20], max: [120, 10, 0]}
+materials:
+  concrete: {unit_weight: 24.0e3, young: 17.6e9, poisson: 0.167}
+  rock: {unit_weight: 26.0e3, young: 7.0e9, poisson: 0.25}
+rock_material: rock
+joints:
+  rj: {friction: 0.86, cohesion: 0.8e6}
+default_joint: rj
+faults:
+  - {name: F1, center: [45, 5, -10], dip_direction: 90, dip: 90, size: [400, 400]}
+  - {name: F2, center: [75, 5, -10], dip_direction: 90, dip: 90, size: [400, 400]}
+  - {name: F3, center: [60, 5, -10], dip_direction: 0, dip: 0, size: [400, 400]}
+structures:
+  - name: dam
+    prism: {profile: [[40, 0], [80, 0], [43, 54], [40, 54]], sweep: y, from: 0, to: 10}
+    material: concrete
+    joint: {friction: 1.2, cohesion: 1.4e6}
+loads:
+  gravity: 9.81
+  water:
+    - {level: 50.0, on: {structure: dam, facing: [-1, 0, 0]}}
+    - {level: 50.0, on: {domain_top: true, region: {x_max: 40}}}
+    - {level: 10.0, on: {domain_top: true, region: {x_min: 80}}}
+  pore_pressure:
+    - uplift_diagram: {structure: dam, upstream_level: 50.0, downstream_level: 10.0, flow: [1, 0, 0]}
+supports:
+  fixed: [bottom]
+  rollers: [west, east, south, north]
+monitors:
+  - {name: heel, point: [41, 5, -1]}
+  - {name: crest, point: [41.5, 5, 50]}
+analysis:
+  blocks: {cutter: fast}
+  dda:
+    mode: dynamic
+    kinematics: deformable
+    steps: 50
+    time_step: 0.01
+    settle: {without: [water], max_steps: 100}
+    damage_map: {every: 20}
+)";
+
+TEST(DdaServiceRun, SettlesThenRunsInPhysicalTimeWithItsDamageMaps) {
+  test::TempDir dir("dda_service");
+  std::string log;
+  ASSERT_EQ(test::runOnScene("dda", dir.path(), "service", kServiceScene, &log), 0) << log;
+  const fs::path out = dir.path() / "service";
+  const nlohmann::json s = nlohmann::json::parse(test::readFile(out / "summary.json"));
+  // Settled first, without the water, in static steps; then run with every load.
+  ASSERT_TRUE(s.contains("settled")) << s.dump(2);
+  EXPECT_TRUE(s["settled"]["at_rest"].get<bool>()) << s["settled"].dump();
+  EXPECT_LE(s["settled"]["steps"].get<int>(), 100);
+  EXPECT_EQ(s["settled"]["without"], nlohmann::json::array({"water"}));
+  EXPECT_NE(log.find("dda: settled first at rest after"), std::string::npos) << log;
+  EXPECT_EQ(s["mode"], "dynamic");
+  // The histories are in physical time: 50 steps of 10 ms reach 0.5 s (the step control may
+  // cut steps, never the duration), the monitors start at rest from the settled state and
+  // the reservoir then moves the crest downstream with a velocity of its own.
+  const std::vector<test::HistoryRow> history = test::readHistory(out / "history.csv");
+  ASSERT_FALSE(history.empty());
+  EXPECT_EQ(history.front().time, 0.0);
+  EXPECT_NEAR(history.back().time, 0.5, 1e-9);
+  double crest_ux = 0.0, crest_speed = 0.0;
+  for (const test::HistoryRow& row : history) {
+    if (row.monitor != "crest") continue;
+    if (row.time == 0.0) {
+      EXPECT_EQ(std::abs(row.ux) + std::abs(row.uy) + std::abs(row.uz), 0.0);
+    }
+    crest_ux = std::max(crest_ux, row.ux);
+    crest_speed = std::max(crest_speed, row.speed());
+  }
+  EXPECT_GT(crest_ux, 0.0);     // downstream, pushed by the reservoir
+  EXPECT_GT(crest_speed, 0.0);  // dynamic: velocities in the file
+  // Damage maps at steps 20, 40 and the last; damage.csv is the last one.
+  const std::string pvd = test::readFile(out / "damage.pvd");
+  int maps = 0;
+  for (std::size_t at = pvd.find("file=\"damage_"); at != std::string::npos;
+       at = pvd.find("file=\"damage_", at + 1)) {
+    const std::string file = pvd.substr(at + 6, pvd.find('"', at + 6) - at - 6);
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+    ++maps;
+  }
+  EXPECT_GE(maps, 3);
+  EXPECT_EQ(s["damage"]["maps"].get<int>(), maps);
+  const std::string csv = test::readFile(out / "damage.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "step,time,x,y,z,nx,ny,nz,block_i,block_j,joint,state,damage,opening,slip,"
+            "normal_force");
+  const int rows = static_cast<int>(std::count(csv.begin(), csv.end(), '\n')) - 1;
+  const nlohmann::json& d = s["damage"];
+  EXPECT_EQ(rows, d["intact"].get<int>() + d["bond_broken"].get<int>() + d["sliding"].get<int>() +
+                      d["opened"].get<int>());
+  EXPECT_GT(rows, 0);
+  EXPECT_TRUE(s["coarse_strain"].is_array());
+}
+
+}  // namespace
+}  // namespace rockmass

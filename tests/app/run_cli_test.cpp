@@ -376,3 +376,53 @@ TEST(RunCli, XiangjiabaQuick) {
 
 }  // namespace
 }  // namespace rockmass
+
+namespace rockmass {
+namespace {
+
+TEST(RunCli, XiangjiabaQuickDeformableComesToRest) {
+  // The quick scene with 12-unknown blocks: its dam (2.1e5 m3, one strain field) and the
+  // glued rock under it must come to rest under their weight and the water at K = 1 within
+  // the scene's 40 static steps. Its dam's shear with the translation that keeps its base in
+  // place relieved 1.2 % of its out-of-balance force per step before a deformable block's
+  // static inertia was held to its elasticity (docs/dda3d.md, "Deformable blocks at scale"):
+  // unbalanced ratio 0.035 after 40 steps.
+  std::string scene =
+      test::readFile(fs::path(ROCKMASS_SOURCE_DIR) / "examples/xiangjiaba/scene.yaml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  };
+  replace("kinematics: rigid", "kinematics: deformable");
+  replace("factors: [1, 2, 4, 6, 7, 7.5, 8, 9]", "factors: [1]");
+  // Only the DDA and the overload at K = 1: no RQD, no strength reduction.
+  const std::size_t rqd = scene.find("\n  rqd:\n"), dda = scene.find("\n  dda:\n");
+  ASSERT_TRUE(rqd != std::string::npos && dda != std::string::npos && rqd < dda);
+  scene.erase(rqd, dda - rqd);
+  const std::size_t srf = scene.find("\n  strength_reduction:");
+  ASSERT_NE(srf, std::string::npos);
+  scene.erase(srf, scene.find('\n', srf + 1) - srf);
+  test::TempDir dir("run_cli_deformable");
+  const fs::path file = dir.path() / "scene.yaml";
+  std::ofstream(file) << scene;
+  std::string log;
+  ASSERT_EQ(test::runRockmass("run " + file.string() + " -o " + (dir.path() / "out").string() +
+                                  " --quick --no-figures",
+                              &log),
+            0)
+      << log;
+  const Json s = readJson(dir.path() / "out" / "summary.json");
+  EXPECT_EQ(s["kinematics"], "deformable");
+  const Json& run = s["overload"]["runs"][0];
+  EXPECT_EQ(run["factor"].get<double>(), 1.0);
+  EXPECT_TRUE(run["at_rest"].get<bool>()) << run.dump(2);
+  // At rest by the rule: an unbalanced ratio below 1e-3 for 5 steps in a row (measured: 14
+  // steps, 4.4e-4).
+  EXPECT_LE(run["steps"].get<int>(), 40);
+  EXPECT_LT(run["unbalanced_ratio"].get<double>(), 1e-3);
+  EXPECT_TRUE(s["coarse_strain"].is_array());
+}
+
+}  // namespace
+}  // namespace rockmass

@@ -1022,3 +1022,42 @@ TEST(SceneExample, XiangjiabaLoads) {
 
 }  // namespace
 }  // namespace rockmass::io
+
+namespace rockmass::io {
+namespace {
+
+TEST(SceneDdaServiceRun, SettleDamageMapAndDynamicRatio) {
+  const Scene scene = parseScene(valid_head +
+                                     "analysis:\n  dda:\n    steps: 400\n"
+                                     "    dynamic_ratio: 0.98\n"
+                                     "    settle: {without: [water, seismic]}\n"
+                                     "    damage_map: {}\n",
+                                 "service.yaml");
+  const DdaAnalysis& dda = *scene.analysis.dda;
+  EXPECT_EQ(dda.engine.dynamic_ratio, 0.98);
+  ASSERT_TRUE(dda.settle.has_value());
+  EXPECT_TRUE(dda.settle->without_water);
+  EXPECT_TRUE(dda.settle->without_seismic);
+  EXPECT_FALSE(dda.settle->without_point_loads);
+  EXPECT_EQ(dda.settle->max_steps, 200);  // the default
+  ASSERT_TRUE(dda.damage_every.has_value());
+  EXPECT_EQ(*dda.damage_every, 40);  // default: a tenth of the steps
+  // Absent: no settling, no damage map, the engine's ratio (1: fully dynamic).
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_FALSE(plain.analysis.dda->settle.has_value());
+  EXPECT_FALSE(plain.analysis.dda->damage_every.has_value());
+  EXPECT_EQ(plain.analysis.dda->engine.dynamic_ratio, 1.0);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    settle: {without: []}\n"),
+            "bad.yaml:5:23: analysis.dda.settle.without: expected a non-empty list");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    settle: {without: [wind]}\n"),
+            "bad.yaml:5:24: analysis.dda.settle.without[0]: unknown load 'wind'; expected one "
+            "of: water, seismic, point_loads");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    damage_map: {every: 0}\n"),
+            "bad.yaml:5:25: analysis.dda.damage_map.every: expected an integer in [1, 1e+07], "
+            "got 0");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    dynamic_ratio: 1.5\n"),
+            "bad.yaml:5:20: analysis.dda.dynamic_ratio: expected a number in [0, 1], got 1.5");
+}
+
+}  // namespace
+}  // namespace rockmass::io
