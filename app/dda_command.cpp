@@ -130,7 +130,15 @@ std::pair<io::DdaRunSummary::Settled, std::vector<dda3d::Contact>> settleFirst(
   dda3d::Simulation sim(dda3d::scaledLoads(model, without, 0.0), quiet);
   dda3d::EquilibriumSettings rest;
   rest.max_steps = settle.max_steps;
-  const dda3d::EquilibriumResult result = dda3d::runToEquilibrium(sim, rest);
+  // Progress at least every 30 s: a foundation of 10^3 blocks settles in minutes.
+  Progress progress("dda: settling", settle.max_steps, "static steps");
+  progress.setQuietPeriod(10.0);
+  const dda3d::EquilibriumResult result =
+      dda3d::runToEquilibrium(sim, rest, [&](const dda3d::EquilibriumResult& r) {
+        char detail[80];
+        std::snprintf(detail, sizeof detail, "unbalanced ratio %.3g", r.unbalanced_ratio);
+        progress.update(r.steps, detail);
+      });
   io::DdaRunSummary::Settled out{result.steps, result.reached, result.unbalanced_ratio, {}};
   if (settle.without_water) out.without.push_back("water");
   if (settle.without_seismic) out.without.push_back("seismic");
@@ -285,7 +293,10 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   if (dda.settle)
     std::tie(stage.summary.settled, start_contacts) = settleFirst(dda, model, settings);
   dda3d::Simulation sim(std::move(model), settings);
-  if (!start_contacts.empty()) sim.adoptContacts(std::move(start_contacts));
+  if (dda.settle) {
+    sim.adoptContacts(std::move(start_contacts));
+    sim.startAtRest();
+  }
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   io::DdaFrameWriter frames(out, frame_every);

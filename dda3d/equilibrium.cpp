@@ -52,7 +52,8 @@ std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch) {
   return watched;
 }
 
-EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings) {
+EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings,
+                                   const EquilibriumStepCallback& after_step) {
   EquilibriumResult result;
   const double g = referenceAcceleration(sim.model());
   const bool every_block = settings.watch == EquilibriumWatch::All;
@@ -126,6 +127,7 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     const bool still = result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;
+    if (after_step) after_step(result);
     if (calm >= settings.settle_steps) {
       result.reached = true;
       break;

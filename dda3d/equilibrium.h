@@ -2,6 +2,7 @@
 // strength-reduction analyses (docs/stability.md).
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "dda3d/simulation.h"
@@ -86,7 +87,11 @@ std::vector<int> monitoredMovableBlocks(const DdaModel& model);
 /// std::invalid_argument when Monitors selects none (no monitor, or all in held blocks).
 std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch);
 
+/// Called after each step with the result so far (progress output).
+using EquilibriumStepCallback = std::function<void(const EquilibriumResult&)>;
+
 /// Steps `sim` until it is at rest (EquilibriumSettings) or the step limit is reached.
-EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings);
+EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& settings,
+                                   const EquilibriumStepCallback& after_step = {});
 
 }  // namespace rockmass::dda3d

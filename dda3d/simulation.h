@@ -99,6 +99,17 @@ class Simulation {
   /// next step's detection carries their states, shear springs and forces over to the entries
   /// it finds again, as between two steps of one run. Call before the first step.
   void adoptContacts(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
+  /// Starts from rest: zero velocities and accelerations (a0). For a model brought to rest
+  /// before (settledModel) and run dynamically: its a0 from the loads alone (gravity, the
+  /// deformable blocks' initial stress) would ignore the contact forces that hold it, and the
+  /// first step would fling every block (1.8 m/s at dt = 10 ms on the Xiangjiaba foundation).
+  /// Call before the first step.
+  void startAtRest() {
+    for (BlockState& block : blocks_) {
+      block.velocity.setZero();
+      block.acceleration.setZero();
+    }
+  }
   ContactCounts contactCounts() const;
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.

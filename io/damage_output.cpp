@@ -11,18 +11,6 @@ namespace {
 /// VTK cell type of a single point.
 constexpr std::uint8_t kVtkVertex = 1;
 
-const char* stateName(ContactState state) {
-  switch (state) {
-    case ContactState::Sliding:
-      return "sliding";
-    case ContactState::Locked:
-      return "locked";
-    case ContactState::Open:
-      break;
-  }
-  return "open";
-}
-
 const char* damageName(ContactDamage damage) {
   switch (damage) {
     case ContactDamage::BondBroken:
@@ -96,7 +84,7 @@ std::string formatDamageCsv(const DamageMap& map) {
       for (int k = 0; k < 3; ++k) out.append(formatDouble((*v)[k])).append(",");
     }
     out.append(std::to_string(c.block_i)).append(",").append(std::to_string(c.block_j));
-    out.append(",").append(std::to_string(c.joint)).append(",").append(stateName(c.state));
+    out.append(",").append(std::to_string(c.joint)).append(",").append(contactStateName(c.state));
     out.append(",").append(damageName(c.damage)).append(",").append(formatDouble(c.opening));
     out.append(",").append(formatDouble(c.slip)).append(",");
     out.append(formatDouble(c.normal_force)).append("\n");

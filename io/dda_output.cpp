@@ -31,18 +31,6 @@ const char* contactKindName(ContactKind kind) {
   return "edge-edge";
 }
 
-const char* contactStateName(ContactState state) {
-  switch (state) {
-    case ContactState::Open:
-      return "open";
-    case ContactState::Sliding:
-      return "sliding";
-    case ContactState::Locked:
-      return "locked";
-  }
-  return "unknown";
-}
-
 /// Appends `piece` as one polyhedron cell: its points, connectivity and face stream.
 void appendPolyhedronCell(VtuPiece& out, const geometry::Polyhedron& piece) {
   const auto first = static_cast<std::int64_t>(out.points.size() / 3);
@@ -76,6 +64,18 @@ bool exactlySymmetric(const dda3d::SparseMatrix& k) {
 }
 
 }  // namespace
+
+const char* contactStateName(ContactState state) {
+  switch (state) {
+    case ContactState::Open:
+      return "open";
+    case ContactState::Sliding:
+      return "sliding";
+    case ContactState::Locked:
+      return "locked";
+  }
+  return "unknown";
+}
 
 std::string historyCsvHeader() {
   return "time,monitor,ux,uy,uz,vx,vy,vz,u\n";

@@ -131,6 +131,9 @@ enum class ContactKind { VertexFace, EdgeEdge, FacePoint };
 /// Open-close state of a contact.
 enum class ContactState { Open, Sliding, Locked };
 
+/// "open", "sliding" or "locked".
+const char* contactStateName(ContactState state);
+
 /// One point-to-face contact entry of the dumped step.
 struct DdaContactRecord {
   ContactKind kind = ContactKind::VertexFace;

@@ -8,8 +8,8 @@ damage.csv (the last damage map of a DDA run; docs/dda-io.md): every contact tha
 closed, with its damage class. The contacts within `band` metres of the section plane are
 drawn in the plane's (u, v) coordinates (x, z for a y= plane): opened contacts (cracks) red,
 sliding orange, locked contacts whose bond is broken yellow, intact ones small and grey;
-the opened and sliding ones sized by their opening and slip. With --section, the block
-outlines of section.csv are drawn underneath. Without --plane the plane is y at the middle
+the opened and sliding ones sized by their opening and slip; the view frames the contacts.
+With --section, the block outlines of section.csv are drawn underneath. Without --plane the plane is y at the middle
 of the contacts' y range.
 """
 import argparse
@@ -54,7 +54,15 @@ def main(argv=None):
     u, v = AXES[axis]
     near = np.abs(xyz[:, normal] - value) <= args.band
 
-    fig, ax = plt.subplots(figsize=(12, 6))
+    # The view frames the contacts (the DDA region), not the whole section around them; the
+    # figure takes the region's shape (equal scales), with room for the legend below.
+    lo = hi = None
+    if near.any():
+        lo = np.array([xyz[near, u].min(), xyz[near, v].min()])
+        hi = np.array([xyz[near, u].max(), xyz[near, v].max()])
+        lo, hi = lo - np.maximum(0.08 * (hi - lo), 2.0), hi + np.maximum(0.08 * (hi - lo), 2.0)
+    shape = (hi[1] - lo[1]) / (hi[0] - lo[0]) if lo is not None else 0.5
+    fig, ax = plt.subplots(figsize=(13, min(9.0, max(3.8, 11.0 * shape + 2.2))))
     if args.section:
         corners = {}
         for i, r in enumerate(read_rows(args.section, ["kind", "id", "part", "u", "v", "source"]),
@@ -79,19 +87,22 @@ def main(argv=None):
         ax.scatter(xyz[pick, u], xyz[pick, v], s=marker, c=colour, edgecolors="none",
                    label=f"{label}: {pick.sum()}", zorder=3 if name != "intact" else 2)
     ax.autoscale_view()
+    if lo is not None:
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
     ax.set_aspect("equal")
     names = "xyz"
     ax.set_xlabel(f"{names[u]} (m)")
     ax.set_ylabel(f"{names[v]} (m)")
     if near.any():
-        ax.legend(fontsize=8, loc="upper right", markerscale=1.5,
+        fig.legend(fontsize=8, loc="lower center", ncol=4, markerscale=1.5,
                   title=f"marker size: opening or slip, largest {largest * scale:.3g} {unit}",
                   title_fontsize=8)
     step = rows[0]["step"] if rows else "-"
     time = number(rows[0], "time", args.csv, 2) if rows else 0.0
     ax.set_title(f"Damage of the discontinuities within {args.band:g} m of {axis} = {value:g} "
                  f"(step {step}, t = {time:.3g} s)")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.16, 1, 1))
     save(fig, args.output)
     print(f"damage_map: wrote {args.output}")
 
