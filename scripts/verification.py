@@ -30,6 +30,8 @@ GROUPS = [
     ("Trains of blocks", "Blocks in contact on one plane, moving or resting together."),
     ("Wedges", "A wedge on two planes (block theory), dry or with water on its joints."),
     ("Deformable column", "Elastic blocks under their own weight."),
+    ("Deformable blocks",
+     "12-unknown blocks under a surface load and at rest on a slope (elasticity, Coulomb)."),
     ("Slivers in stacks",
      "Columns of boxes with a thin sliver (1:100, 1:1000 of the width) between them."),
     ("Bolts and fixed points",

@@ -409,7 +409,7 @@ TEST_P(VerificationSliver, SettlesInPlaceWithTheElasticSettlement) {
     // turns back against its friction sticks), and the bottom cube, one uniform strain held
     // at its base by the fixed block, cannot widen: measured lateral stresses -2.3e4 Pa in
     // it (1/6 of its vertical stress) down to +5e3 Pa in the top cube, which stiffen the
-    // column by 2.4 %: 3 % there. Fully dynamic, the ringing interfaces slide and widen.
+    // column by 2.2-2.4 %: 3 % there. Fully dynamic, the ringing interfaces slide and widen.
     const double expected = kDensity * kG * height * height / (2.0 * kYoung);
     const double tolerance = c.poisson > 0.0 && c.mode == AnalysisMode::Static ? 0.03 : 0.02;
     EXPECT_NEAR(settlement, expected, tolerance * expected);
