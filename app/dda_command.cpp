@@ -115,6 +115,53 @@ io::DdaRunSummary::Damage damageCounts(const io::DamageMap& map, int maps) {
   return d;
 }
 
+/// Adds one step's seconds per phase to the run's totals (phases in first-seen order).
+void addPhaseSeconds(std::vector<std::pair<std::string, double>>& totals,
+                     const std::vector<std::pair<std::string, double>>& step) {
+  for (const auto& [name, seconds] : step) {
+    const auto at =
+        std::find_if(totals.begin(), totals.end(), [&](const auto& p) { return p.first == name; });
+    if (at == totals.end()) {
+      totals.emplace_back(name, seconds);
+    } else {
+      at->second += seconds;
+    }
+  }
+}
+
+/// The progress line's detail of one step.
+std::string stepDetail(int step, const dda3d::StepReport& report) {
+  char detail[200];
+  std::snprintf(detail, sizeof detail,
+                "step %d, dt = %.3g s, contacts %d (%d open), iterations %d, redone: %d "
+                "open-close, %d displacement, %d penetration",
+                step, report.time_step, report.contacts.total, report.contacts.open,
+                report.iterations, report.redo_iterations, report.redo_displacement,
+                report.redo_penetration);
+  return detail;
+}
+
+/// The summary's description of the run: mode, kinematics, solver, scheme, time, penalty, the
+/// monitors at the end.
+void describeRun(const dda3d::Simulation& sim, const io::DdaAnalysis& dda,
+                 const blocks::BlockModel& blocks, io::DdaRunSummary& summary) {
+  summary.dynamic = dda.engine.mode == dda3d::AnalysisMode::Dynamic;
+  summary.deformable = dda.engine.kinematics == dda3d::Kinematics::Deformable;
+  summary.solver = sim.solverName();
+  const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
+  summary.time_integration = bossak ? "bossak" : "shi";
+  summary.spectral_radius = sim.settings().spectral_radius;
+  summary.time_step = dda.engine.time_step;
+  summary.duration = sim.time();
+  summary.penalty = sim.penalty();
+  for (const dda3d::MonitorState& m : sim.monitors()) {
+    const std::size_t k = summary.monitors.size();
+    summary.monitors.push_back(
+        {m.name, blocks.blocks[static_cast<std::size_t>(sim.model().monitors[k].block)].id,
+         m.displacement});
+  }
+}
+
 /// analysis.dda.settle: `model` brought to rest in static mode under its loads less those the
 /// scene names, then given every load of `model` back; the run starts from it and from Returns how
 /// the settling ended and the contacts to start from.
@@ -337,15 +384,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     summary.late_contacts += report.late_contacts;
     last = stepRecord(step, report, sim, phaseSeconds(report.profile));
     stage.steps_csv->write(io::formatStepsRow(last));
-    for (const auto& [name, seconds] : last.phase_seconds) {
-      const auto at = std::find_if(phase_totals.begin(), phase_totals.end(),
-                                   [&](const auto& p) { return p.first == name; });
-      if (at == phase_totals.end()) {
-        phase_totals.emplace_back(name, seconds);
-      } else {
-        at->second += seconds;
-      }
-    }
+    addPhaseSeconds(phase_totals, last.phase_seconds);
     io::keepStepRecord(summary.steps, summary.step_stride, last);
     recordMonitors(sim, stage.monitor_names, *stage.history);
     if (stage.bolts_csv) {
@@ -357,14 +396,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
       io::writeDdaDebugDump(out, step, sim.lastMatrix(), sim.lastRhs(),
                             contactRecords(sim, blocks));
     }
-    char detail[200];
-    std::snprintf(detail, sizeof detail,
-                  "step %d, dt = %.3g s, contacts %d (%d open), iterations %d, redone: %d "
-                  "open-close, %d displacement, %d penetration",
-                  step, report.time_step, report.contacts.total, report.contacts.open,
-                  report.iterations, report.redo_iterations, report.redo_displacement,
-                  report.redo_penetration);
-    progress.update(sim.time(), detail);
+    progress.update(sim.time(), stepDetail(step, report));
   }
   frames.write(frameOf(sim, blocks, step));
   if (damage) {
@@ -388,22 +420,8 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
   summary.glued = glued;
   summary.uplift = scene_model::structureUplift(scene, sim.model());
   summary.bolts = boltSamples(sim, stage.bolt_names);
-  summary.dynamic = dda.engine.mode == dda3d::AnalysisMode::Dynamic;
-  summary.deformable = dda.engine.kinematics == dda3d::Kinematics::Deformable;
-  summary.solver = sim.solverName();
-  const bool bossak = sim.settings().integration == dda3d::TimeIntegration::Bossak;
-  summary.time_integration = bossak ? "bossak" : "shi";
-  summary.spectral_radius = sim.settings().spectral_radius;
   summary.steps_requested = steps;
-  summary.time_step = dda.engine.time_step;
-  summary.duration = sim.time();
-  summary.penalty = sim.penalty();
-  for (const dda3d::MonitorState& m : sim.monitors()) {
-    const std::size_t k = summary.monitors.size();
-    summary.monitors.push_back(
-        {m.name, blocks.blocks[static_cast<std::size_t>(sim.model().monitors[k].block)].id,
-         m.displacement});
-  }
+  describeRun(sim, dda, blocks, summary);
   std::fprintf(stderr, "dda: %d steps to t = %.4g s\n", step, sim.time());
   return stage;
 }
