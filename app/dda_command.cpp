@@ -50,6 +50,18 @@ dda3d::DdaSettings settingsOf(const io::DdaAnalysis& dda, const DdaOverrides& op
   return settings;
 }
 
+/// A contact's state as the output files name it.
+io::ContactState outputState(dda3d::ContactState state) {
+  return state == dda3d::ContactState::Open      ? io::ContactState::Open
+         : state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
+                                                 : io::ContactState::Locked;
+}
+
+/// The index (in the scene's joints) of the joint a contact acts with.
+int jointIndex(const dda3d::Simulation& sim, const dda3d::Contact& c) {
+  return c.joint >= 0 ? c.joint : sim.model().default_joint;
+}
+
 /// The frame of the simulation's current state.
 io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blocks, int step) {
   io::DdaFrame frame;
@@ -86,10 +98,8 @@ io::DamageMap damageMapOf(const dda3d::Simulation& sim, const blocks::BlockModel
     p.normal = c.normal;
     p.block_i = blocks.blocks[static_cast<std::size_t>(c.block_i)].id;
     p.block_j = blocks.blocks[static_cast<std::size_t>(c.block_j)].id;
-    p.joint = c.joint >= 0 ? c.joint : sim.model().default_joint;
-    p.state = c.state == dda3d::ContactState::Open      ? io::ContactState::Open
-              : c.state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
-                                                        : io::ContactState::Locked;
+    p.joint = jointIndex(sim, c);
+    p.state = outputState(c.state);
     p.bond_broken = !c.bonded && (joint.cohesion > 0.0 || joint.tensile_strength > 0.0);
     p.damage = io::damageOf(p.state, c.was_closed, p.bond_broken);
     p.opening = p.damage == io::ContactDamage::Opened ? std::max(0.0, c.gap) : 0.0;
@@ -163,8 +173,8 @@ void describeRun(const dda3d::Simulation& sim, const io::DdaAnalysis& dda,
 }
 
 /// analysis.dda.settle: `model` brought to rest in static mode under its loads less those the
-/// scene names, then given every load of `model` back; the run starts from it and from Returns how
-/// the settling ended and the contacts to start from.
+/// scene names, then given every load of `model` back (in place). Returns how the settling
+/// ended and the contacts the run starts from.
 std::pair<io::DdaRunSummary::Settled, std::vector<dda3d::Contact>> settleFirst(
     const io::DdaAnalysis& dda, dda3d::DdaModel& model, const dda3d::DdaSettings& settings) {
   const io::DdaAnalysis::Settle& settle = *dda.settle;
@@ -300,9 +310,7 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
     r.kind = c.kind == dda3d::ContactKind::VertexFace  ? io::ContactKind::VertexFace
              : c.kind == dda3d::ContactKind::FacePoint ? io::ContactKind::FacePoint
                                                        : io::ContactKind::EdgeEdge;
-    r.state = c.state == dda3d::ContactState::Open      ? io::ContactState::Open
-              : c.state == dda3d::ContactState::Sliding ? io::ContactState::Sliding
-                                                        : io::ContactState::Locked;
+    r.state = outputState(c.state);
     r.block_i = blocks.blocks[static_cast<std::size_t>(c.block_i)].id;
     r.piece_i = c.piece_i;
     r.block_j = blocks.blocks[static_cast<std::size_t>(c.block_j)].id;
@@ -313,7 +321,7 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
     r.gap = c.gap;
     r.normal_force = c.normal_force;
     r.shear_displacement = c.shear.norm();
-    r.joint = c.joint >= 0 ? c.joint : sim.model().default_joint;
+    r.joint = jointIndex(sim, c);
     out.push_back(r);
   }
   return out;

@@ -34,11 +34,15 @@ NewmarkCoefficients bossakCoefficients(double spectral_radius) {
       .alpha_m = alpha_m, .beta = 0.25 * (1.0 - alpha_m) * (1.0 - alpha_m), .gamma = 0.5 - alpha_m};
 }
 
+double inertiaCoefficient(const NewmarkCoefficients& s, double dt) {
+  return (1.0 - s.alpha_m) / (s.beta * dt * dt);
+}
+
 void inertiaTerms(const BlockMatrix& mass_matrix, const BlockVector& velocity,
                   const BlockVector& acceleration, double dt, const NewmarkCoefficients& s,
                   BlockMatrix& k, BlockVector& f) {
   const double weight = 1.0 - s.alpha_m;
-  k += (weight / (s.beta * dt * dt)) * mass_matrix;
+  k += inertiaCoefficient(s, dt) * mass_matrix;
   f += mass_matrix * ((weight / (s.beta * dt)) * velocity +
                       (weight * (0.5 - s.beta) / s.beta - s.alpha_m) * acceleration);
 }

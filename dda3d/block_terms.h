@@ -37,6 +37,9 @@ NewmarkCoefficients shiCoefficients();
 /// the undamped trapezoidal rule. Throws std::invalid_argument outside [0, 1].
 NewmarkCoefficients bossakCoefficients(double spectral_radius);
 
+/// The factor c0 = (1 - alpha_m) / (beta dt^2) of the mass matrix in a step's stiffness.
+double inertiaCoefficient(const NewmarkCoefficients& scheme, double dt);
+
 /// Inertia of one step: K_ii += (1 - alpha_m) / (beta dt^2) M and
 /// F_i += M ((1 - alpha_m) / (beta dt) v0 + ((1 - alpha_m) (1/2 - beta) / beta - alpha_m) a0).
 /// With Shi's coefficients: (2 / dt^2) M and (2 / dt) M v0 (the formulation doc).

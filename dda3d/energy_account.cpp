@@ -53,7 +53,7 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // (1 - alpha_m) a1 + alpha_m a0 the Bossak-weighted acceleration. The scheme removed what
   // of that did not become kinetic energy: 1/2 d^T K d + d^T M a_b - (T1 - T0).
   const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
-  const double c0 = (1.0 - scheme_.alpha_m) / (scheme_.beta * dt * dt);
+  const double c0 = inertiaCoefficient(scheme_, dt);
   double removed = 0.5 * solution.dot(system_->matrix() * solution);
   for (const BlockState& block : blocks_) {
     if (block.fixed) continue;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dda3d/block_terms.h"
 #include "dda3d/simulation.h"
 
 namespace rockmass::dda3d {
@@ -25,6 +26,11 @@ constexpr double kStaticInertiaRatio = 1.0;
 /// times the shear stiffness of its strain (Simulation::inertiaMatrix).
 constexpr double kStaticStrainInertiaRatio = 1.0;
 
+/// G of an isotropic elastic matrix (Voigt, engineering shear strains).
+double shearModulus(const ElasticMatrix& d) {
+  return d.diagonal().tail<3>().minCoeff();
+}
+
 }  // namespace
 
 BlockMatrix Simulation::inertiaMatrix(const BlockState& block) const {
@@ -43,10 +49,9 @@ BlockMatrix Simulation::inertiaMatrix(const BlockState& block) const {
   // largest inertia c0 t M is at most kStaticStrainInertiaRatio times the shear stiffness of
   // the strain, V G (the density scaling of dynamic relaxation: the masses set the path to
   // rest, not the state of rest).
-  const double dt = settings_.time_step;
-  const double c0 = (1.0 - scheme_.alpha_m) / (scheme_.beta * dt * dt);
-  const ElasticMatrix& d = elastic_[static_cast<std::size_t>(block.material)];
-  const double stiffness = block.volume * d.diagonal().tail<3>().minCoeff();
+  const double c0 = inertiaCoefficient(scheme_, settings_.time_step);
+  const double stiffness =
+      block.volume * shearModulus(elastic_[static_cast<std::size_t>(block.material)]);
   constexpr int kLinear = kBlockDofs - 3;
   const Eigen::Matrix<double, kLinear, kLinear> linear = m.bottomRightCorner<kLinear, kLinear>();
   const double inertia = c0 * linear.selfadjointView<Eigen::Lower>().eigenvalues().maxCoeff();
@@ -62,9 +67,7 @@ double Simulation::staticMassScale(const BlockState& block) const {
   if (settings_.mode != AnalysisMode::Static) return 1.0;
   // At the run's time step: a step redone at a smaller one still gets more inertia, which is
   // what lets a step whose open-close iteration did not settle settle.
-  const double dt = settings_.time_step;
-  const double c0 = (1.0 - scheme_.alpha_m) / (scheme_.beta * dt * dt);
-  const double inertia = c0 * block.mass;
+  const double inertia = inertiaCoefficient(scheme_, settings_.time_step) * block.mass;
   double cap = kStaticInertiaRatio * penalty_;
   if (settings_.kinematics == Kinematics::Deformable && block.volume > 0.0) {
     // A deformable block's translation also moves in modes held by its elasticity alone: the
@@ -72,7 +75,7 @@ double Simulation::staticMassScale(const BlockState& block) const {
     // the base held). Their inertia c0 s m (z_b - z_c)^2 is held to the stiffness of that
     // strain, G V, as inertiaMatrix holds the rotation and strain: at one penalty it was 85
     // times that stiffness for the Xiangjiaba dam, and the dam took 500 static steps to rest.
-    const double shear = elastic_[static_cast<std::size_t>(block.material)].diagonal()[5];
+    const double shear = shearModulus(elastic_[static_cast<std::size_t>(block.material)]);
     const double spread = block.second.trace() / block.volume;  // mean |X - X_c|^2 (m2)
     if (spread > 0.0) {
       cap = std::min(cap, kStaticStrainInertiaRatio * shear * block.volume / spread);
