@@ -178,6 +178,22 @@ void updateClosedContact(Contact& c, double d, const Vec3& slip, const Vec3& rig
   // the 512 points under a dam's lifting toe held 3e5 N of tension at 4.5e-10 m, and
   // the dam stood at 1.24 times its sliding factor).
   if (!stays_closed && d > tension / rules.penalty + c.share * rules.open_tolerance) {
+    if (c.state == ContactState::Locked && c.toggles >= 2) {
+      // A locked contact that opened and closed again in this step, and pulls: its shear
+      // springs, not its normal spring, pull it open (closing a contact that penetrates solved
+      // open gives it a compressive normal spring alone), as they carry a shear that Coulomb's
+      // law gives no contact without a normal force. It slides instead (its friction f N is
+      // nil while it pulls) and opens only if it still pulls so. Opened at once, it penetrated
+      // again solved open: such contacts flipped open and closed until the step was redone,
+      // and a landing pile of 1 000 cubes took steps down to 1.3e-5 s (docs/dda3d.md,
+      // "Open-close iteration").
+      c.state = ContactState::Sliding;
+      c.normal_force = 0.0;
+      ++c.flips;
+      c.slide_direction = rigid_slip.norm() > 0.0 ? Vec3(rigid_slip.normalized()) : Vec3::Zero();
+      c.slip_length = 0.0;
+      return;
+    }
     ++c.toggles;
     // Opened: a crack, whatever the joint model (its cohesion and tension are gone).
     c.state = ContactState::Open;

@@ -60,7 +60,7 @@ struct DdaSettings {
   /// by 0.3, down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
   /// new state for the next step; one that closed always takes another iteration.
   double open_close_tolerance = 1e-4;
-  double iteration_time_step_factor = 0.3;  ///< dt multiplier when the iteration fails
+  double iteration_time_step_factor = 0.5;  ///< dt multiplier when the iteration fails
   int max_step_attempts = 40;               ///< redo limit per step
   /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a
   /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
