@@ -50,18 +50,21 @@ struct DdaSettings {
   double fixed_point_penalty_ratio = 10.0;
   /// Per attempt (the 2D reference allows 6 + 2). A pile of 1000 cubes landing on its base
   /// opens and closes a thousand contacts in one step and settles in 20-30 iterations, the
-  /// changes falling off as a cascade; with 20 it redid such steps at 0.3 dt, to 6e-5 s.
+  /// changes falling off as a cascade; with 20 such steps are redone.
   int max_open_close_iterations = 40;
   /// The open-close iteration has settled when no contact closed and at most this share of
   /// the contacts opened or changed between locked and sliding in its last update (rounded
   /// down: below 1 / this many contacts, none may change, the classic rule). Among the 2e5 contacts
   /// of a large model a few always sit at a round-off gap where closing pushes them open and
   /// opening lets them close; with no allowance every step then failed its 20 iterations and cut dt
-  /// by 0.3, down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
+  /// down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
   /// new state for the next step; one that closed always takes another iteration.
   double open_close_tolerance = 1e-4;
-  double iteration_time_step_factor = 0.5;  ///< dt multiplier when the iteration fails
-  int max_step_attempts = 40;               ///< redo limit per step
+  /// dt multiplier when the iteration fails. At 0.3 a step that failed three times in a row
+  /// fell from 2e-3 s below 1e-4 s: landing piles of cubes took such steps (docs/dda3d.md,
+  /// "Open-close iteration").
+  double iteration_time_step_factor = 0.5;
+  int max_step_attempts = 40;  ///< redo limit per step
   /// An open contact closes when d < -this * l0. The 2D reference uses 2e-4, which lets a
   /// contact that opened by round-off sink 2e-4 l0 without resistance and tilts resting
   /// blocks. A contact closed at that depth starts with 1/2 k_n d^2 in its spring, which the
