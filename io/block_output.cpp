@@ -38,21 +38,23 @@ std::string formatBlocksCsv(const blocks::BlockModel& model,
 
 std::string formatBlocksVtu(const blocks::BlockModel& model) {
   VtuPiece vtu;
+  PointWelder welder(vtu.points);
   std::vector<std::int32_t> id, material;
   std::vector<double> volume, piece_volume;
+  std::vector<std::int64_t> point_of;
   for (const blocks::Block& b : model.blocks) {
     for (const blocks::Piece& p : b.pieces) {
-      const std::int64_t base = static_cast<std::int64_t>(vtu.points.size() / 3);
+      point_of.clear();
       for (const geometry::Vec3& v : p.shape.vertices) {
-        vtu.points.insert(vtu.points.end(), {v.x(), v.y(), v.z()});
-        vtu.connectivity.push_back(base + static_cast<std::int64_t>(&v - p.shape.vertices.data()));
+        point_of.push_back(welder.index(v.x(), v.y(), v.z()));
+        vtu.connectivity.push_back(point_of.back());
       }
       vtu.offsets.push_back(static_cast<std::int64_t>(vtu.connectivity.size()));
       vtu.types.push_back(42);
       vtu.faces.push_back(static_cast<std::int64_t>(p.shape.faces.size()));
       for (const std::vector<int>& face : p.shape.faces) {
         vtu.faces.push_back(static_cast<std::int64_t>(face.size()));
-        for (int v : face) vtu.faces.push_back(base + v);
+        for (int v : face) vtu.faces.push_back(point_of[static_cast<std::size_t>(v)]);
       }
       vtu.faceoffsets.push_back(static_cast<std::int64_t>(vtu.faces.size()));
       id.push_back(b.id);
@@ -71,20 +73,22 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
 std::string formatFacesVtu(const blocks::BlockModel& model,
                            const std::function<int(const blocks::FaceSource&)>& joint_of) {
   VtuPiece vtu;
+  PointWelder welder(vtu.points);
   std::vector<std::int32_t> block, piece_index, kind, source, joint;
+  std::vector<std::int64_t> point_of;
   for (const blocks::Block& b : model.blocks) {
     for (std::size_t p = 0; p < b.pieces.size(); ++p) {
       const blocks::Piece& piece = b.pieces[p];
       const std::vector<std::vector<int>>& faces = piece.shape.faces;
-      const std::int64_t base = static_cast<std::int64_t>(vtu.points.size() / 3);
+      point_of.clear();
       for (const geometry::Vec3& x : piece.shape.vertices) {
-        vtu.points.insert(vtu.points.end(), {x.x(), x.y(), x.z()});
+        point_of.push_back(welder.index(x.x(), x.y(), x.z()));
       }
       for (std::size_t f = 0; f < faces.size(); ++f) {
         const blocks::FaceSource from =
             f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};
         if (from.kind == blocks::FaceKind::Fictitious) continue;
-        for (int v : faces[f]) vtu.connectivity.push_back(base + v);
+        for (int v : faces[f]) vtu.connectivity.push_back(point_of[static_cast<std::size_t>(v)]);
         vtu.offsets.push_back(static_cast<std::int64_t>(vtu.connectivity.size()));
         vtu.types.push_back(7);
         block.push_back(b.id);

@@ -1,7 +1,11 @@
 #include "io/vtu.h"
 
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
 
 namespace rockmass::io {
 namespace {
@@ -9,10 +13,50 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "VTU files are written little-endian; add byte swapping for this platform");
 
-/// Appends one inline binary <DataArray>. The UInt64 byte count that precedes the values
-/// is base64-encoded on its own, then the values: VTK's reader decodes the two separately.
+/// Uncompressed bytes per zlib block: VTK's own writer's default (vtkXMLWriter::BlockSize).
+constexpr std::size_t kBlockSize = std::size_t{1} << 15;
+
+/// `bytes` as VTK's zlib compressor writes them (vtkZLibDataCompressor): the blocks of
+/// kBlockSize bytes each compressed on its own, preceded by the UInt64 header [block
+/// count, block size, size of the last block when partial (else 0), compressed size of each
+/// block]; the header is base64-encoded on its own, then the compressed blocks together.
+/// Blocks are compressed in parallel; each block's bytes depend on the block alone, so the
+/// file does not depend on the thread count.
+std::string compressedText(const std::string& bytes) {
+  const std::size_t n = bytes.size();
+  const std::size_t blocks = (n + kBlockSize - 1) / kBlockSize;
+  std::vector<std::string> packed(blocks);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    const std::size_t begin = b * kBlockSize;
+    const std::size_t size = std::min(kBlockSize, n - begin);
+    uLongf packed_size = compressBound(static_cast<uLong>(size));
+    std::string& block = packed[b];
+    block.resize(packed_size);
+    // Level 6, zlib's default and VTK's: measured on the Xiangjiaba blocks.vtu
+    // (docs/scene-format.md, "VTU files").
+    if (compress2(reinterpret_cast<Bytef*>(block.data()), &packed_size,
+                  reinterpret_cast<const Bytef*>(bytes.data() + begin), static_cast<uLong>(size),
+                  Z_DEFAULT_COMPRESSION) != Z_OK) {
+      throw std::runtime_error("zlib could not compress a VTU array block");
+    }
+    block.resize(packed_size);
+  });
+  std::vector<std::uint64_t> header{blocks, kBlockSize, n % kBlockSize};
+  std::string data;
+  std::size_t total = 0;
+  for (const std::string& block : packed) total += block.size();
+  data.reserve(total);
+  for (const std::string& block : packed) {
+    header.push_back(block.size());
+    data += block;
+  }
+  return base64Encode(std::string_view(reinterpret_cast<const char*>(header.data()),
+                                       header.size() * sizeof(std::uint64_t))) +
+         base64Encode(data);
+}
+
+/// Appends one inline binary <DataArray>, zlib-compressed (compressedText).
 void appendArray(std::string& out, const VtuArray& array) {
-  const std::uint64_t size = array.bytes.size();
   out += "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name + "\"";
   // Scalars (and the cells' topology arrays) carry no NumberOfComponents, as VTK's own writer
   // does: meshio reads a topology array that has it as a 2D table and fails.
@@ -23,8 +67,7 @@ void appendArray(std::string& out, const VtuArray& array) {
     out += " ComponentName" + std::to_string(c) + "=\"" + array.component_names[c] + "\"";
   }
   out += " format=\"binary\">\n          ";
-  out += base64Encode(std::string_view(reinterpret_cast<const char*>(&size), sizeof size));
-  out += base64Encode(array.bytes);
+  out += compressedText(array.bytes);
   out += "\n        </DataArray>\n";
 }
 
@@ -98,6 +141,22 @@ bool needsPointCountOrder(const VtuPiece& piece) {
 
 }  // namespace
 
+std::size_t PointWelder::KeyHash::operator()(const Key& k) const {
+  std::size_t h = 0;
+  for (const double v : {k.x, k.y, k.z}) {
+    h = h * 0x9E3779B97F4A7C15ull + std::hash<double>{}(v);
+  }
+  return h;
+}
+
+std::int64_t PointWelder::index(double x, double y, double z) {
+  // + 0.0 turns -0 into 0 (the two compare equal, and must hash alike).
+  const Key key{x + 0.0, y + 0.0, z + 0.0};
+  const auto [it, added] = index_.try_emplace(key, static_cast<std::int64_t>(points_.size() / 3));
+  if (added) points_.insert(points_.end(), {key.x, key.y, key.z});
+  return it->second;
+}
+
 std::string base64Encode(std::string_view bytes) {
   static constexpr char kAlphabet[] =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -133,7 +192,7 @@ std::string formatVtu(const VtuPiece& given) {
   std::string out =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n"
+      "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
       "  <UnstructuredGrid>\n"
       "    <Piece NumberOfPoints=\"" +
       std::to_string(piece.points.size() / 3) + "\" NumberOfCells=\"" +

@@ -1,11 +1,13 @@
 #pragma once
-/// VTK XML UnstructuredGrid (.vtu) files with inline binary arrays (base64), the form
-/// ParaView reads fastest and stores in about half the bytes of ASCII. Shared by every
-/// stage that writes cells: fractures, blocks, DDA frames.
+/// VTK XML UnstructuredGrid (.vtu) files with inline binary arrays, zlib-compressed in blocks
+/// and base64-encoded as VTK's own writer does (compressor="vtkZLibDataCompressor"): VTK,
+/// ParaView and meshio read them. Shared by every stage that writes cells: fractures,
+/// blocks, DDA frames, damage maps.
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 namespace rockmass::io {
@@ -64,6 +66,28 @@ struct VtuPiece {
   std::vector<std::int64_t> faceoffsets;
   std::vector<VtuArray> cell_data;   ///< one value (tuple) per cell
   std::vector<VtuArray> point_data;  ///< one value (tuple) per point
+};
+
+/// Gathers the points of cells that share vertices: each distinct point (bitwise equal
+/// coordinates, -0 as 0) once, in the order first met. The pieces of a cut share their
+/// vertices exactly (the cutter rounds each exact vertex once), so the blocks' and faces'
+/// files weld 3.7 million piece vertices of the Xiangjiaba model into the points they are.
+class PointWelder {
+ public:
+  explicit PointWelder(std::vector<double>& points) : points_(points) {}
+  /// The index of (x, y, z) in the points, appended when new.
+  std::int64_t index(double x, double y, double z);
+
+ private:
+  struct Key {
+    double x, y, z;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const;
+  };
+  std::vector<double>& points_;
+  std::unordered_map<Key, std::int64_t, KeyHash> index_;
 };
 
 /// The .vtu text of `piece`.

@@ -11,13 +11,14 @@ packages=(
   libcli11-dev           # app: command line
   nlohmann-json3-dev     # io: summary.json
   libtbb-dev             # parallel loops
+  zlib1g-dev             # io: VTU arrays compressed as VTK compresses them
   libembree-dev          # rqd: ray casting of scanlines through the discs
   libopenvdb-dev libboost-iostreams-dev   # rqd: RQD and P32 volumes (OpenVDB grids)
   libcgal-dev libgmp-dev libmpfr-dev   # blocks: exact Nef polyhedra
   libassimp-dev          # blocks, io: mesh domains and block meshes
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
   python3-matplotlib python3-numpy     # figures from the CSV outputs
-  python3-meshio         # tests: the VTU files read by meshio
+  python3-meshio python3-vtk9   # tests: the VTU files read by meshio and by VTK
   libgtest-dev libgmock-dev   # tests
   libbenchmark-dev       # bench
   clang-14 libclang-rt-14-dev   # fuzz: libFuzzer targets of the input readers

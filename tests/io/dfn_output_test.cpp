@@ -134,7 +134,7 @@ TEST(DfnOutputVtu, PolygonCellsWithCellData) {
   EXPECT_TRUE(
       vtu.starts_with("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
                       "version=\"1.0\" byte_order=\"LittleEndian\" "
-                      "header_type=\"UInt64\">\n"));
+                      "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"));
   EXPECT_TRUE(vtu.ends_with("</VTKFile>\n"));
   EXPECT_EQ(occurrences(vtu, "<DataArray "), 7u);
   EXPECT_EQ(occurrences(vtu, "</DataArray>"), 7u);

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""The VTU files rockmass writes, read by meshio (Debian's python3-meshio), a reader this
-project does not write: fractures.vtu, blocks.vtu, faces.vtu and the DDA frames of a small
-scene. Each must open, hold one cell per fracture / piece / face / piece, and carry its data
-arrays. (meshio read the polyhedron files as a 2D table and failed while the cells' topology
-arrays carried NumberOfComponents="1", which VTK's own writer leaves out.)
+"""The VTU files rockmass writes, read by two readers this project does not write: meshio
+(Debian's python3-meshio) and VTK's own XML reader (python3-vtk9, what ParaView uses):
+fractures.vtu, blocks.vtu, faces.vtu, the DDA frames and the damage maps of a small scene.
+Each must open without an error or a warning, hold one cell per fracture / piece / face /
+piece, and carry its data arrays; the arrays are zlib-compressed as VTK writes them.
+(meshio read the polyhedron files as a 2D table and failed while the cells' topology arrays
+carried NumberOfComponents="1", which VTK's own writer leaves out.)
 
 Usage: meshio_read_test.py ROCKMASS_BINARY
 """
@@ -14,6 +16,7 @@ import sys
 import tempfile
 
 import meshio
+import vtk
 
 SCENE = """version: 1
 name: meshio-check
@@ -77,6 +80,27 @@ def main():
                 if array not in mesh.cell_data:
                     failures.append(f"{name}: no cell array '{array}' ({list(mesh.cell_data)})")
 
+        def vtk_check(name, expected_cells, arrays):
+            # VTK reports through its output window: every error or warning it prints while
+            # reading the file fails the check.
+            messages = vtk.vtkStringOutputWindow()
+            vtk.vtkOutputWindow.SetInstance(messages)
+            reader = vtk.vtkXMLUnstructuredGridReader()
+            reader.SetFileName(os.path.join(out, name))
+            reader.Update()
+            said = messages.GetOutput().strip()
+            if said:
+                failures.append(f"{name}: VTK says: {said[:300]}")
+            grid = reader.GetOutput()
+            if expected_cells is not None and grid.GetNumberOfCells() != expected_cells:
+                failures.append(f"{name}: VTK reads {grid.GetNumberOfCells()} cells, "
+                                f"expected {expected_cells}")
+            data = grid.GetCellData() if arrays[0] != "point:" else grid.GetPointData()
+            for array in arrays:
+                if array != "point:" and data.GetArray(array) is None:
+                    failures.append(f"{name}: VTK finds no array '{array}'")
+            return grid
+
         fractures = rows(os.path.join(out, "fractures.csv"))
         blocks = rows(os.path.join(out, "blocks.csv"))
         pieces = sum(int(b["pieces"]) for b in blocks)
@@ -104,6 +128,22 @@ def main():
             for array in ("state", "damage", "opening", "slip", "normal_force", "normal"):
                 if array not in mesh.point_data:
                     failures.append(f"{name}: no point array '{array}' ({list(mesh.point_data)})")
+        vtk_check("fractures.vtu", len(fractures), ["id", "set"])
+        grid = vtk_check("blocks.vtu", pieces, ["id", "material", "volume", "piece_volume"])
+        # The pieces share their welded points: the grid's bounds, as VTK computes them from
+        # the points, are the blocks' bounds in blocks.csv.
+        bounds = grid.GetBounds()
+        low = [min(float(b[k]) for b in blocks) for k in ("xmin", "ymin", "zmin")]
+        high = [max(float(b[k]) for b in blocks) for k in ("xmax", "ymax", "zmax")]
+        for axis in range(3):
+            if abs(bounds[2 * axis] - low[axis]) > 1e-9 or abs(bounds[2 * axis + 1] - high[axis]) > 1e-9:
+                failures.append(f"blocks.vtu: VTK bounds {bounds}, blocks.csv {low} {high}")
+                break
+        vtk_check("faces.vtu", None, ["block", "joint"])
+        for frame in frames:
+            vtk_check(frame, None, ["block", "displacement", "velocity", "stress"])
+        for name in maps:
+            vtk_check(name, None, ["point:", "state", "damage", "opening", "slip"])
         # The data stay with their cells: each block's pieces add up to its volume.
         mesh = meshio.read(os.path.join(out, "blocks.vtu"))
         ids = [int(x) for part in mesh.cell_data["id"] for x in part]
@@ -120,7 +160,7 @@ def main():
             failures.append(f"too small a check: {len(blocks)} blocks, {len(fractures)} fractures")
         for failure in failures:
             print(failure)
-        print(f"meshio read {3 + len(frames) + len(maps)} files: {len(fractures)} fractures, "
+        print(f"meshio and VTK read {3 + len(frames) + len(maps)} files: {len(fractures)} fractures, "
               f"{len(blocks)} blocks ({pieces} pieces), {len(frames)} frames")
         return 1 if failures else 0
 

@@ -1,7 +1,10 @@
 #pragma once
 /// Reading back what io/vtu.cpp writes, independently of the writer: attributes, base64
-/// binary DataArrays. Test-only; the tests must not need VTK or Python.
+/// binary DataArrays, zlib-compressed in blocks as VTK's format describes them
+/// (vtkZLibDataCompressor; zlib's uncompress inflates). Test-only; the tests must not need
+/// VTK or Python.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -50,8 +53,43 @@ inline std::vector<double> valuesOf(const std::string& bytes) {
   return values;
 }
 
-/// The values of the binary DataArray called `name`: a base64 UInt64 byte count (12
-/// characters), then the base64 values. Fails the test when the count disagrees.
+/// The number of base64 characters of `bytes` bytes.
+inline std::size_t base64Length(std::size_t bytes) {
+  return (bytes + 2) / 3 * 4;
+}
+
+/// The bytes of one compressed array text: the base64 UInt64 header [blocks, block size,
+/// last partial block size, compressed size of each block], then the base64 blocks.
+inline std::string inflateArray(const std::string& body) {
+  const std::string first = base64Decode(body.substr(0, base64Length(3 * 8)));
+  std::uint64_t head[3];
+  std::memcpy(head, first.data(), sizeof head);
+  const std::size_t header_chars = base64Length((3 + head[0]) * 8);
+  const std::string header = base64Decode(body.substr(0, header_chars));
+  std::vector<std::uint64_t> words(3 + head[0]);
+  std::memcpy(words.data(), header.data(), words.size() * 8);
+  const std::string packed = base64Decode(body.substr(header_chars));
+  std::string bytes;
+  std::size_t at = 0;
+  for (std::uint64_t b = 0; b < head[0]; ++b) {
+    const bool partial_last = b + 1 == head[0] && head[2] != 0;
+    uLongf size = static_cast<uLongf>(partial_last ? head[2] : head[1]);
+    std::string block(size, '\0');
+    EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(block.data()), &size,
+                         reinterpret_cast<const Bytef*>(packed.data() + at),
+                         static_cast<uLong>(words[3 + b])),
+              Z_OK);
+    block.resize(size);
+    bytes += block;
+    at += words[3 + b];
+  }
+  EXPECT_EQ(at, packed.size());
+  return bytes;
+}
+
+/// The values of the binary DataArray called `name`: uncompressed (a base64 UInt64 byte
+/// count, 12 characters, then the base64 values; the count must agree) or, when the file
+/// names vtkZLibDataCompressor, compressed (inflateArray).
 inline std::vector<double> dataArray(const std::string& xml, const std::string& name) {
   const std::size_t tag = xml.find("Name=\"" + name + "\"");
   if (tag == std::string::npos) return {};
@@ -61,11 +99,16 @@ inline std::vector<double> dataArray(const std::string& xml, const std::string& 
   const std::size_t begin = xml.find('>', tag) + 1;
   std::string body = xml.substr(begin, xml.find("</DataArray>", begin) - begin);
   body.erase(std::remove_if(body.begin(), body.end(), ::isspace), body.end());
-  const std::string header = base64Decode(body.substr(0, 12));
-  const std::string bytes = base64Decode(body.substr(12));
-  std::uint64_t size = 0;
-  std::memcpy(&size, header.data(), sizeof size);
-  EXPECT_EQ(size, bytes.size()) << name;
+  std::string bytes;
+  if (attribute(xml, "compressor") == "vtkZLibDataCompressor") {
+    bytes = inflateArray(body);
+  } else {
+    const std::string header = base64Decode(body.substr(0, 12));
+    bytes = base64Decode(body.substr(12));
+    std::uint64_t size = 0;
+    std::memcpy(&size, header.data(), sizeof size);
+    EXPECT_EQ(size, bytes.size()) << name;
+  }
   if (type == "Float64") return valuesOf<double>(bytes);
   if (type == "Int64") return valuesOf<std::int64_t>(bytes);
   if (type == "Int32") return valuesOf<std::int32_t>(bytes);
