@@ -40,6 +40,13 @@ void writeBlocksFiles(const fs::path& out, const io::Scene& scene, const blocks:
 
 namespace {
 
+/// The scene's material names, in the order of the blocks' material indices.
+std::vector<std::string> materialNames(const io::Scene& scene) {
+  std::vector<std::string> names;
+  for (const io::Material& material : scene.materials) names.push_back(material.name);
+  return names;
+}
+
 /// Options of `rockmass blocks` beyond the common ones.
 struct BlocksOptions {
   CommonOptions common;
@@ -64,7 +71,7 @@ int runBlocks(const BlocksOptions& options) {
   writeBlocksFiles(out, scene, cut.model, dfn.network);
   if (const auto format = io::parseMeshFormat(options.mesh_format)) {
     io::writeFileAtomically(out / ("blocks." + io::meshExtension(*format)),
-                            io::formatBlockMesh(cut.model, *format));
+                            io::formatBlockMesh(cut.model, *format, {}, materialNames(scene)));
   }
   io::RunInfo run;
   run.command = "blocks";

@@ -1,7 +1,7 @@
 #pragma once
-/// Block meshes through assimp (`rockmass blocks --mesh-format obj|ply|stl|glb`): one named
-/// mesh "block_<id>" per block, its closed outer surface (blocks/block_surface.h) as
-/// outward triangles. assimp stays inside block_mesh.cpp.
+/// Block meshes through assimp and tinygltf (`rockmass blocks --mesh-format obj|ply|stl|glb`): one
+/// named mesh "block_<id>" per block, its closed outer surface (blocks/block_surface.h) as outward
+/// triangles. assimp stays inside block_mesh.cpp.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -27,12 +27,15 @@ std::string meshExtension(MeshFormat format);
 /// OBJ: one `o`/`g` group per block (text); PLY: binary little-endian, all blocks in one
 /// vertex/face list (PLY has no mesh names: block i is the i-th range of
 /// `surfaces[i].triangles.size()` faces); STL: binary, one solid (no names either, same
-/// ranges); glb: glTF 2.0 binary, one named mesh and node per block. `surfaces` must be
-/// blockSurface() of each block of `model` in order (pass an empty vector to compute them).
-/// Deterministic: the same model gives the same bytes. Throws std::runtime_error when
-/// assimp fails.
+/// ranges); glb: glTF 2.0 binary written with tinygltf, one named mesh and node per block,
+/// the node's extras {id, volume (m3), material, pieces}, one glTF material per entry of
+/// `material_names` (the blocks' material indices), all under a root node "blocks" that
+/// turns the model's z up into glTF's y up. `surfaces` must be blockSurface() of each block
+/// of `model` in order (pass an empty vector to compute them). Deterministic: the same model
+/// gives the same bytes. Throws std::runtime_error when assimp or tinygltf fails.
 std::string formatBlockMesh(const blocks::BlockModel& model, MeshFormat format,
-                            std::vector<blocks::TriangleSurface> surfaces = {});
+                            std::vector<blocks::TriangleSurface> surfaces = {},
+                            const std::vector<std::string>& material_names = {});
 
 /// A mesh read back from a file: its name (empty when the format has none) and triangles.
 struct ImportedMesh {

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package rockmass needs to build, test and run.
 # Idempotent: packages already installed are skipped, and apt-get is not
-# called at all when nothing is missing.
+# called at all when nothing is missing; then the tests' glTF validator (npm).
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config git
@@ -16,6 +17,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev   # rqd: RQD and P32 volumes (OpenVDB grids)
   libcgal-dev libgmp-dev libmpfr-dev   # blocks: exact Nef polyhedra
   libassimp-dev          # blocks, io: mesh domains and block meshes
+  libtinygltf-dev        # io: the blocks as glb
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
   python3-matplotlib python3-numpy     # figures from the CSV outputs
   python3-meshio python3-vtk9   # tests: the VTU files read by meshio and by VTK
@@ -23,6 +25,7 @@ packages=(
   libbenchmark-dev       # bench
   clang-14 libclang-rt-14-dev   # fuzz: libFuzzer targets of the input readers
   clang-format-14        # tests: the formatting check
+  nodejs                 # tests: Khronos' glTF validator (npm, below) reads the glb
 )
 
 missing=()
@@ -34,12 +37,24 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "setup: installing ${missing[*]}"
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Khronos' glTF validator (the npm package, pinned) for the tests of blocks.glb, in
+# tools/node/ of the source tree (not tracked). Without the npm registry the glb test fails
+# and says so; nothing else needs it.
+validator_version=2.0.0-dev.3.10
+validator=tools/node/node_modules/gltf-validator/package.json
+if ! grep -q "\"version\": \"$validator_version\"" "$validator" 2>/dev/null; then
+  echo "setup: installing gltf-validator $validator_version (npm) into tools/node"
+  if ! npm install --prefix tools/node --no-save --no-audit --no-fund --silent \
+    "gltf-validator@$validator_version"; then
+    echo "setup: warning: npm could not install gltf-validator; the glb test will fail" >&2
+  fi
+fi
