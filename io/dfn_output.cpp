@@ -30,9 +30,13 @@ std::vector<Vec3> outputOutline(const Disc& disc, int segments) {
 
 FabFile toFab(const FractureNetwork& network, int segments) {
   FabFile fab;
+  for (const auto& set : network.sets) fab.set_names.push_back(set.name);
+  // The ellipse the outline stands for (fractures.csv has it too).
+  fab.property_names = {"Semi-major axis (m)", "Semi-minor axis (m)"};
   fab.fractures.reserve(network.discs.size());
   for (const Disc& disc : network.discs) {
-    fab.fractures.push_back({disc.id, disc.set + 1, outputOutline(disc, segments)});
+    fab.fractures.push_back(
+        {disc.id, disc.set + 1, outputOutline(disc, segments), {disc.a, disc.b}});
   }
   return fab;
 }

@@ -1,5 +1,7 @@
 #include "io/fab.h"
 
+#include <algorithm>
+
 #include <cassert>
 #include <charconv>
 #include <cmath>
@@ -133,11 +135,20 @@ class FabParser {
       } else if (equalsIgnoringCase(*section, "FRACTURE")) {
         parseFractures(*section, fab);
         has_fracture_section = true;
+      } else if (equalsIgnoringCase(*section, "SETS")) {
+        fab.set_names = parseNames(*section, "Set");
+      } else if (equalsIgnoringCase(*section, "PROPERTIES")) {
+        fab.property_names = parseNames(*section, "Prop");
       } else {
         skipSection(*section);
       }
     }
     if (!has_fracture_section) fail(0, "no BEGIN FRACTURE section");
+    // Property values belong to the names: a fracture whose header does not carry one value
+    // per property keeps none (files of other tools may list properties they do not write).
+    for (FabFracture& fracture : fab.fractures) {
+      if (fracture.properties.size() != fab.property_names.size()) fracture.properties.clear();
+    }
     if (declared_fractures_ &&
         *declared_fractures_ != static_cast<long long>(fab.fractures.size())) {
       fail(declared_fractures_line_,
@@ -263,6 +274,15 @@ class FabParser {
       fracture.vertices.push_back(vertex);
     }
     checkPolygon(fracture.vertices, name, header.number);
+    // Values after the set: the properties (numbers), or nothing of use.
+    for (std::size_t w = 3; w < header.words.size(); ++w) {
+      const std::optional<double> value = tryNumber<double>(header.words[w]);
+      if (!value) {
+        fracture.properties.clear();
+        break;
+      }
+      fracture.properties.push_back(*value);
+    }
     const FabLine normal = lineInside(section);
     if (tryNumber<long long>(normal.words[0]) != 0) {
       fail(normal.number, "expected the normal line '0 nx ny nz' after the " +
@@ -311,7 +331,33 @@ class FabParser {
     }
   }
 
-  /// Skips an optional section (PROPERTIES, SETS, TESSFRACTURE, ROCKBLOCK...) up to its END.
+  /// The names of a SETS or PROPERTIES section: lines "<prefix><k> = ... \"name\"" give
+  /// name k (1-based); other lines are skipped, as tools write more there than rockmass uses.
+  std::vector<std::string> parseNames(std::string_view section, std::string_view prefix) {
+    std::vector<std::string> names;
+    for (FabLine line = lineInside(section); !isSectionEnd(line, section);
+         line = lineInside(section)) {
+      const std::string_view text = line.text;
+      const std::size_t equals = text.find('=');
+      const std::size_t open = text.find('"');
+      const std::size_t close = open == std::string_view::npos ? open : text.find('"', open + 1);
+      if (equals == std::string_view::npos || close == std::string_view::npos) continue;
+      const std::string_view key = trimmed(text.substr(0, equals));
+      if (key.size() <= prefix.size() ||
+          !equalsIgnoringCase(key.substr(0, prefix.size()), prefix)) {
+        continue;
+      }
+      const std::optional<long long> k = tryNumber<long long>(key.substr(prefix.size()));
+      // At most 10^5 names: a garbled index must not allocate without bound.
+      if (!k || *k < 1 || *k > 100000) continue;
+      if (names.size() < static_cast<std::size_t>(*k)) names.resize(static_cast<std::size_t>(*k));
+      names[static_cast<std::size_t>(*k - 1)] =
+          std::string(text.substr(open + 1, close - open - 1));
+    }
+    return names;
+  }
+
+  /// Skips an optional section (TESSFRACTURE, ROCKBLOCK...) up to its END.
   void skipSection(std::string_view section) {
     while (!isSectionEnd(lineInside(section), section)) {
     }
@@ -340,7 +386,15 @@ std::optional<std::string> readWholeFile(const std::filesystem::path& file) {
 
 }  // namespace
 
-/// FORMAT block, then one FRACTURE section with header, vertex and Newell-normal lines.
+/// `name` as a FAB string: its double quotes (which would end it) become single quotes.
+std::string fabString(const std::string& name) {
+  std::string out = name;
+  std::replace(out.begin(), out.end(), '"', '\'');
+  return '"' + out + '"';
+}
+
+/// FORMAT, PROPERTIES and SETS blocks, one FRACTURE section with header, vertex and
+/// Newell-normal lines, an empty TESSFRACTURE section.
 std::string formatFab(const FabFile& fab) {
   std::size_t node_count = 0;
   for (const FabFracture& fracture : fab.fractures) node_count += fracture.vertices.size();
@@ -357,20 +411,35 @@ std::string formatFab(const FabFile& fab) {
       "    No_Nodes = " +
       std::to_string(node_count) +
       "\n"
-      "    No_Properties = 0\n"
+      "    No_Properties = " +
+      std::to_string(fab.property_names.size()) +
+      "\n"
       "END FORMAT\n"
       "\n"
-      "BEGIN FRACTURE\n";
+      "BEGIN PROPERTIES\n";
+  for (std::size_t k = 0; k < fab.property_names.size(); ++k) {
+    out += "    Prop" + std::to_string(k + 1) + " = (Real*4) " + fabString(fab.property_names[k]) +
+           '\n';
+  }
+  out += "END PROPERTIES\n\nBEGIN SETS\n";
+  for (std::size_t k = 0; k < fab.set_names.size(); ++k) {
+    out += "    Set" + std::to_string(k + 1) + " = " + fabString(fab.set_names[k]) + '\n';
+  }
+  out += "END SETS\n\nBEGIN FRACTURE\n";
   for (const FabFracture& fracture : fab.fractures) {
     assert(fracture.vertices.size() >= 3 && "a FAB polygon needs at least 3 vertices");
     out += std::to_string(fracture.id) + ' ' + std::to_string(fracture.vertices.size()) + ' ' +
-           std::to_string(fracture.set) + '\n';
+           std::to_string(fracture.set);
+    for (const double value : fracture.properties) out += ' ' + formatDouble(value);
+    out += '\n';
     for (std::size_t k = 0; k < fracture.vertices.size(); ++k) {
       appendPointLine(out, std::to_string(k + 1), fracture.vertices[k]);
     }
     appendPointLine(out, "0", geometry::polygonNormal(fracture.vertices));
   }
-  out += "END FRACTURE\n";
+  // Empty, but present: readers that expect FracMan's sections (porepy's asks for the
+  // tessellated fractures) find it.
+  out += "END FRACTURE\n\nBEGIN TESSFRACTURE\nEND TESSFRACTURE\n";
   return out;
 }
 

@@ -32,19 +32,30 @@ std::string parseError(const std::string& text) {
 /// or reading changes them.
 FabFile awkwardFab() {
   FabFile fab;
+  fab.set_names = {"J1", "fault \"F1\""};
+  fab.property_names = {"Semi-major axis (m)", "Aperture"};
   fab.fractures.push_back(
-      {1, 1, {Vec3(0.1, 1.0 / 3.0, -1e-300), Vec3(123456.789, 0.2, 7.0), Vec3(1.0, 2.0, 3.0)}});
+      {1,
+       1,
+       {Vec3(0.1, 1.0 / 3.0, -1e-300), Vec3(123456.789, 0.2, 7.0), Vec3(1.0, 2.0, 3.0)},
+       {1.0 / 3.0, 1e-300}});
   fab.fractures.push_back({9007199254740993LL,
                            12,
                            {Vec3(-0.0, 0.0, 1e11), Vec3(1e-7, 0.0, 1e11),
-                            Vec3(1e-7, 2.0 / 3.0, 1e11), Vec3(0.0, 2.0 / 3.0, 1e11 + 0.0078125)}});
+                            Vec3(1e-7, 2.0 / 3.0, 1e11), Vec3(0.0, 2.0 / 3.0, 1e11 + 0.0078125)},
+                           {7.0, -0.0}});
   return fab;
 }
 
 TEST(FabFormat, WritesTheFormatBlockAndNewellNormal) {
+  // As FracMan writes a FAB file: PROPERTIES, SETS with names, the property values after the
+  // set on the header line, an empty TESSFRACTURE section (pyfracman needs the property
+  // table, porepy the tessellated section).
   FabFile fab;
+  fab.set_names = {"J1", "J2"};
+  fab.property_names = {"Semi-major axis (m)"};
   fab.fractures.push_back(
-      {4, 2, {Vec3(0, 0, 0.5), Vec3(2, 0, 0.5), Vec3(2, 1.5, 0.5), Vec3(0, 1.5, 0.5)}});
+      {4, 2, {Vec3(0, 0, 0.5), Vec3(2, 0, 0.5), Vec3(2, 1.5, 0.5), Vec3(0, 1.5, 0.5)}, {2.5}});
   EXPECT_EQ(formatFab(fab),
             "BEGIN FORMAT\n"
             "    Format = Ascii\n"
@@ -54,17 +65,29 @@ TEST(FabFormat, WritesTheFormatBlockAndNewellNormal) {
             "    No_Fractures = 1\n"
             "    No_TessFractures = 0\n"
             "    No_Nodes = 4\n"
-            "    No_Properties = 0\n"
+            "    No_Properties = 1\n"
             "END FORMAT\n"
             "\n"
+            "BEGIN PROPERTIES\n"
+            "    Prop1 = (Real*4) \"Semi-major axis (m)\"\n"
+            "END PROPERTIES\n"
+            "\n"
+            "BEGIN SETS\n"
+            "    Set1 = \"J1\"\n"
+            "    Set2 = \"J2\"\n"
+            "END SETS\n"
+            "\n"
             "BEGIN FRACTURE\n"
-            "4 4 2\n"
+            "4 4 2 2.5\n"
             "1 0 0 0.5\n"
             "2 2 0 0.5\n"
             "3 2 1.5 0.5\n"
             "4 0 1.5 0.5\n"
             "0 0 0 1\n"
-            "END FRACTURE\n");
+            "END FRACTURE\n"
+            "\n"
+            "BEGIN TESSFRACTURE\n"
+            "END TESSFRACTURE\n");
 }
 
 TEST(FabRoundTrip, WriteReadWriteIsByteIdentical) {
@@ -76,7 +99,11 @@ TEST(FabRoundTrip, WriteReadWriteIsByteIdentical) {
     EXPECT_EQ(parsed.fractures[i].id, fab.fractures[i].id);
     EXPECT_EQ(parsed.fractures[i].set, fab.fractures[i].set);
     EXPECT_EQ(parsed.fractures[i].vertices, fab.fractures[i].vertices);  // exact, not near
+    EXPECT_EQ(parsed.fractures[i].properties, fab.fractures[i].properties);
   }
+  // A double quote in a name is written as a single quote (it would end the FAB string).
+  EXPECT_EQ(parsed.set_names, (std::vector<std::string>{"J1", "fault 'F1'"}));
+  EXPECT_EQ(parsed.property_names, fab.property_names);
   EXPECT_EQ(formatFab(parsed), text);
 }
 
@@ -145,6 +172,38 @@ TEST(FabParse, SkipsOptionalSectionsAndExtraProperties) {
   EXPECT_EQ(fab.fractures[1].id, 8);
   EXPECT_EQ(fab.fractures[1].set, 1);
   EXPECT_EQ(fab.fractures[1].vertices.size(), 3u);
+  // The property names and each fracture's values are read; "Set = 1 \"J1\"" is not
+  // FracMan's "Set1 = \"J1\"" and names nothing.
+  EXPECT_EQ(fab.property_names, (std::vector<std::string>{"Transmissivity", "Aperture"}));
+  EXPECT_EQ(fab.fractures[0].properties, (std::vector<double>{1.5e-7, 0.001}));
+  EXPECT_EQ(fab.fractures[1].properties, (std::vector<double>{2e-7, 0.002}));
+  EXPECT_TRUE(fab.set_names.empty());
+}
+
+TEST(FabParse, SetNamesAndPropertiesThatDoNotMatch) {
+  // Set names by their index (Set3 before Set1 leaves Set2 unnamed); a fracture with fewer
+  // values than properties keeps none; a word that is no number ends the values.
+  const std::string text =
+      "BEGIN PROPERTIES\n"
+      "  Prop1 = (Real*4) \"A\"\n"
+      "  Prop2 = (Real*4) \"B\"\n"
+      "END PROPERTIES\n"
+      "BEGIN SETS\n"
+      "  Set3 = \"third\"\n"
+      "  Set1 = \"first\"\n"
+      "  Set999999999 = \"too far\"\n"
+      "END SETS\n"
+      "BEGIN FRACTURE\n"
+      "1 3 1 0.5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n0 0 0 1\n"
+      "2 3 1 0.5 x\n1 0 0 0\n2 1 0 0\n3 0 1 0\n0 0 0 1\n"
+      "3 3 1 0.5 0.25\n1 0 0 0\n2 1 0 0\n3 0 1 0\n0 0 0 1\n"
+      "END FRACTURE\n";
+  const FabFile fab = parseFab(text, "names.fab");
+  EXPECT_EQ(fab.set_names, (std::vector<std::string>{"first", "", "third"}));
+  ASSERT_EQ(fab.fractures.size(), 3u);
+  EXPECT_TRUE(fab.fractures[0].properties.empty());
+  EXPECT_TRUE(fab.fractures[1].properties.empty());
+  EXPECT_EQ(fab.fractures[2].properties, (std::vector<double>{0.5, 0.25}));
 }
 
 /// A FAB text and the exact message it must be rejected with.
