@@ -1,5 +1,7 @@
 #include "io/rqd_vdb.h"
 
+#include <cmath>
+
 #include "io/atomic_file.h"
 
 namespace rockmass::io {
@@ -22,7 +24,20 @@ std::vector<float> toFloat(const std::vector<double>& values) {
 }  // namespace
 
 std::string rqdGridName(double threshold) {
-  return "rqd_" + formatDouble(threshold) + "m";
+  // In millimetres, the integer part zero-padded to 5 digits: the names sort as the
+  // thresholds do (ParaView and the OpenVDB tools list grids by name; "rqd_10m" came before
+  // "rqd_1m"), up to 99.999 m.
+  // To the micrometre, so that 0.3 m is 300 mm and not 299.99999999999997.
+  const double mm = std::round(threshold * 1e6) / 1e3;
+  const double whole = std::floor(mm);
+  std::string digits = std::to_string(static_cast<long long>(whole));
+  if (digits.size() < 5) digits.insert(0, 5 - digits.size(), '0');
+  std::string fraction;
+  if (mm != whole) {
+    fraction = formatDouble(mm - whole);  // "0.5" ...
+    fraction = fraction.substr(fraction.find('.'));
+  }
+  return "rqd_" + digits + fraction + "mm";
 }
 
 std::vector<VdbScalarGrid> rqdVdbGrids(const rqd::RqdVolume& volume) {

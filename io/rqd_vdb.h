@@ -9,8 +9,9 @@
 
 namespace rockmass::io {
 
-/// Name of the grid of mean RQD at threshold t (m): "rqd_" + formatDouble(t) + "m", e.g.
-/// "rqd_1m", "rqd_0.1m", "rqd_10m".
+/// Name of the grid of mean RQD at threshold t (m): t in millimetres (to the micrometre),
+/// its integer part zero-padded to 5 digits, so that the names sort as the thresholds:
+/// "rqd_00100mm" (0.1 m), "rqd_01000mm" (1 m), "rqd_01500mm", "rqd_10000mm", "rqd_00062.5mm".
 std::string rqdGridName(double threshold);
 
 /// The grids of `rqd.vdb`: one per threshold (rqdGridName, units "percent", metadata

@@ -40,7 +40,7 @@ void requireValid(const VdbScalarGrid& grid) {
 }
 
 openvdb::FloatGrid::Ptr toOpenVdb(const VdbScalarGrid& in) {
-  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(/*background=*/0.0f);
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(in.background);
   grid->setName(in.name);
   openvdb::math::Transform::Ptr transform =
       openvdb::math::Transform::createLinearTransform(in.voxel_size);

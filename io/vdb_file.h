@@ -2,6 +2,7 @@
 /// OpenVDB files of scalar fields on regular grids (OpenVDB stays inside io/vdb_file.cpp).
 #include <array>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,12 +23,15 @@ struct VdbScalarGrid {
   std::string units;          ///< grid metadata "units", e.g. "m2/m3"
   std::string description;    ///< grid metadata "description"
   std::vector<std::pair<std::string, double>> numbers;  ///< more grid metadata (name, value)
+  /// The value outside the grid's voxels (inactive): NaN by default, "no value", so that a
+  /// tool sampling outside the grid does not read 0 (an RQD of 0 %).
+  float background = std::numeric_limits<float>::quiet_NaN();
 };
 
 /// Writes `grids` to the OpenVDB file `path`, atomically (writeAtomically). Each grid is a
 /// FloatGrid with a linear transform (uniform scale voxel_size, translation to
 /// first_voxel_center), every voxel of its block active (zeros included; outside it the
-/// background 0 is inactive), class GRID_UNKNOWN (a plain scalar field: neither a level set
+/// `background` is inactive), class GRID_UNKNOWN (a plain scalar field: neither a level set
 /// nor a fog volume, whose values would be read as densities in [0, 1]), 32-bit floats
 /// (not half), and metadata "units", "description" and the `numbers`. The file's UUID,
 /// random in OpenVDB, is replaced by a hash of the file's content, so that the same grids

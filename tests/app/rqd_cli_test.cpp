@@ -257,7 +257,7 @@ TEST(RqdCli, GridWritesAVolumeEqualToTheLibrary) {
   EXPECT_EQ(file.getGrids()->size(), 4u);  // 3 thresholds + p32
   std::vector<std::vector<double>> values = expected.mean_rqd;
   values.push_back(expected.p32);
-  const std::vector<std::string> names{"rqd_0.1m", "rqd_1m", "rqd_2m", "p32"};
+  const std::vector<std::string> names{"rqd_00100mm", "rqd_01000mm", "rqd_02000mm", "p32"};
   double p32_sum = 0.0;
   for (std::size_t g = 0; g < names.size(); ++g) {
     ASSERT_TRUE(file.hasGrid(names[g])) << names[g];

@@ -3,8 +3,10 @@
 #include "io/rqd_vdb.h"
 
 #include <gtest/gtest.h>
+
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <cmath>
 
 #include <stdexcept>
 
@@ -49,7 +51,7 @@ TEST_F(RqdVdbTest, ReadsBackWithOpenVdb) {
   openvdb::io::File file(path.string());
   file.open();
   EXPECT_EQ(file.getGrids()->size(), 4u);
-  const std::vector<std::string> names{"rqd_0.1m", "rqd_1m", "rqd_10m", "p32"};
+  const std::vector<std::string> names{"rqd_00100mm", "rqd_01000mm", "rqd_10000mm", "p32"};
   for (std::size_t g = 0; g < names.size(); ++g) {
     ASSERT_TRUE(file.hasGrid(names[g])) << names[g];
     const auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(names[g]));
@@ -58,8 +60,12 @@ TEST_F(RqdVdbTest, ReadsBackWithOpenVdb) {
     EXPECT_EQ(grid->metaValue<std::string>("units"), g < 3 ? "percent" : "m2/m3");
     EXPECT_DOUBLE_EQ(grid->voxelSize()[0], 2.5);
     EXPECT_TRUE(grid->hasUniformVoxels());
-    // Every cell is an active voxel, including those whose value is 0 (the background).
+    // Every cell is an active voxel, including those whose value is 0; outside the grid the
+    // value is NaN, no value (with 0 there, a tool sampling outside read RQD 0 %).
     EXPECT_EQ(grid->activeVoxelCount(), static_cast<openvdb::Index64>(volume.grid.cellCount()));
+    EXPECT_TRUE(std::isnan(grid->background())) << names[g];
+    EXPECT_TRUE(std::isnan(grid->getConstAccessor().getValue(openvdb::Coord(-1, 0, 0))));
+    EXPECT_TRUE(std::isnan(grid->getConstAccessor().getValue(openvdb::Coord(5, 3, 1))));
     const std::vector<double>& values = g < 3 ? volume.mean_rqd[g] : volume.p32;
     if (g < 3) {
       EXPECT_EQ(grid->metaValue<double>("threshold_m"), volume.thresholds[g]);
@@ -122,10 +128,18 @@ TEST(VdbFile, RejectsGridsThatDoNotFitTheirShape) {
   EXPECT_FALSE(std::filesystem::exists("unused.vdb"));
 }
 
-TEST(RqdGridName, UsesTheShortestThresholdText) {
-  EXPECT_EQ(rqdGridName(0.1), "rqd_0.1m");
-  EXPECT_EQ(rqdGridName(1.0), "rqd_1m");
-  EXPECT_EQ(rqdGridName(2.5), "rqd_2.5m");
+TEST(RqdGridName, NamesSortAsTheThresholds) {
+  EXPECT_EQ(rqdGridName(0.1), "rqd_00100mm");
+  EXPECT_EQ(rqdGridName(0.3), "rqd_00300mm");  // 0.3 x 1000 is 299.99999999999997
+  EXPECT_EQ(rqdGridName(1.0), "rqd_01000mm");
+  EXPECT_EQ(rqdGridName(2.5), "rqd_02500mm");
+  EXPECT_EQ(rqdGridName(10.0), "rqd_10000mm");
+  EXPECT_EQ(rqdGridName(0.0625), "rqd_00062.5mm");
+  // In name order as in threshold order (the paper's thresholds and more).
+  const std::vector<double> thresholds{0.0625, 0.1, 0.3, 1.0, 1.5, 2.0, 3.0, 7.0, 10.0, 25.0};
+  for (std::size_t k = 1; k < thresholds.size(); ++k) {
+    EXPECT_LT(rqdGridName(thresholds[k - 1]), rqdGridName(thresholds[k])) << thresholds[k];
+  }
 }
 
 }  // namespace
