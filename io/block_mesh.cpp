@@ -7,7 +7,9 @@
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <sstream>
@@ -98,6 +100,100 @@ int addView(tinygltf::Model& gltf, const std::vector<T>& values, int target) {
   std::memcpy(data.data() + view.byteOffset, values.data(), view.byteLength);
   gltf.bufferViews.push_back(view);
   return static_cast<int>(gltf.bufferViews.size()) - 1;
+}
+
+/// Appends the shortest text that reads back as the float `x`.
+void appendFloat(std::string& out, float x) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  out.append(buffer, end);
+}
+
+/// Appends the bytes of `value` (little-endian on every platform rockmass builds on).
+template <class T>
+void appendBytes(std::string& out, T value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+/// The binary PLY of the blocks: one vertex and face list, each face with an int property
+/// `block` (its block's id), so that a mesh tool can select or colour the blocks. (assimp's
+/// PLY exporter writes no face property.)
+std::string formatPly(const blocks::BlockModel& model,
+                      const std::vector<blocks::TriangleSurface>& surfaces) {
+  std::size_t vertices = 0, faces = 0;
+  for (const blocks::TriangleSurface& s : surfaces) {
+    vertices += s.vertices.size();
+    faces += s.triangles.size();
+  }
+  std::string out =
+      "ply\n"
+      "format binary_little_endian 1.0\n"
+      "comment rockmass blocks: the outer surface of each block, coordinates in m (x east, y "
+      "north, z up); face property block = the block's id\n"
+      "element vertex " +
+      std::to_string(vertices) +
+      "\n"
+      "property float x\n"
+      "property float y\n"
+      "property float z\n"
+      "element face " +
+      std::to_string(faces) +
+      "\n"
+      "property list uchar int vertex_indices\n"
+      "property int block\n"
+      "end_header\n";
+  out.reserve(out.size() + 12 * vertices + 17 * faces);
+  for (const blocks::TriangleSurface& s : surfaces) {
+    for (const geometry::Vec3& p : s.vertices) {
+      for (int a = 0; a < 3; ++a) appendBytes(out, static_cast<float>(p[a]));
+    }
+  }
+  std::int32_t base = 0;
+  for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    for (const auto& t : surfaces[b].triangles) {
+      appendBytes(out, std::uint8_t{3});
+      for (int k = 0; k < 3; ++k) appendBytes(out, static_cast<std::int32_t>(base + t[k]));
+      appendBytes(out, static_cast<std::int32_t>(model.blocks[b].id));
+    }
+    base += static_cast<std::int32_t>(surfaces[b].vertices.size());
+  }
+  return out;
+}
+
+/// The ASCII STL of the blocks: one solid "block_<id>" per block (binary STL has no names;
+/// assimp's STL exporter writes all meshes as one solid). Coordinates as 32-bit floats, as
+/// binary STL stores them, in their shortest text; facet normals from the triangles.
+std::string formatStl(const blocks::BlockModel& model,
+                      const std::vector<blocks::TriangleSurface>& surfaces) {
+  std::string out;
+  for (std::size_t b = 0; b < surfaces.size(); ++b) {
+    const std::string name = "block_" + std::to_string(model.blocks[b].id);
+    const blocks::TriangleSurface& s = surfaces[b];
+    out += "solid " + name + '\n';
+    for (const auto& t : s.triangles) {
+      const geometry::Vec3& p0 = s.vertices[static_cast<std::size_t>(t[0])];
+      const geometry::Vec3 n = (s.vertices[static_cast<std::size_t>(t[1])] - p0)
+                                   .cross(s.vertices[static_cast<std::size_t>(t[2])] - p0)
+                                   .normalized();
+      out += "  facet normal";
+      for (int a = 0; a < 3; ++a) {
+        out += ' ';
+        appendFloat(out, std::isfinite(n[a]) ? static_cast<float>(n[a]) : 0.0f);
+      }
+      out += "\n    outer loop\n";
+      for (int k = 0; k < 3; ++k) {
+        out += "      vertex";
+        for (int a = 0; a < 3; ++a) {
+          out += ' ';
+          appendFloat(out, static_cast<float>(s.vertices[static_cast<std::size_t>(t[k])][a]));
+        }
+        out += '\n';
+      }
+      out += "    endloop\n  endfacet\n";
+    }
+    out += "endsolid " + name + '\n';
+  }
+  return out;
 }
 
 /// A base colour per material (glTF's linear RGB), in scene order, repeating.
@@ -259,6 +355,8 @@ std::string formatBlockMesh(const blocks::BlockModel& model, MeshFormat format,
   // glb through tinygltf: assimp's glTF exporter took 8 min 53 s on the Xiangjiaba model's
   // 42 786 blocks (OBJ 31-37 s), and wrote it z-up with no block data.
   if (format == MeshFormat::Glb) return formatGlb(model, surfaces, material_names);
+  if (format == MeshFormat::Ply) return formatPly(model, surfaces);
+  if (format == MeshFormat::Stl) return formatStl(model, surfaces);
   const std::unique_ptr<aiScene> scene = makeScene(model, surfaces);
   Assimp::Exporter exporter;
   const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), exporterId(format));

@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "blocks/fast_cutter.h"
@@ -159,10 +162,12 @@ void checkRoundTrip(MeshFormat format) {
   writeFileAtomically(path, bytes);
   const std::vector<ImportedMesh> meshes = readMeshFile(path);
 
-  // Read-back surfaces per block: by name where the format keeps one mesh per block, else
-  // (PLY, STL: one mesh, no names) by the ranges of triangles written in block order.
+  // Read-back surfaces per block: by name where the format keeps one mesh per block (OBJ
+  // groups, glTF nodes, STL solids), else (PLY: one mesh, whose face property assimp does not
+  // read) by the ranges of triangles written in block order; plyFaceBlocks checks the
+  // property itself.
   std::vector<TriangleSurface> read;
-  if (format == MeshFormat::Obj || format == MeshFormat::Glb) {
+  if (format == MeshFormat::Obj || format == MeshFormat::Glb || format == MeshFormat::Stl) {
     ASSERT_EQ(meshes.size(), model.blocks.size());
     for (std::size_t i = 0; i < meshes.size(); ++i) {
       EXPECT_EQ(meshes[i].name, "block_" + std::to_string(model.blocks[i].id));
@@ -196,6 +201,59 @@ void checkRoundTrip(MeshFormat format) {
     EXPECT_NEAR(volume(read[i]), model.blocks[i].mass.volume, tolerance)
         << meshExtension(format) << " block " << model.blocks[i].id;
   }
+}
+
+/// The face property `block` of a binary PLY file, read by the PLY format's description
+/// (header lines, then little-endian vertex and face records) independently of assimp.
+std::vector<std::int32_t> plyFaceBlocks(const std::string& bytes) {
+  const std::size_t end = bytes.find("end_header\n");
+  EXPECT_NE(end, std::string::npos);
+  std::istringstream header(bytes.substr(0, end));
+  std::string line;
+  std::size_t vertices = 0, faces = 0;
+  std::vector<std::string> face_properties;
+  std::string element;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "format") {
+      words >> word;
+      EXPECT_EQ(word, "binary_little_endian");
+    } else if (word == "element") {
+      std::size_t count = 0;
+      words >> element >> count;
+      (element == "vertex" ? vertices : faces) = count;
+    } else if (word == "property" && element == "face") {
+      face_properties.push_back(line);
+    }
+  }
+  EXPECT_EQ(face_properties, (std::vector<std::string>{"property list uchar int vertex_indices",
+                                                       "property int block"}));
+  std::vector<std::int32_t> blocks;
+  std::size_t at = end + 11 + 12 * vertices;  // three floats per vertex
+  for (std::size_t f = 0; f < faces; ++f) {
+    EXPECT_EQ(bytes[at], 3);
+    std::int32_t block = 0;
+    std::memcpy(&block, bytes.data() + at + 13, sizeof block);
+    blocks.push_back(block);
+    at += 17;
+  }
+  EXPECT_EQ(at, bytes.size());
+  return blocks;
+}
+
+TEST(BlockMesh, PlyFacesCarryTheirBlockId) {
+  geometry::FractureNetwork network;
+  const BlockModel model = randomModel(3, network);
+  std::vector<TriangleSurface> surfaces;
+  std::vector<std::int32_t> expected;
+  for (const blocks::Block& b : model.blocks) {
+    surfaces.push_back(blocks::blockSurface(b));
+    expected.insert(expected.end(), surfaces.back().triangles.size(), b.id);
+  }
+  ASSERT_GT(model.blocks.size(), 2u);
+  EXPECT_EQ(plyFaceBlocks(formatBlockMesh(model, MeshFormat::Ply, surfaces)), expected);
 }
 
 TEST(BlockMesh, ObjRoundTrip) {
