@@ -186,6 +186,10 @@ std::string formatBlocksSummary(const RunInfo& run, const geometry::FractureNetw
         {{"material", materialName(m, materials)}, {"blocks", cv.first}, {"volume", cv.second}});
   }
   j["materials"] = mats;
+  // The legend of the integer `material` of blocks.vtu and the DDA frames (scene order).
+  Json names = Json::array();
+  for (const Material& material : materials) names.push_back(material.name);
+  j["material_names"] = names;
   appendTimings(j, run.timings);
   return j.dump(2) + "\n";
 }

@@ -70,7 +70,7 @@ std::string formatFracturesVtu(const FractureNetwork& network, int segments) {
     piece.offsets.push_back(static_cast<std::int64_t>(piece.connectivity.size()));
     piece.types.push_back(kVtkPolygon);
     ids.push_back(disc.id);
-    sets.push_back(disc.set);
+    sets.push_back(disc.set + 1);  // the set number of the FAB file: summary.json sets[set - 1]
     cuts.push_back(disc.cuts ? 1 : 0);
   }
   piece.cell_data = {makeVtuArray("id", ids), makeVtuArray("set", sets),

@@ -100,6 +100,8 @@ TEST(BlocksCli, CutsTheSmallSceneReproducibly) {
   EXPECT_NEAR(summary["volume_stats"]["max"].get<double>(), 1440.0, 1e-9);  // 12 x 12 x 10
   EXPECT_NEAR(summary["volume_stats"]["min"].get<double>(), 640.0, 1e-9);   // 8 x 8 x 10
   EXPECT_FALSE(summary["weibull"].is_null());
+  // The legend of blocks.vtu's integer `material`: the scene's materials in order.
+  EXPECT_EQ(summary["material_names"], nlohmann::json::array({"rock", "concrete"}));
   const std::string csv = test::readFile(dir.path() / "a" / "blocks.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);  // header + 5 blocks
   EXPECT_NE(csv.find(",concrete,1,"), std::string::npos);

@@ -163,7 +163,8 @@ TEST(DfnOutputVtu, PolygonCellsWithCellData) {
   EXPECT_EQ(dataArray(vtu, "offsets").back(), static_cast<double>(point_count));
   EXPECT_EQ(dataArray(vtu, "types"), std::vector<double>(3, 7.0));  // VTK_POLYGON
   EXPECT_EQ(dataArray(vtu, "id"), (std::vector<double>{1, 2, 3}));
-  EXPECT_EQ(dataArray(vtu, "set"), (std::vector<double>{0, 1, 2}));
+  // Numbered as in fractures.fab, from 1 (summary.json's sets[set - 1]).
+  EXPECT_EQ(dataArray(vtu, "set"), (std::vector<double>{1, 2, 3}));
   EXPECT_EQ(dataArray(vtu, "cuts"), (std::vector<double>{1, 0, 1}));
 }
 
