@@ -30,7 +30,10 @@ io::CutInfo cutInfoOf(const scene_model::SceneBlocks& cut, const std::string& cu
 
 void writeBlocksFiles(const fs::path& out, const io::Scene& scene, const blocks::BlockModel& model,
                       const geometry::FractureNetwork& network) {
-  io::writeFileAtomically(out / "blocks.csv", io::formatBlocksCsv(model, scene.materials));
+  std::vector<std::string> structures;
+  for (const io::StructureSpec& structure : scene.structures) structures.push_back(structure.name);
+  io::writeFileAtomically(out / "blocks.csv",
+                          io::formatBlocksCsv(model, scene.materials, structures));
   io::writeFileAtomically(out / "blocks.vtu", io::formatBlocksVtu(model));
   io::writeFileAtomically(
       out / "faces.vtu",

@@ -22,8 +22,10 @@ std::string materialName(int material, const std::vector<Material>& materials) {
 }  // namespace
 
 std::string formatBlocksCsv(const blocks::BlockModel& model,
-                            const std::vector<Material>& materials) {
-  std::string out = "id,volume,cx,cy,cz,material,pieces,xmin,ymin,zmin,xmax,ymax,zmax\n";
+                            const std::vector<Material>& materials,
+                            const std::vector<std::string>& structure_names) {
+  std::string out =
+      "id,volume,cx,cy,cz,material,pieces,xmin,ymin,zmin,xmax,ymax,zmax,structure\n";
   for (const blocks::Block& b : model.blocks) {
     const geometry::Vec3 c = b.mass.centroid();
     out += std::to_string(b.id) + ',' + formatDouble(b.mass.volume);
@@ -31,6 +33,13 @@ std::string formatBlocksCsv(const blocks::BlockModel& model,
     out += ',' + materialName(b.material, materials) + ',' + std::to_string(b.pieces.size());
     for (int a = 0; a < 3; ++a) out += ',' + formatDouble(b.bounds.min[a]);
     for (int a = 0; a < 3; ++a) out += ',' + formatDouble(b.bounds.max[a]);
+    // The structure the block belongs to (empty for rock; "structure_<k>" when unnamed).
+    out += ',';
+    if (b.structure >= 0) {
+      const auto k = static_cast<std::size_t>(b.structure);
+      out += csvField(k < structure_names.size() ? structure_names[k]
+                                                 : "structure_" + std::to_string(k));
+    }
     out += '\n';
   }
   return out;

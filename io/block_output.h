@@ -12,9 +12,12 @@
 namespace rockmass::io {
 
 /// blocks.csv: id,volume,cx,cy,cz,material,pieces (the shared contract), then
-/// xmin,ymin,zmin,xmax,ymax,zmax (bounding box, m). material is the material's name.
+/// xmin,ymin,zmin,xmax,ymax,zmax (bounding box, m) and structure (the name of the structure
+/// the block belongs to, from `structure_names`; empty for a rock block). material is the
+/// material's name.
 std::string formatBlocksCsv(const blocks::BlockModel& model,
-                            const std::vector<Material>& materials);
+                            const std::vector<Material>& materials,
+                            const std::vector<std::string>& structure_names = {});
 
 /// blocks.vtu: one VTK polyhedron cell (type 42) per convex piece, with cell data id (block
 /// id), material (index), volume (the block's, m3) and piece_volume (m3). A block is the set

@@ -58,7 +58,27 @@ def unit_for(values):
     return UNITS[-1]
 
 
-def save(fig, path):
-    """Saves a figure as PNG without a timestamp (same inputs, same bytes)."""
-    fig.savefig(path, dpi=120, metadata={"Software": None})
+def describe(fig, facts=None):
+    """What the figure shows, as the tests read it: the suptitle, and per panel its title,
+    axis labels, legend entries and texts, plus the script's `facts` (the population drawn,
+    units, choices), as JSON."""
+    panels = []
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        panels.append({
+            "title": ax.get_title(),
+            "xlabel": ax.get_xlabel(),
+            "ylabel": ax.get_ylabel(),
+            "legend": [t.get_text() for t in legend.get_texts()] if legend else [],
+            "texts": [t.get_text() for t in ax.texts],
+        })
+    title = fig._suptitle.get_text() if fig._suptitle is not None else ""
+    return json.dumps({"suptitle": title, "panels": panels, "facts": facts or {}},
+                      sort_keys=True)
+
+
+def save(fig, path, facts=None):
+    """Saves a figure as PNG without a timestamp (same inputs, same bytes), with describe()
+    in the PNG's text chunk "rockmass" (tests/figures/figure_smoke_test.py reads it)."""
+    fig.savefig(path, dpi=120, metadata={"Software": None, "rockmass": describe(fig, facts)})
     plt.close(fig)

@@ -6,7 +6,7 @@ Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
 | figure | script | input |
 |---|---|---|
 | stereonet.png (poles per set) | stereonet.py | fractures.csv |
-| rqd_threshold.png (Figure 6b) | rqd_threshold.py | rqd_balls.csv, boreholes.csv |
+| rqd_threshold.png (Figure 6b) | rqd_threshold.py | rqd_balls.csv, boreholes.csv (summary.json) |
 | rqd_ball_maps.png (RQD-ball contours) | rqd_ball_maps.py | rqd_balls.csv |
 | block_volumes.png (Figure 7) | block_volumes.py | blocks.csv, summary.json |
 | histories.png (Figure 8) | histories.py | history.csv |
@@ -39,6 +39,8 @@ def jobs(out):
     if has("boreholes.csv"):
         rqd_inputs += ["--boreholes", path("boreholes.csv")]
     if rqd_inputs:
+        if has("summary.json"):
+            rqd_inputs += ["--summary", path("summary.json")]
         result.append(("rqd_threshold.png", "rqd_threshold.py", rqd_inputs))
     if has("rqd_balls.csv"):
         result.append(("rqd_ball_maps.png", "rqd_ball_maps.py", [path("rqd_balls.csv")]))

@@ -5,14 +5,14 @@ Usage: /usr/bin/python3 scripts/figures/overload_curve.py overload.csv
        [--summary summary.json] -o overload_curve.png
 
 overload.csv (factor,monitor,ux,uy,uz,u[,at_rest,steps]): horizontal (ux) and vertical (uz)
-displacement of every monitor against K, in cm, mm or um (whichever suits the largest value).
-Each point shows how its run ended: a filled circle at rest, an open circle not at rest
-within the step limit, a cross stopped early as failing (summary.json's runs[].failing, or
-the at_rest column), a dot when neither says.
-Displacements of runs that did not come to rest are where the run stopped, so they are not
-comparable from one factor to the next. When summary.json has the overload's bracket
-[last_stable, first_unstable] it is shaded, and a finite `safety_factor` is marked with a
-vertical line.
+displacement of every monitor against K, both panels in one unit, cm, mm or um (whichever
+suits the largest value of either). Each point shows how its run ended: a filled circle at
+rest, an open circle not at rest within the step limit, a cross stopped early as failing
+(summary.json's runs[].failing, or the at_rest column), a dot when neither says. Only runs
+at rest are joined into a curve: the displacement of a run that did not come to rest is
+where it stopped, not a point of the load-displacement curve. When summary.json has the
+overload's bracket [last_stable, first_unstable] it is shaded, and a finite K_s is marked
+with a vertical line labelled with the bracket's half-width (K_s is its midpoint).
 """
 import argparse
 import math
@@ -59,13 +59,18 @@ def main(argv=None):
     low, high = overload.get("last_stable"), overload.get("first_unstable")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharex=True)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    scale, unit = unit_for(v[c] for points in series.values() for v in points for c in (1, 2))
     for ax, column, name in ((axes[0], 1, "horizontal displacement ux"),
                              (axes[1], 2, "vertical displacement uz")):
-        scale, unit = unit_for(v[column] for points in series.values() for v in points)
         for i, monitor in enumerate(series):
             colour = colours[i % len(colours)]
             data = np.array(sorted(series[monitor]))
-            ax.plot(data[:, 0], scale * data[:, column], "-", color=colour, lw=1, label=monitor)
+            rest = np.array([ended.get(f) == "rest" for f in data[:, 0]])
+            if rest.any():
+                ax.plot(data[rest, 0], scale * data[rest, column], "-", color=colour, lw=1,
+                        label=monitor)
+            else:
+                ax.plot([], [], "-", color=colour, lw=1, label=monitor)
             for factor, value in zip(data[:, 0], scale * data[:, column]):
                 how = ended.get(factor)
                 if how == "failing":
@@ -78,16 +83,25 @@ def main(argv=None):
         if all(isinstance(v, (int, float)) for v in (low, high)):
             ax.axvspan(low, high, color="r", alpha=0.08, label=f"bracket [{low:g}, {high:g}]")
         if isinstance(ks, (int, float)) and math.isfinite(ks):
-            ax.axvline(ks, color="r", ls="--", lw=1, label=f"K_s = {ks:g}")
+            if all(isinstance(v, (int, float)) for v in (low, high)):
+                label = f"K_s = {ks:g} ± {(high - low) / 2:g}"
+            else:
+                label = f"K_s = {ks:g}"
+            ax.axvline(ks, color="r", ls="--", lw=1, label=label)
         ax.set_xlabel("overload factor K")
         ax.set_ylabel(f"{name} ({unit})")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle("Overload: monitor displacement at the end of each run against K\n"
-                 "● at rest   ○ not at rest within the step limit   × stopped early, failing",
-                 fontsize=10)
+    name = summary.get("name")
+    fig.suptitle(("Overload" + (f" ({name})" if name else "") +
+                  ": monitor displacement at the end of each run against K\n"
+                  "● at rest (joined)   ○ not at rest within the step limit   "
+                  "× stopped early, failing"), fontsize=10)
     fig.tight_layout()
-    save(fig, args.output)
+    save(fig, args.output, facts={
+        "unit": unit, "joined": "runs at rest only",
+        "bracket": [low, high] if all(isinstance(v, (int, float)) for v in (low, high)) else None,
+        "K_s": ks if isinstance(ks, (int, float)) and math.isfinite(ks) else None})
     print(f"overload_curve: wrote {args.output}")
 
 

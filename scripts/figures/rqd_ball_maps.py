@@ -7,7 +7,11 @@ Usage: /usr/bin/python3 scripts/figures/rqd_ball_maps.py rqd_balls.csv -o rqd_ba
 Equal-area (Lambert/Schmidt) lower-hemisphere projection of the scanline directions, north
 up: a scanline is a line, so a direction pointing up is drawn as its opposite. The RQD of
 each direction (%) is contoured (filled, 0 to 100) over the projection. Rows are balls,
-columns thresholds (by default up to four, spread over the thresholds in the file).
+columns thresholds: by default the (at most four) informative ones, those at which the RQD
+differs most between directions (the largest standard deviation over the directions,
+averaged over the balls), in ascending order; a threshold at which every direction gives
+about the same RQD (all near 100 % at small t, all near 0 at large t) is a flat map. The
+mean RQD over the directions of each ball is in each panel's title.
 """
 import argparse
 import math
@@ -25,6 +29,17 @@ def project(d):
     h = np.hypot(d[:, 0], d[:, 1])
     s = np.divide(r, h, out=np.zeros_like(r), where=h > 0)
     return d[:, 0] * s, d[:, 1] * s
+
+
+def informative(data, thresholds, count=4):
+    """The `count` thresholds with the largest spread of RQD over the directions (standard
+    deviation, averaged over the balls), ascending."""
+    spread = {}
+    for t in thresholds:
+        deviations = [np.std([row[3] for row in by_t[t]]) for by_t in data.values() if by_t.get(t)]
+        spread[t] = float(np.mean(deviations)) if deviations else 0.0
+    best = sorted(thresholds, key=lambda t: (-spread[t], t))[:count]
+    return sorted(best)
 
 
 def main(argv=None):
@@ -46,12 +61,11 @@ def main(argv=None):
         wanted = [float(x) for x in args.thresholds.split(",") if x]
         chosen = [t for t in all_t if any(math.isclose(t, w) for w in wanted)]
     else:
-        count = min(4, len(all_t))
-        chosen = [all_t[round(i * (len(all_t) - 1) / max(1, count - 1))] for i in range(count)]
-        chosen = sorted(set(chosen))
+        chosen = informative(data, all_t)
     fig, axes = plt.subplots(len(balls), len(chosen), figsize=(3.2 * len(chosen) + 1.0,
                                                                3.2 * len(balls)), squeeze=False)
-    levels = np.linspace(0, 100, 11)
+    # The top level just above 100 so that directions at exactly 100 % are filled.
+    levels = np.append(np.linspace(0, 90, 10), 100.0 + 1e-6)
     image = None
     for i, ball in enumerate(balls):
         for j, t in enumerate(chosen):
@@ -66,16 +80,23 @@ def main(argv=None):
                 keep = np.hypot(x, y) <= 1.0 + 1e-9
                 tri = Triangulation(x[keep], y[keep])
                 image = ax.tricontourf(tri, rqd[keep], levels=levels, cmap="RdYlGn")
-            ax.text(0, 1.04, "N", ha="center", va="bottom", fontsize=8)
-            ax.set_title(f"{ball}, t = {t:g} m", fontsize=9)
+            for label, (tx, ty, ha, va) in {"N": (0, 1.04, "center", "bottom"),
+                                            "E": (1.04, 0, "left", "center"),
+                                            "S": (0, -1.04, "center", "top"),
+                                            "W": (-1.04, 0, "right", "center")}.items():
+                ax.text(tx, ty, label, ha=ha, va=va, fontsize=7)
+            mean = f", mean {values[:, 3].mean():.0f} %" if len(values) else ""
+            ax.set_title(f"{ball}, t = {t:g} m{mean}", fontsize=9)
             ax.set_aspect("equal")
             ax.set_xlim(-1.1, 1.1)
             ax.set_ylim(-1.1, 1.15)
             ax.axis("off")
     if image is not None:
         fig.colorbar(image, ax=axes, shrink=0.8, label="RQD (%)")
-    fig.suptitle("RQD by scanline direction (equal-area, lower hemisphere)")
-    save(fig, args.output)
+    rule = "given" if args.thresholds else "the thresholds at which the directions differ most"
+    fig.suptitle(f"RQD by scanline direction (equal-area, lower hemisphere); t: {rule}",
+                 fontsize=10)
+    save(fig, args.output, facts={"thresholds": chosen, "all_thresholds": all_t, "rule": rule})
     print(f"rqd_ball_maps: wrote {args.output}")
 
 

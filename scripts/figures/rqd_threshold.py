@@ -2,20 +2,26 @@
 """RQD against the threshold, per RQD ball and per virtual borehole (Figure 6b of the paper).
 
 Usage: /usr/bin/python3 scripts/figures/rqd_threshold.py [--balls rqd_balls.csv]
-       [--boreholes boreholes.csv] -o rqd_threshold.png
+       [--boreholes boreholes.csv] [--summary summary.json] -o rqd_threshold.png
 
 Balls (rqd_balls.csv: ball,dir_x,dir_y,dir_z,threshold,rqd): the mean over all directions
 as a line, the band between the 10th and 90th percentile of the directions shaded, and the
 directions of least and greatest RQD at the smallest threshold dashed. Boreholes
 (boreholes.csv: borehole,from,to,threshold,rqd): the RQD of the whole hole, as the
-run-length-weighted mean of its core runs, per threshold.
+run-length-weighted mean of its core runs, per threshold. When summary.json names a measured
+log (`boreholes.measured.file`, CSV id,from,to,rqd, measured at `boreholes.measured.threshold`:
+the scene's analysis.rqd.boreholes.measured), each hole's measured RQD (interval-length
+weighted) is drawn at that threshold as a black-edged diamond in the hole's colour, labelled
+"measured".
 """
 import argparse
+import csv
+import os
 import sys
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, save
+from figure_io import number, plt, read_rows, read_summary, save
 
 
 def ball_curves(path):
@@ -54,12 +60,50 @@ def borehole_curves(path):
     return curves
 
 
+def find_measured(summary):
+    """summary.json's boreholes.measured entry (top level or under a stage's key), or None."""
+    if not isinstance(summary, dict):
+        return None
+    holes = summary.get("boreholes")
+    if isinstance(holes, dict) and isinstance(holes.get("measured"), dict):
+        return holes["measured"]
+    for value in summary.values():
+        found = find_measured(value) if isinstance(value, dict) else None
+        if found:
+            return found
+    return None
+
+
+def measured_logs(entry, base):
+    """({hole: measured whole-hole RQD}, threshold) from the measured log's CSV."""
+    path = entry.get("file", "")
+    if not os.path.isabs(path):
+        path = os.path.join(base, path)
+    sums = {}
+    with open(path, newline="") as f:
+        for line, row in enumerate(csv.DictReader(f), start=2):
+            length = number(row, "to", path, line) - number(row, "from", path, line)
+            acc = sums.setdefault(row["id"], [0.0, 0.0])
+            acc[0] += length * number(row, "rqd", path, line)
+            acc[1] += length
+    return ({hole: a / b for hole, (a, b) in sums.items() if b > 0},
+            float(entry.get("threshold", 0.1)))
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--balls", help="rqd_balls.csv")
     parser.add_argument("--boreholes", help="boreholes.csv")
+    parser.add_argument("--summary", help="summary.json (the measured logs, if any)")
     parser.add_argument("-o", "--output", default="rqd_threshold.png")
     args = parser.parse_args(argv)
+    measured, measured_t = {}, None
+    entry = find_measured(read_summary(args.summary)) if args.summary else None
+    if entry:
+        try:
+            measured, measured_t = measured_logs(entry, os.path.dirname(args.summary))
+        except OSError as error:
+            print(f"rqd_threshold: measured logs not drawn: {error}")
     if not args.balls and not args.boreholes:
         sys.exit("rqd_threshold: give --balls and/or --boreholes")
 
@@ -82,8 +126,12 @@ def main(argv=None):
     if args.boreholes:
         ax = axes[0][k]
         for hole, (t, r) in sorted(borehole_curves(args.boreholes).items()):
-            ax.plot(t, r, "s-", ms=3, label=f"borehole {hole}")
-        ax.set_title("Virtual boreholes (whole hole)", fontsize=10)
+            line, = ax.plot(t, r, "s-", ms=3, label=f"borehole {hole} (simulated)")
+            if hole in measured:
+                ax.plot([measured_t], [measured[hole]], "D", ms=8, color=line.get_color(),
+                        mec="k", label=f"borehole {hole} measured (t = {measured_t:g} m)")
+        ax.set_title("Virtual boreholes (whole hole)" +
+                     ("; diamonds: the measured logs" if measured else ""), fontsize=10)
     for ax in axes[0]:
         ax.set_xlabel("threshold t (m)")
         ax.set_ylabel("RQD (%)")
@@ -92,7 +140,7 @@ def main(argv=None):
         ax.legend(fontsize=8)
     fig.suptitle("RQD against threshold")
     fig.tight_layout()
-    save(fig, args.output)
+    save(fig, args.output, facts={"measured": sorted(measured), "measured_threshold": measured_t})
     print(f"rqd_threshold: wrote {args.output}")
 
 

@@ -4,23 +4,31 @@
 Usage: /usr/bin/python3 scripts/figures/stereonet.py OUTDIR/fractures.csv [-o stereonet.png]
        [--max-poles N] [--sets J1,J2,...]
 
-One panel per joint set: the poles (a random subsample of at most --max-poles, seeded, so
-the figure is reproducible) and density contours (1, 2, 4, 8, ... times uniform) from a Gaussian kernel on the
-sphere (Fisher kernel, kappa = 100), in multiples of a uniform density. Equal-area
-(Schmidt/Lambert) projection: a pole of trend T and plunge P sits at radius
-sqrt(2) * sin((90 - P) / 2) from the centre, at azimuth T clockwise from north (up).
-Reads only the CSV columns set, dip_direction and dip (degrees).
+One panel per set: the poles (a random subsample of at most --max-poles, seeded, so the
+figure is reproducible), density contours (1, 2, 4, 8, ... times uniform) from a kernel on
+the sphere (Fisher kernel, kappa = 100) in multiples of a uniform density for a set of at
+least MIN_CONTOURED discs (a kernel density of a few discs, such as a fault's, says
+nothing), the mean pole (red star: the principal axis of the poles' orientation tensor, as
+the poles are axes) and, in the title, the mean plane as dip direction / dip and Fisher's
+kappa estimated as (N - 1) / (N - R) (R: the length of the resultant of the poles turned to
+the mean's side; Fisher, Lewis and Embleton 1987, eq. 5.30). Equal-area (Schmidt/Lambert)
+projection, lower hemisphere: a pole of trend T and plunge P sits at radius
+sqrt(2) * sin((90 - P) / 2) from the centre, at azimuth T clockwise from north (up); N, E,
+S, W are marked and a graticule of plunge circles (30 and 60 degrees) and trend lines
+(every 30 degrees) is drawn. Reads only the CSV columns set, dip_direction and dip
+(degrees).
 """
 import argparse
 import csv
 import math
 import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from figure_io import plt, save
+
+# Fewest discs of a set for density contours.
+MIN_CONTOURED = 10
 
 
 def poles(dip_direction, dip):
@@ -63,6 +71,44 @@ def density(pole_vectors, v, kappa=100.0):
     return kernel.reshape(v.shape[:-1])
 
 
+def mean_and_kappa(p):
+    """(mean pole as a lower-hemisphere unit vector, Fisher's kappa or None) of axial poles."""
+    tensor = p.T @ p
+    _, vectors = np.linalg.eigh(tensor)
+    mean = vectors[:, -1]
+    if mean[2] > 0:
+        mean = -mean
+    aligned = np.where((p @ mean)[:, None] < 0, -p, p)
+    n = len(p)
+    r = np.linalg.norm(aligned.sum(axis=0))
+    kappa = (n - 1) / (n - r) if n >= 2 and n - r > 1e-12 else None
+    return mean, kappa
+
+
+def plane_of_pole(pole):
+    """(dip direction, dip) in degrees of the plane whose lower-hemisphere pole is `pole`."""
+    trend = math.degrees(math.atan2(pole[0], pole[1])) % 360.0
+    plunge = math.degrees(math.asin(min(1.0, -pole[2])))
+    return (trend + 180.0) % 360.0, 90.0 - plunge
+
+
+def graticule(ax):
+    """The primitive circle, plunge circles at 30 and 60 degrees, trend lines every 30
+    degrees, and N, E, S, W."""
+    for plunge in (30.0, 60.0):
+        radius = math.sqrt(2.0) * math.sin(math.radians(90.0 - plunge) / 2.0)
+        ax.add_patch(plt.Circle((0, 0), radius, fill=False, lw=0.4, color="#999", ls=":"))
+    for trend in range(0, 360, 30):
+        a = math.radians(trend)
+        ax.plot([0.0, math.sin(a)], [0.0, math.cos(a)], lw=0.4, color="#999", ls=":")
+    ax.add_patch(plt.Circle((0, 0), 1, fill=False, lw=1))
+    for label, (x, y, ha, va) in {"N": (0, 1.04, "center", "bottom"),
+                                  "E": (1.04, 0, "left", "center"),
+                                  "S": (0, -1.04, "center", "top"),
+                                  "W": (-1.04, 0, "right", "center")}.items():
+        ax.text(x, y, label, ha=ha, va=va, fontsize=9)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv", help="fractures.csv written by `rockmass dfn`")
@@ -87,32 +133,46 @@ def main():
     rng = np.random.default_rng(12345)
     columns = min(3, len(names))
     rows = math.ceil(len(names) / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(4 * columns, 4.2 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.4 * columns, 4.4 * rows), squeeze=False)
     gx, gy, gv, inside = grid_vectors()
+    facts = {}
     for ax, name in zip(axes.flat, names):
         data = np.asarray(by_set[name])
-        p = poles(data[:, 0], data[:, 1])
+        every = poles(data[:, 0], data[:, 1])
+        mean, kappa = mean_and_kappa(every)
+        p = every
         if len(p) > args.max_poles:
             p = p[rng.choice(len(p), args.max_poles, replace=False)]
-        d = np.where(inside, density(p, gv), np.nan)
-        top = max(2.0, float(np.nanmax(d)))
-        levels = [2.0**k for k in range(0, int(math.log2(top)) + 1)] + [top]
-        contours = ax.contourf(gx, gy, d, levels=levels, cmap="Blues", extend="neither")
+        contoured = len(data) >= MIN_CONTOURED
+        if contoured:
+            d = np.where(inside, density(p, gv), np.nan)
+            top = max(2.0, float(np.nanmax(d)))
+            levels = [2.0**k for k in range(0, int(math.log2(top)) + 1)] + [top]
+            contours = ax.contourf(gx, gy, d, levels=levels, cmap="Blues", extend="neither")
+            fig.colorbar(contours, ax=ax, shrink=0.6, label="multiples of uniform")
+        graticule(ax)
         x, y = project(p)
-        ax.plot(x, y, ".", ms=1.5, color="k", alpha=0.5)
-        ax.add_patch(plt.Circle((0, 0), 1, fill=False, lw=1))
-        ax.text(0, 1.04, "N", ha="center", va="bottom")
-        ax.set_title(f"{name}: {len(data)} discs", fontsize=10)
+        ax.plot(x, y, ".", ms=1.5 if contoured else 4, color="k", alpha=0.5)
+        mx, my = project(mean)
+        ax.plot(mx, my, "*", ms=12, color="#d62728", mec="k", mew=0.5)
+        dip_direction, dip = plane_of_pole(mean)
+        kappa_text = f"κ = {kappa:.3g}" if kappa is not None else "κ: -"
+        note = "" if contoured else f" (no contours: fewer than {MIN_CONTOURED})"
+        ax.set_title(f"{name}: {len(data)} discs{note}\nmean plane {dip_direction:03.0f}/"
+                     f"{dip:02.0f} (dip dir./dip), Fisher {kappa_text}", fontsize=9)
         ax.set_aspect("equal")
-        ax.set_xlim(-1.1, 1.1)
-        ax.set_ylim(-1.1, 1.15)
+        ax.set_xlim(-1.15, 1.15)
+        ax.set_ylim(-1.15, 1.15)
         ax.axis("off")
-        fig.colorbar(contours, ax=ax, shrink=0.7, label="multiples of uniform")
+        facts[name] = {"discs": len(data), "contoured": contoured,
+                       "mean_dip_direction": round(dip_direction, 1), "mean_dip": round(dip, 1),
+                       "kappa": None if kappa is None else round(kappa, 2)}
     for ax in list(axes.flat)[len(names):]:
         ax.axis("off")
-    fig.suptitle("Poles, equal-area lower hemisphere")
+    fig.suptitle("Poles of the fracture sets, equal-area lower hemisphere (red star: mean pole;"
+                 " dotted: plunge 30° and 60°, trend every 30°)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(args.output, dpi=120)
+    save(fig, args.output, facts={"sets": facts})
     print(f"stereonet: wrote {args.output} ({len(names)} sets)")
 
 

@@ -1,8 +1,11 @@
 #!/usr/bin/python3
-"""Smoke test of one figure script: runs it on a tiny generated input and checks that the
-PNG exists, is a valid PNG (signature, IHDR chunk with its CRC, IEND at the end) of a
-sensible size (at least 200 x 200 pixels, more than 5 kB: a figure with content, not an
-empty canvas).
+"""Test of one figure script: runs it on a tiny generated input and checks that the PNG
+exists, is a valid PNG (signature, IHDR chunk with its CRC, IEND at the end) of a sensible
+size (at least 200 x 200 pixels, more than 5 kB: a figure with content, not an empty
+canvas), and that what it shows is what it says: the description every script stores in
+the PNG's text chunk "rockmass" (figure_io.describe: titles, axis labels, legends, texts and
+the script's facts) is checked figure by figure (CHECKS: the fitted population, units, the
+plane named, the compass marks, the thresholds chosen, the measured logs).
 
 Usage: figure_smoke_test.py SCRIPTS_DIR NAME   (NAME: a script of scripts/figures without .py,
 or make_figures). Exits 77 (CTest SKIP_RETURN_CODE) when matplotlib is missing.
@@ -47,20 +50,31 @@ def make_inputs(d):
           "id,set,cx,cy,cz,dip_direction,dip,a,b,major_x,major_y,major_z",
           [(i + 1, "J1" if i % 2 else "J2", 0, 0, 0, (37 * i) % 360, 20 + (13 * i) % 60, 1, 1,
             1, 0, 0) for i in range(60)])
+    # Two sets of 30 discs and a fault of 2 (too few for density contours).
+    with open(os.path.join(d, "fractures.csv"), "a") as f:
+        f.write("61,F1,0,0,0,120,70,5,5,1,0,0\n62,F1,1,0,0,122,72,5,5,1,0,0\n")
     balls = []
     for ball in ("heel", "toe"):
         for (x, y, z) in fibonacci(60):
-            for t in (0.1, 1, 3, 5):
+            # t = 0.01 (every direction about 100 %) and 8 m (all 0) are flat maps.
+            for t in (0.01, 0.1, 1, 3, 5, 8):
                 balls.append((ball, x, y, z, t, max(0.0, 100 - t * (15 + 10 * abs(z)))))
     write(os.path.join(d, "rqd_balls.csv"), "ball,dir_x,dir_y,dir_z,threshold,rqd", balls)
     write(os.path.join(d, "boreholes.csv"), "borehole,from,to,threshold,rqd",
           [(h, 3 * k, 3 * k + 3, t, max(0, 95 - 12 * t - k)) for h in ("ZK1", "ZK2")
            for k in range(4) for t in (0.1, 1, 3, 5)])
-    write(os.path.join(d, "blocks.csv"), "id,volume,cx,cy,cz,material,pieces",
-          [(i + 1, 5.0 * (1 + (i * 7919) % 97) ** 1.3, 0, 0, 0, "rock", 1) for i in range(200)])
+    # 200 rock blocks and a dam (a structure: not part of the rock's distribution).
+    write(os.path.join(d, "blocks.csv"), "id,volume,cx,cy,cz,material,pieces,structure",
+          [(i + 1, 5.0 * (1 + (i * 7919) % 97) ** 1.3, 0, 0, 0, "rock", 1, "")
+           for i in range(200)] + [(201, 2.0e5, 0, 0, 50, "concrete", 1, "dam")])
+    write(os.path.join(d, "measured.csv"), "id,from,to,rqd", [("ZK1", 0, 6, 80), ("ZK1", 6, 12, 60)])
     with open(os.path.join(d, "summary.json"), "w") as f:
-        # The overload's bracket and runs (at rest, not at rest, failing) for the curve.
-        json.dump({"weibull": {"shape": 0.9, "scale": 150.0}, "safety_factor": 3.5,
+        # The overload's bracket and runs (at rest, not at rest, failing) for the curve; the
+        # rock's fit and the whole model's (which the figure must not draw); a measured log.
+        json.dump({"weibull": {"shape": 0.3, "scale": 1.0},
+                   "rock": {"weibull": {"shape": 0.9, "scale": 150.0}},
+                   "boreholes": {"measured": {"file": "measured.csv", "threshold": 0.1}},
+                   "safety_factor": 3.5,
                    "overload": {"last_stable": 3, "first_unstable": 4, "runs": [
                        {"factor": k, "at_rest": k <= 3, "failing": k == 5}
                        for k in (1, 2, 3, 4, 5)]}}, f)
@@ -99,7 +113,8 @@ def make_inputs(d):
 
 COMMANDS = {
     "stereonet": lambda d: ["fractures.csv"],
-    "rqd_threshold": lambda d: ["--balls", "rqd_balls.csv", "--boreholes", "boreholes.csv"],
+    "rqd_threshold": lambda d: ["--balls", "rqd_balls.csv", "--boreholes", "boreholes.csv",
+                                "--summary", "summary.json"],
     "rqd_ball_maps": lambda d: ["rqd_balls.csv"],
     "block_volumes": lambda d: ["blocks.csv", "--summary", "summary.json"],
     "histories": lambda d: ["history.csv"],
@@ -126,6 +141,74 @@ def check_png(path):
     return width, height, len(data)
 
 
+def description(path):
+    """The JSON of the PNG's text chunk "rockmass" (figure_io.describe)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    at = 8
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        body = data[at + 8:at + 8 + length]
+        if kind == b"tEXt" and body.startswith(b"rockmass\0"):
+            return json.loads(body[9:].decode("latin-1"))
+        at += 12 + length
+    raise AssertionError(f"{path}: no 'rockmass' text chunk")
+
+
+def check_block_volumes(info):
+    facts = info["facts"]
+    # The rock's 200 blocks, not the dam; the rock's own fit (rock.weibull).
+    assert facts["population"] == "rock blocks" and facts["blocks"] == 200, facts
+    assert facts["structure_blocks"] == 1 and facts["fit"] == "rock.weibull", facts
+    assert facts["bins"] == "log10", facts
+    assert any("k = 0.9" in entry for entry in info["panels"][0]["legend"]), info["panels"][0]
+    assert all("m³" in p["xlabel"] for p in info["panels"]), info["panels"]
+
+
+def check_overload_curve(info):
+    units = {p["ylabel"].rsplit("(", 1)[1] for p in info["panels"]}
+    assert len(units) == 1, f"panels in different units: {units}"
+    assert info["facts"]["joined"] == "runs at rest only", info["facts"]
+    # K_s = 3.5, the middle of the bracket [3, 4]: its half-width is said.
+    assert any("K_s = 3.5 ± 0.5" in e for e in info["panels"][0]["legend"]), info["panels"][0]
+
+
+def check_section(info):
+    assert info["facts"]["plane"] == "y = 1 m", info["facts"]
+    assert "y = 1 m" in info["suptitle"], info["suptitle"]
+    for panel in info["panels"]:
+        assert (panel["xlabel"], panel["ylabel"]) == ("x (m)", "z (m)"), panel
+    assert len(info["panels"]) == 2 and "enlarged" in info["panels"][1]["title"], info["panels"]
+
+
+def check_stereonet(info):
+    sets = info["facts"]["sets"]
+    assert sets["F1"]["contoured"] is False and sets["J1"]["contoured"] is True, sets
+    assert sets["J1"]["kappa"] is not None and sets["J1"]["kappa"] > 0, sets
+    # The fault's two planes 120/70 and 122/72: the mean plane between them.
+    assert abs(sets["F1"]["mean_dip_direction"] - 121) < 1.5, sets["F1"]
+    assert abs(sets["F1"]["mean_dip"] - 71) < 1.5, sets["F1"]
+    for panel in info["panels"]:
+        if "discs" in panel["title"]:
+            assert {"N", "E", "S", "W"} <= set(panel["texts"]), panel
+            assert "mean plane" in panel["title"] and "κ" in panel["title"], panel
+
+
+def check_rqd_ball_maps(info):
+    # The flat maps (t = 0.01 m, every direction near 100 %; t = 8 m, all 0) are left out.
+    assert info["facts"]["thresholds"] == [0.1, 1, 3, 5], info["facts"]
+
+
+def check_rqd_threshold(info):
+    assert info["facts"]["measured"] == ["ZK1"], info["facts"]
+    assert any("measured" in e for p in info["panels"] for e in p["legend"]), info["panels"]
+
+
+CHECKS = {"block_volumes": check_block_volumes, "overload_curve": check_overload_curve,
+          "section": check_section, "stereonet": check_stereonet,
+          "rqd_ball_maps": check_rqd_ball_maps, "rqd_threshold": check_rqd_threshold}
+
+
 def main():
     scripts, name = os.path.abspath(sys.argv[1]), sys.argv[2]
     with tempfile.TemporaryDirectory() as d:
@@ -148,6 +231,9 @@ def main():
         print(done.stdout, done.stderr)
         assert done.returncode == 0, f"{name}.py exited with {done.returncode}"
         print(name, check_png(out))
+        if name in CHECKS:
+            CHECKS[name](description(out))
+            print(name, "description checked")
         if name == "histories":
             out = os.path.join(d, "histories_static.png")
             done = subprocess.run([sys.executable, os.path.join(scripts, "histories.py"),
