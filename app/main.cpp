@@ -14,12 +14,13 @@
 #include <CLI/CLI.hpp>
 
 #include "app/command.h"
+#include "app/version.h"
 #include "io/input_error.h"
 #include "io/summary.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"rockmass: fractured rock workbench (DFN, blocks, RQD, 3D DDA)"};
-  app.set_version_flag("--version", rockmass::io::version());
+  app.set_version_flag("--version", rockmass::app::versionText());
   app.require_subcommand(1);
   // One sub-command per line.
   // clang-format off
