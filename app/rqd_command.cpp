@@ -128,6 +128,7 @@ rqd::RqdVolume computeGrid(const rqd::ScanlineScene& ray_scene,
                            const std::string& scene_path) {
   const auto start = Clock::now();
   Progress cells("rqd: grid", 1.0, "", 10.0);
+  cells.setQuietPeriod(2.0);  // a grid of seconds says nothing (the summary line follows)
   const auto progress = [&](double fraction) { cells.update(fraction); };
   try {
     rqd::RqdVolume volume = rqd::computeRqdVolume(ray_scene, network, spec, progress);
@@ -152,7 +153,8 @@ std::vector<io::BallReport> evaluateBalls(const rqd::ScanlineScene& scene,
     report.name = ball.name;
     report.spec = {ball.center, ball.length, ball.directions, scene_file.dfn.domain};
     report.radius = ball.radius.value_or(0.5 * ball.length);
-    SharedProgress progress("rqd: ball " + ball.name, "scanlines", 10.0);
+    // Quiet for 2 s: a ball of 0.01 s printed ten lines of "about 0 s left".
+    SharedProgress progress("rqd: ball " + ball.name, "scanlines", 10.0, /*quiet=*/2.0);
     report.result =
         rqd::evaluateBall(scene, report.spec, settings.thresholds, settings.merge_distance,
                           [&](std::size_t done, std::size_t total) { progress(done, total); });
