@@ -67,6 +67,8 @@ io::DdaFrame frameOf(const dda3d::Simulation& sim, const blocks::BlockModel& blo
   io::DdaFrame frame;
   frame.step = step;
   frame.time = sim.time();
+  frame.static_mode = sim.settings().mode == dda3d::AnalysisMode::Static;
+  frame.deformable = sim.settings().kinematics == dda3d::Kinematics::Deformable;
   const std::vector<double> eccentricity = dda3d::interfaceEccentricity(sim);
   for (std::size_t b = 0; b < sim.blocks().size(); ++b) {
     const dda3d::BlockState& state = sim.blocks()[b];

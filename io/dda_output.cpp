@@ -148,6 +148,15 @@ std::string formatDdaFrameVtu(const DdaFrame& frame) {
   piece.cell_data.push_back(makeVtuArray("principal_stress", principal, 3));
   piece.cell_data.back().component_names = {"s1", "s2", "s3"};
   piece.cell_data.push_back(makeVtuArray("eccentricity", eccentricity));
+  // What the frame is, for the reader (ParaView's Information panel): its time and step,
+  // and why velocity or stress may be zero everywhere: static_mode = 1, velocities reset
+  // every step; deformable = 0, rigid blocks keep their initial stress.
+  piece.field_data.push_back(makeVtuArray("TimeValue", std::vector<double>{frame.time}));
+  piece.field_data.push_back(makeVtuArray("step", std::vector<std::int32_t>{frame.step}));
+  piece.field_data.push_back(makeVtuArray(
+      "static_mode", std::vector<std::uint8_t>{static_cast<std::uint8_t>(frame.static_mode)}));
+  piece.field_data.push_back(makeVtuArray(
+      "deformable", std::vector<std::uint8_t>{static_cast<std::uint8_t>(frame.deformable)}));
   return formatVtu(piece);
 }
 

@@ -62,6 +62,8 @@ struct DdaBlockState {
 struct DdaFrame {
   int step = 0;                       ///< accepted steps so far (0: the initial state)
   double time = 0.0;                  ///< simulated time (s)
+  bool static_mode = false;           ///< static steps: velocities reset to 0 every step
+  bool deformable = false;            ///< blocks with strains (else rigid: stress is initial)
   std::vector<DdaBlockState> blocks;  ///< in block order
 };
 

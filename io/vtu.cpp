@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <optional>
 #include <stdexcept>
 
 namespace rockmass::io {
@@ -55,9 +56,11 @@ std::string compressedText(const std::string& bytes) {
          base64Encode(data);
 }
 
-/// Appends one inline binary <DataArray>, zlib-compressed (compressedText).
-void appendArray(std::string& out, const VtuArray& array) {
+/// Appends one inline binary <DataArray>, zlib-compressed (compressedText); `tuples`, when
+/// given, as NumberOfTuples (FieldData arrays need it).
+void appendArray(std::string& out, const VtuArray& array, std::optional<std::size_t> tuples = {}) {
   out += "        <DataArray type=\"" + array.type + "\" Name=\"" + array.name + "\"";
+  if (tuples) out += " NumberOfTuples=\"" + std::to_string(*tuples) + "\"";
   // Scalars (and the cells' topology arrays) carry no NumberOfComponents, as VTK's own writer
   // does: meshio reads a topology array that has it as a 2D table and fails.
   if (array.components != 1) {
@@ -105,6 +108,7 @@ VtuPiece polyhedraByPointCount(const VtuPiece& piece) {
   VtuPiece out;
   out.points = piece.points;
   out.point_data = piece.point_data;
+  out.field_data = piece.field_data;
   for (const std::size_t c : order) {
     out.connectivity.insert(out.connectivity.end(),
                             piece.connectivity.begin() + cellBegin(piece.offsets, c),
@@ -193,10 +197,20 @@ std::string formatVtu(const VtuPiece& given) {
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
       "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
-      "  <UnstructuredGrid>\n"
-      "    <Piece NumberOfPoints=\"" +
-      std::to_string(piece.points.size() / 3) + "\" NumberOfCells=\"" +
-      std::to_string(piece.types.size()) + "\">\n";
+      "  <UnstructuredGrid>\n";
+  if (!piece.field_data.empty()) {
+    out += "    <FieldData>\n";
+    for (const VtuArray& array : piece.field_data) {
+      const std::size_t size = array.type == "Float64" || array.type == "Int64" ? 8
+                               : array.type == "UInt8"                          ? 1
+                                                                                : 4;
+      appendArray(out, array,
+                  array.bytes.size() / (size * static_cast<std::size_t>(array.components)));
+    }
+    out += "    </FieldData>\n";
+  }
+  out += "    <Piece NumberOfPoints=\"" + std::to_string(piece.points.size() / 3) +
+         "\" NumberOfCells=\"" + std::to_string(piece.types.size()) + "\">\n";
   appendSection(out, "PointData", piece.point_data);
   appendSection(out, "CellData", piece.cell_data);
   out += "      <Points>\n";

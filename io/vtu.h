@@ -66,6 +66,9 @@ struct VtuPiece {
   std::vector<std::int64_t> faceoffsets;
   std::vector<VtuArray> cell_data;   ///< one value (tuple) per cell
   std::vector<VtuArray> point_data;  ///< one value (tuple) per point
+  /// Data of the whole grid (VTK's FieldData: ParaView's Information panel; "TimeValue" is
+  /// the time ParaView shows); numeric arrays only (meshio cannot read VTK string arrays).
+  std::vector<VtuArray> field_data;
 };
 
 /// Gathers the points of cells that share vertices: each distinct point (bitwise equal

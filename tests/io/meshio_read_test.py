@@ -112,6 +112,12 @@ def main():
             failures.append(f"expected DDA frames, found {frames}")
         for frame in frames:
             check(frame, None, ["block", "displacement", "velocity", "stress"])
+            # Each frame says what it is: its time, and static_mode = 1 (the scene is
+            # static: velocity is reset to 0 every step, which is why it is 0 here).
+            mesh = meshio.read(os.path.join(out, frame))
+            static = mesh.field_data.get("static_mode")
+            if static is None or int(static[0]) != 1 or "TimeValue" not in mesh.field_data:
+                failures.append(f"{frame}: field data {mesh.field_data}")
         # The damage maps: one vertex cell per contact that has been closed, with its data.
         maps = sorted(f for f in os.listdir(out) if f.startswith("damage_") and f.endswith(".vtu"))
         damage_rows = rows(os.path.join(out, "damage.csv"))
