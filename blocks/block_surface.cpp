@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <tuple>
 #include <unordered_map>
 
@@ -240,6 +241,180 @@ void insertEdgeVertices(std::vector<std::vector<int>>& loops, const std::vector<
 
 }  // namespace
 
+namespace {
+
+/// Union-find over triangle indices.
+struct Components {
+  std::vector<int> parent;
+  int find(int x) {
+    while (parent[static_cast<std::size_t>(x)] != x) {
+      parent[static_cast<std::size_t>(x)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+      x = parent[static_cast<std::size_t>(x)];
+    }
+    return x;
+  }
+  void join(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
+};
+
+}  // namespace
+
+void splitNonManifold(TriangleSurface& surface) {
+  const std::size_t n = surface.triangles.size();
+  // The triangles around each undirected edge.
+  std::map<std::pair<int, int>, std::vector<int>> edges;
+  for (std::size_t t = 0; t < n; ++t) {
+    const auto& tri = surface.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[static_cast<std::size_t>(k)],
+                b = tri[static_cast<std::size_t>((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
+    }
+  }
+  // Which triangles are joined across each edge: the two of a manifold edge; around an edge
+  // of four or more (two sheets of the block touching along it), each triangle with the one
+  // that closes the same solid wedge. Seen along a -> b, a triangle that runs a -> b has its
+  // outward normal towards increasing angle (the solid just below its angle), one that runs
+  // b -> a the other way: in angle order, each b -> a triangle is joined to the next one.
+  std::vector<std::array<int, 2>> joins;
+  bool manifold = true;                                   // no edge of more than two triangles
+  std::vector<std::vector<std::array<int, 2>>> multiple;  // the pairs of each such edge
+  for (const auto& [edge, around] : edges) {
+    if (around.size() == 2) {
+      joins.push_back({around[0], around[1]});
+      continue;
+    }
+    manifold = false;
+    const Vec3& a = surface.vertices[static_cast<std::size_t>(edge.first)];
+    const Vec3 e = (surface.vertices[static_cast<std::size_t>(edge.second)] - a).normalized();
+    const Vec3 u = e.unitOrthogonal();
+    const Vec3 w = e.cross(u);
+    std::vector<std::pair<double, int>> sorted;  // (angle, triangle)
+    for (const int t : around) {
+      const auto& tri = surface.triangles[static_cast<std::size_t>(t)];
+      int third = tri[0];
+      for (const int v : tri) {
+        if (v != edge.first && v != edge.second) third = v;
+      }
+      const Vec3 c = surface.vertices[static_cast<std::size_t>(third)] - a;
+      sorted.emplace_back(std::atan2(c.dot(w), c.dot(u)), t);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    const auto runs_forward = [&](int t) {  // the triangle runs edge.first -> edge.second
+      const auto& tri = surface.triangles[static_cast<std::size_t>(t)];
+      for (int k = 0; k < 3; ++k) {
+        if (tri[static_cast<std::size_t>(k)] == edge.first &&
+            tri[static_cast<std::size_t>((k + 1) % 3)] == edge.second) {
+          return true;
+        }
+      }
+      return false;
+    };
+    // Two faces at the same angle, one each way, are the two sides of a crack that closes
+    // on the edge (no solid between them): the one that runs a -> b comes first.
+    for (std::size_t i = 0; i + 1 < sorted.size(); ++i) {
+      if (sorted[i + 1].first - sorted[i].first <= 1e-9 && !runs_forward(sorted[i].second) &&
+          runs_forward(sorted[i + 1].second)) {
+        std::swap(sorted[i], sorted[i + 1]);
+      }
+    }
+    std::vector<std::array<int, 2>> pairs;
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const int t = sorted[i].second;
+      const int next = sorted[(i + 1) % sorted.size()].second;
+      if (!runs_forward(t) && runs_forward(next)) pairs.push_back({t, next});
+    }
+    if (pairs.size() * 2 != around.size()) {
+      // Not wedges that alternate around the edge (faces that coincide, or do not turn
+      // the same way): left as they are, all joined, rather than cut into a hole.
+      for (std::size_t i = 1; i < around.size(); ++i) joins.push_back({around[0], around[i]});
+      continue;
+    }
+    joins.insert(joins.end(), pairs.begin(), pairs.end());
+    multiple.push_back(pairs);
+  }
+  (void)manifold;  // pinch vertices (two cones at one vertex) are split below as well
+  // Around each vertex, the triangles joined across the edges at that vertex make one
+  // sheet; every sheet after the first gets its own copy of the vertex.
+  std::vector<std::vector<int>> at_vertex(surface.vertices.size());
+  for (std::size_t t = 0; t < n; ++t) {
+    for (const int v : surface.triangles[t])
+      at_vertex[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
+  }
+  Components components{std::vector<int>(n)};
+  std::vector<std::vector<std::array<int, 2>>> joins_at(surface.vertices.size());
+  for (const auto& [t, s] : joins) {
+    const auto& a = surface.triangles[static_cast<std::size_t>(t)];
+    const auto& b = surface.triangles[static_cast<std::size_t>(s)];
+    for (const int v : a) {
+      if (std::find(b.begin(), b.end(), v) != b.end())
+        joins_at[static_cast<std::size_t>(v)].push_back({t, s});
+    }
+  }
+  const std::size_t original = surface.vertices.size();
+  for (std::size_t v = 0; v < original; ++v) {
+    const std::vector<int>& fan = at_vertex[v];
+    if (fan.size() < 2) continue;
+    for (const int t : fan) components.parent[static_cast<std::size_t>(t)] = t;
+    for (const auto& [t, s] : joins_at[v]) components.join(t, s);
+    std::map<int, int> copy;   // sheet root -> vertex index
+    for (const int t : fan) {  // in triangle order: deterministic
+      const int root = components.find(t);
+      auto [it, added] = copy.try_emplace(root, -1);
+      if (added) {
+        if (copy.size() == 1) {
+          it->second = static_cast<int>(v);
+        } else {
+          it->second = static_cast<int>(surface.vertices.size());
+          surface.vertices.push_back(surface.vertices[v]);
+        }
+      }
+      for (int& corner : surface.triangles[static_cast<std::size_t>(t)]) {
+        if (corner == static_cast<int>(v)) corner = it->second;
+      }
+    }
+  }
+  // An edge whose wedges are joined elsewhere around both its ends (a block that touches
+  // itself along an edge and is connected around it) keeps one vertex pair after the copies:
+  // each wedge after the first then gets the edge's midpoint as a vertex of its own, its two
+  // triangles split in two there, so that the wedges share no edge.
+  for (const std::vector<std::array<int, 2>>& pairs : multiple) {
+    const auto shared = [&](const std::array<int, 2>& pair) {
+      std::array<int, 2> ends{-1, -1};
+      int found = 0;
+      for (const int a : surface.triangles[static_cast<std::size_t>(pair[0])]) {
+        const auto& other = surface.triangles[static_cast<std::size_t>(pair[1])];
+        if (found < 2 && std::find(other.begin(), other.end(), a) != other.end()) {
+          ends[static_cast<std::size_t>(found++)] = a;
+        }
+      }
+      return std::array<int, 2>{std::min(ends[0], ends[1]), std::max(ends[0], ends[1])};
+    };
+    const std::array<int, 2> first = shared(pairs[0]);
+    for (std::size_t p = 1; p < pairs.size(); ++p) {
+      const std::array<int, 2> ends = shared(pairs[p]);
+      if (ends != first || ends[0] < 0) continue;
+      const int middle = static_cast<int>(surface.vertices.size());
+      surface.vertices.push_back(0.5 * (surface.vertices[static_cast<std::size_t>(ends[0])] +
+                                        surface.vertices[static_cast<std::size_t>(ends[1])]));
+      for (const int t : pairs[p]) {
+        // (x, y, z) with x -> y the edge: (x, m, z) and (m, y, z), the same orientation.
+        auto& tri = surface.triangles[static_cast<std::size_t>(t)];
+        for (int k = 0; k < 3; ++k) {
+          const int x = tri[static_cast<std::size_t>(k)];
+          const int y = tri[static_cast<std::size_t>((k + 1) % 3)];
+          const int z = tri[static_cast<std::size_t>((k + 2) % 3)];
+          if ((x == ends[0] && y == ends[1]) || (x == ends[1] && y == ends[0])) {
+            tri = {x, middle, z};
+            surface.triangles.push_back({middle, y, z});
+            break;
+          }
+        }
+      }
+    }
+  }
+}
+
 TriangleSurface blockSurface(const Block& block) {
   const double diagonal = block.bounds.diagonal();
   const double tol = 1e-10 * diagonal;
@@ -282,12 +457,23 @@ TriangleSurface blockSurface(const Block& block) {
   insertEdgeVertices(loops, welder.vertices(), tol);
 
   // 3. Triangulate: a fan from the first corner, or from the centroid when points were
-  //    inserted on edges (a fan from a corner would make flat triangles there).
+  //    inserted on edges or the corner fan has a flat triangle (a polygon with collinear
+  //    corners: the full Xiangjiaba model had 2 zero-area triangles).
   TriangleSurface surface;
   surface.vertices = welder.vertices();
+  const double flat_area = 1e-12 * diagonal * diagonal;
+  const auto corner_fan_is_flat = [&](const std::vector<int>& loop) {
+    const Vec3& apex = surface.vertices[static_cast<std::size_t>(loop[0])];
+    for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
+      const Vec3 a = surface.vertices[static_cast<std::size_t>(loop[k])] - apex;
+      const Vec3 b = surface.vertices[static_cast<std::size_t>(loop[k + 1])] - apex;
+      if (0.5 * a.cross(b).norm() <= flat_area) return true;
+    }
+    return false;
+  };
   for (std::size_t l = 0; l < loops.size(); ++l) {
     const std::vector<int>& loop = loops[l];
-    if (loop.size() == corners[l]) {
+    if (loop.size() == corners[l] && !corner_fan_is_flat(loop)) {
       for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
         surface.triangles.push_back({loop[0], loop[k], loop[k + 1]});
       }
@@ -302,6 +488,7 @@ TriangleSurface blockSurface(const Block& block) {
       surface.triangles.push_back({ci, loop[k], loop[(k + 1) % loop.size()]});
     }
   }
+  splitNonManifold(surface);
   return surface;
 }
 

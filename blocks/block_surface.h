@@ -24,11 +24,20 @@ struct TriangleSurface {
 /// faces between pieces, and the two faces of a crack that ends inside the block), by
 /// convex polygon differences. What is left is welded (points closer than 1e-10 of the
 /// block's bounding-box diagonal are one vertex), vertices lying on another polygon's edge
-/// are inserted into it (no T-junctions, so every edge is shared by exactly two triangles),
-/// and each polygon is fanned into triangles (from its centroid when it got inserted
-/// vertices). Kept vertices are the pieces' own coordinates. The result encloses the
-/// block's volume; deterministic for a given block.
+/// are inserted into it (no T-junctions), and each polygon is fanned into triangles (from
+/// its centroid when it got inserted vertices; from the centroid too where a corner fan would make
+/// a flat triangle), and split where the block touches itself (splitNonManifold): a 2-manifold
+/// surface. Kept vertices are the pieces' own coordinates. The result encloses the block's volume;
+/// deterministic for a given block.
 TriangleSurface blockSurface(const Block& block);
+
+/// Makes `surface` 2-manifold: where two parts of a block touch along an edge (four
+/// triangles on one edge) or at a vertex (two cones of triangles), the vertices are copied
+/// so that each part has its own (same coordinates): every edge then has two triangles, one
+/// each way, and every vertex one fan. Around such an edge each triangle is joined to the one
+/// that closes the same solid wedge (by angle about the edge and orientation). A surface that
+/// is already 2-manifold is unchanged. blockSurface() calls it.
+void splitNonManifold(TriangleSurface& surface);
 
 /// The surface as a polyhedron of triangles (for geometry::massProperties and the CGAL checks).
 geometry::Polyhedron toPolyhedron(const TriangleSurface& surface);
