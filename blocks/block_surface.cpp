@@ -311,19 +311,27 @@ void splitNonManifold(TriangleSurface& surface) {
       return false;
     };
     // Two faces at the same angle, one each way, are the two sides of a crack that closes
-    // on the edge (no solid between them): the one that runs a -> b comes first.
-    for (std::size_t i = 0; i + 1 < sorted.size(); ++i) {
-      if (sorted[i + 1].first - sorted[i].first <= 1e-9 && !runs_forward(sorted[i].second) &&
-          runs_forward(sorted[i + 1].second)) {
-        std::swap(sorted[i], sorted[i + 1]);
+    // on the edge (no solid between them: the one that runs a -> b first) or of a sliver of
+    // solid (the other way): the order that makes the wedges alternate around the edge.
+    const auto pairs_of = [&](bool crack_first) {
+      std::vector<std::pair<double, int>> order = sorted;
+      for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+        if (order[i + 1].first - order[i].first <= 1e-9 &&
+            runs_forward(order[i].second) != runs_forward(order[i + 1].second) &&
+            runs_forward(order[i + 1].second) == crack_first) {
+          std::swap(order[i], order[i + 1]);
+        }
       }
-    }
-    std::vector<std::array<int, 2>> pairs;
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-      const int t = sorted[i].second;
-      const int next = sorted[(i + 1) % sorted.size()].second;
-      if (!runs_forward(t) && runs_forward(next)) pairs.push_back({t, next});
-    }
+      std::vector<std::array<int, 2>> found;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const int t = order[i].second;
+        const int next = order[(i + 1) % order.size()].second;
+        if (!runs_forward(t) && runs_forward(next)) found.push_back({t, next});
+      }
+      return found;
+    };
+    std::vector<std::array<int, 2>> pairs = pairs_of(true);
+    if (pairs.size() * 2 != around.size()) pairs = pairs_of(false);
     if (pairs.size() * 2 != around.size()) {
       // Not wedges that alternate around the edge (faces that coincide, or do not turn
       // the same way): left as they are, all joined, rather than cut into a hole.
