@@ -21,11 +21,9 @@ std::string materialName(int material, const std::vector<Material>& materials) {
 
 }  // namespace
 
-std::string formatBlocksCsv(const blocks::BlockModel& model,
-                            const std::vector<Material>& materials,
+std::string formatBlocksCsv(const blocks::BlockModel& model, const std::vector<Material>& materials,
                             const std::vector<std::string>& structure_names) {
-  std::string out =
-      "id,volume,cx,cy,cz,material,pieces,xmin,ymin,zmin,xmax,ymax,zmax,structure\n";
+  std::string out = "id,volume,cx,cy,cz,material,pieces,xmin,ymin,zmin,xmax,ymax,zmax,structure\n";
   for (const blocks::Block& b : model.blocks) {
     const geometry::Vec3 c = b.mass.centroid();
     out += std::to_string(b.id) + ',' + formatDouble(b.mass.volume);

@@ -15,8 +15,7 @@ namespace rockmass::io {
 /// xmin,ymin,zmin,xmax,ymax,zmax (bounding box, m) and structure (the name of the structure
 /// the block belongs to, from `structure_names`; empty for a rock block). material is the
 /// material's name.
-std::string formatBlocksCsv(const blocks::BlockModel& model,
-                            const std::vector<Material>& materials,
+std::string formatBlocksCsv(const blocks::BlockModel& model, const std::vector<Material>& materials,
                             const std::vector<std::string>& structure_names = {});
 
 /// blocks.vtu: one VTK polyhedron cell (type 42) per convex piece, with cell data id (block

@@ -169,9 +169,9 @@ TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
   // The version, the commit (git describe, "unknown" outside a checkout) and one line per
   // library with the version its headers give.
   EXPECT_EQ(version.output.rfind("rockmass 0.1.0 (commit ", 0), 0u) << version.output;
-  for (const char* library : {"\n  CGAL 5.", "\n  CHOLMOD (SuiteSparse) ", "\n  CLI11 ",
-                              "\n  Eigen 3.", "\n  Embree 3.", "\n  nlohmann-json 3.",
-                              "\n  OpenVDB ", "\n  assimp 5.", "\n  oneTBB ", "\n  zlib 1."}) {
+  for (const char* library :
+       {"\n  CGAL 5.", "\n  CHOLMOD (SuiteSparse) ", "\n  CLI11 ", "\n  Eigen 3.", "\n  Embree 3.",
+        "\n  nlohmann-json 3.", "\n  OpenVDB ", "\n  assimp 5.", "\n  oneTBB ", "\n  zlib 1."}) {
     EXPECT_NE(version.output.find(library), std::string::npos) << library << version.output;
   }
 }
