@@ -277,14 +277,12 @@ void splitNonManifold(TriangleSurface& surface) {
   // outward normal towards increasing angle (the solid just below its angle), one that runs
   // b -> a the other way: in angle order, each b -> a triangle is joined to the next one.
   std::vector<std::array<int, 2>> joins;
-  bool manifold = true;                                   // no edge of more than two triangles
   std::vector<std::vector<std::array<int, 2>>> multiple;  // the pairs of each such edge
   for (const auto& [edge, around] : edges) {
     if (around.size() == 2) {
       joins.push_back({around[0], around[1]});
       continue;
     }
-    manifold = false;
     const Vec3& a = surface.vertices[static_cast<std::size_t>(edge.first)];
     const Vec3 e = (surface.vertices[static_cast<std::size_t>(edge.second)] - a).normalized();
     const Vec3 u = e.unitOrthogonal();
@@ -341,7 +339,6 @@ void splitNonManifold(TriangleSurface& surface) {
     joins.insert(joins.end(), pairs.begin(), pairs.end());
     multiple.push_back(pairs);
   }
-  (void)manifold;  // pinch vertices (two cones at one vertex) are split below as well
   // Around each vertex, the triangles joined across the edges at that vertex make one
   // sheet; every sheet after the first gets its own copy of the vertex.
   std::vector<std::vector<int>> at_vertex(surface.vertices.size());
