@@ -23,7 +23,7 @@ import sys
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, read_summary, save
+from figure_io import add_scene_argument, number, plt, read_rows, read_summary, save
 
 
 def main(argv=None):
@@ -32,6 +32,7 @@ def main(argv=None):
     parser.add_argument("--summary", help="summary.json with rock.weibull.{shape,scale}")
     parser.add_argument("--materials", default="", help="comma-separated material names")
     parser.add_argument("-o", "--output", default="block_volumes.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["id", "volume", "material"])
@@ -96,7 +97,7 @@ def main(argv=None):
     save(fig, args.output, facts={
         "population": population, "blocks": int(len(v)), "structure_blocks": structures,
         "fit": "rock.weibull" if fit and rock else ("weibull" if fit else None),
-        "bins": "log10", "units": "m3"})
+        "bins": "log10", "units": "m3"}, scene=args.scene)
     print(f"block_volumes: wrote {args.output}")
 
 

@@ -17,7 +17,7 @@ import argparse
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from figure_io import number, plt, read_rows, save, unit_for
+from figure_io import add_scene_argument, number, plt, read_rows, save, unit_for
 
 CLASSES = [("intact", "#9a9a9a", "intact (locked)"),
            ("bond_broken", "#e6c229", "bond broken (locked)"),
@@ -34,6 +34,7 @@ def main(argv=None):
     parser.add_argument("--band", type=float, default=2.0,
                         help="half-width of the slab of contacts drawn (m)")
     parser.add_argument("-o", "--output", default="damage_map.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["x", "y", "z", "damage", "opening", "slip", "step", "time"])
@@ -103,7 +104,7 @@ def main(argv=None):
     ax.set_title(f"Damage of the discontinuities within {args.band:g} m of {axis} = {value:g} "
                  f"(step {step}, t = {time:.3g} s)")
     fig.tight_layout(rect=(0, 0.16, 1, 1))
-    save(fig, args.output)
+    save(fig, args.output, scene=args.scene)
     print(f"damage_map: wrote {args.output}")
 
 

@@ -77,8 +77,20 @@ def describe(fig, facts=None):
                       sort_keys=True)
 
 
-def save(fig, path, facts=None):
+def add_scene_argument(parser):
+    """--scene NAME: the scene the figure is of (make_figures passes summary.json's name)."""
+    parser.add_argument("--scene", default="", help="scene name, put in the figure's title")
+
+
+def save(fig, path, facts=None, scene=""):
     """Saves a figure as PNG without a timestamp (same inputs, same bytes), with describe()
-    in the PNG's text chunk "rockmass" (tests/figures/figure_smoke_test.py reads it)."""
+    in the PNG's text chunk "rockmass" (tests/figures/figure_smoke_test.py reads it). A
+    `scene` name starts the figure's title (a figure pasted in a report says what it is of)."""
+    if scene:
+        title = fig._suptitle.get_text() if fig._suptitle is not None else ""
+        if not title.startswith(scene):
+            size = fig._suptitle.get_fontsize() if fig._suptitle is not None else 11
+            fig.suptitle(f"{scene}: {title}" if title else scene, fontsize=size)
+        facts = dict(facts or {}, scene=scene)
     fig.savefig(path, dpi=120, metadata={"Software": None, "rockmass": describe(fig, facts)})
     plt.close(fig)

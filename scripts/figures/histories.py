@@ -14,13 +14,14 @@ import argparse
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, save, unit_for
+from figure_io import add_scene_argument, number, plt, read_rows, save, unit_for
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv", help="history.csv")
     parser.add_argument("-o", "--output", default="histories.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     keys = ["time", "ux", "uz", "vx", "vz"]
@@ -57,7 +58,7 @@ def main(argv=None):
         title += " (static run: velocities reset every step; lower panels du/dt of each step)"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save(fig, args.output)
+    save(fig, args.output, scene=args.scene)
     print(f"histories: wrote {args.output}")
 
 

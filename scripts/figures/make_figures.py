@@ -70,9 +70,11 @@ def main():
         sys.exit(__doc__.splitlines()[2])
     out = sys.argv[1]
     failed = False
+    # Every figure names the scene it is of (summary.json's name).
+    scene = read_summary(os.path.join(out, "summary.json")).get("name", "")
     for png, script, arguments in jobs(out):
         command = [sys.executable, os.path.join(HERE, script), *arguments, "-o",
-                   os.path.join(out, png)]
+                   os.path.join(out, png)] + (["--scene", scene] if scene else [])
         done = subprocess.run(command, capture_output=True, text=True)
         if done.returncode == 0 and os.path.exists(os.path.join(out, png)):
             print(f"figure: {png}", flush=True)

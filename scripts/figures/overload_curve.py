@@ -19,7 +19,8 @@ import math
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, read_summary, save, unit_for
+from figure_io import (add_scene_argument, number, plt, read_rows, read_summary, save,
+                       unit_for)
 
 def outcomes(summary):
     """{factor: 'rest' | 'moving' | 'failing'} from summary.json's overload runs."""
@@ -42,6 +43,7 @@ def main(argv=None):
     parser.add_argument("csv", help="overload.csv")
     parser.add_argument("--summary", help="summary.json (safety_factor, overload runs)")
     parser.add_argument("-o", "--output", default="overload_curve.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["factor", "monitor", "ux", "uy", "uz", "u"])
@@ -92,16 +94,15 @@ def main(argv=None):
         ax.set_ylabel(f"{name} ({unit})")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    name = summary.get("name")
-    fig.suptitle(("Overload" + (f" ({name})" if name else "") +
-                  ": monitor displacement at the end of each run against K\n"
+    fig.suptitle(("Overload: monitor displacement at the end of each run against K\n"
                   "● at rest (joined)   ○ not at rest within the step limit   "
                   "× stopped early, failing"), fontsize=10)
     fig.tight_layout()
     save(fig, args.output, facts={
         "unit": unit, "joined": "runs at rest only",
         "bracket": [low, high] if all(isinstance(v, (int, float)) for v in (low, high)) else None,
-        "K_s": ks if isinstance(ks, (int, float)) and math.isfinite(ks) else None})
+        "K_s": ks if isinstance(ks, (int, float)) and math.isfinite(ks) else None},
+         scene=args.scene or summary.get("name", ""))
     print(f"overload_curve: wrote {args.output}")
 
 

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from matplotlib.tri import Triangulation
 
-from figure_io import number, plt, read_rows, save
+from figure_io import add_scene_argument, number, plt, read_rows, save
 
 
 def project(d):
@@ -47,6 +47,7 @@ def main(argv=None):
     parser.add_argument("csv", help="rqd_balls.csv")
     parser.add_argument("-o", "--output", default="rqd_ball_maps.png")
     parser.add_argument("--thresholds", default="", help="comma-separated thresholds (m)")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["ball", "dir_x", "dir_y", "dir_z", "threshold", "rqd"])
@@ -96,7 +97,8 @@ def main(argv=None):
     rule = "given" if args.thresholds else "the thresholds at which the directions differ most"
     fig.suptitle(f"RQD by scanline direction (equal-area, lower hemisphere); t: {rule}",
                  fontsize=10)
-    save(fig, args.output, facts={"thresholds": chosen, "all_thresholds": all_t, "rule": rule})
+    save(fig, args.output, facts={"thresholds": chosen, "all_thresholds": all_t, "rule": rule},
+         scene=args.scene)
     print(f"rqd_ball_maps: wrote {args.output}")
 
 

@@ -21,7 +21,7 @@ import sys
 
 import numpy as np
 
-from figure_io import number, plt, read_rows, read_summary, save
+from figure_io import add_scene_argument, number, plt, read_rows, read_summary, save
 
 
 def ball_curves(path):
@@ -96,6 +96,7 @@ def main(argv=None):
     parser.add_argument("--boreholes", help="boreholes.csv")
     parser.add_argument("--summary", help="summary.json (the measured logs, if any)")
     parser.add_argument("-o", "--output", default="rqd_threshold.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
     measured, measured_t = {}, None
     entry = find_measured(read_summary(args.summary)) if args.summary else None
@@ -140,7 +141,8 @@ def main(argv=None):
         ax.legend(fontsize=8)
     fig.suptitle("RQD against threshold")
     fig.tight_layout()
-    save(fig, args.output, facts={"measured": sorted(measured), "measured_threshold": measured_t})
+    save(fig, args.output, facts={"measured": sorted(measured), "measured_threshold": measured_t},
+         scene=args.scene)
     print(f"rqd_threshold: wrote {args.output}")
 
 

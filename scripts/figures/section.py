@@ -17,7 +17,7 @@ import argparse
 
 from matplotlib.collections import LineCollection, PolyCollection
 
-from figure_io import number, plt, read_rows, save
+from figure_io import add_scene_argument, number, plt, read_rows, save
 
 FILLS = ["#e8dcc4", "#d9e4ee", "#e3ecd5", "#f0d9d9", "#e6dff0", "#f2ebcf", "#d6ece9", "#ece0d2"]
 TRACES = {"joint": ("#1f4e9a", 0.6), "fab": ("#1f4e9a", 0.6), "fault": ("#c0392b", 1.4),
@@ -28,6 +28,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv", help="section.csv")
     parser.add_argument("-o", "--output", default="section.png")
+    add_scene_argument(parser)
     args = parser.parse_args(argv)
 
     rows = read_rows(args.csv, ["kind", "id", "label", "part", "vertex", "u", "v", "source"])
@@ -62,7 +63,7 @@ def main(argv=None):
                        "enlarged", fontsize=10)
     fig.suptitle(f"Vertical section in the plane {plane}", fontsize=11)
     fig.tight_layout()
-    save(fig, args.output, facts={"plane": plane, "u": u_axis, "v": v_axis})
+    save(fig, args.output, facts={"plane": plane, "u": u_axis, "v": v_axis}, scene=args.scene)
     print(f"section: wrote {args.output}")
 
 

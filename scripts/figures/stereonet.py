@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from figure_io import plt, save
+from figure_io import add_scene_argument, plt, save
 
 # Fewest discs of a set for density contours.
 MIN_CONTOURED = 10
@@ -115,6 +115,7 @@ def main():
     parser.add_argument("-o", "--output", default="stereonet.png")
     parser.add_argument("--max-poles", type=int, default=2000)
     parser.add_argument("--sets", default="", help="comma-separated set names (default: all)")
+    add_scene_argument(parser)
     args = parser.parse_args()
 
     by_set = {}
@@ -172,7 +173,7 @@ def main():
     fig.suptitle("Poles of the fracture sets, equal-area lower hemisphere (red star: mean pole;"
                  " dotted: plunge 30° and 60°, trend every 30°)", fontsize=10)
     fig.tight_layout()
-    save(fig, args.output, facts={"sets": facts})
+    save(fig, args.output, facts={"sets": facts}, scene=args.scene)
     print(f"stereonet: wrote {args.output} ({len(names)} sets)")
 
 

@@ -71,7 +71,7 @@ def make_inputs(d):
     with open(os.path.join(d, "summary.json"), "w") as f:
         # The overload's bracket and runs (at rest, not at rest, failing) for the curve; the
         # rock's fit and the whole model's (which the figure must not draw); a measured log.
-        json.dump({"weibull": {"shape": 0.3, "scale": 1.0},
+        json.dump({"name": "smoke-scene", "weibull": {"shape": 0.3, "scale": 1.0},
                    "rock": {"weibull": {"shape": 0.9, "scale": 150.0}},
                    "boreholes": {"measured": {"file": "measured.csv", "threshold": 0.1}},
                    "safety_factor": 3.5,
@@ -223,6 +223,10 @@ def main():
             assert len(reported) == len(COMMANDS), f"expected {len(COMMANDS)} figures: {reported}"
             for png in reported:
                 print(png, check_png(os.path.join(d, png)))
+                # Every figure names the scene it is of, in its title.
+                info = description(os.path.join(d, png))
+                assert info["facts"].get("scene") == "smoke-scene", (png, info["facts"])
+                assert info["suptitle"].startswith("smoke-scene"), (png, info["suptitle"])
             return
         out = os.path.join(d, name + ".png")
         done = subprocess.run([sys.executable, os.path.join(scripts, name + ".py"),
