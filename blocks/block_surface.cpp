@@ -243,6 +243,12 @@ void insertEdgeVertices(std::vector<std::vector<int>>& loops, const std::vector<
 
 namespace {
 
+/// An edge of more than two triangles and the pairs of triangles of its wedges.
+struct MultipleEdge {
+  int a = 0, b = 0;  ///< its vertices before the copies
+  std::vector<std::array<int, 2>> pairs;
+};
+
 /// Union-find over triangle indices.
 struct Components {
   std::vector<int> parent;
@@ -277,7 +283,7 @@ void splitNonManifold(TriangleSurface& surface) {
   // outward normal towards increasing angle (the solid just below its angle), one that runs
   // b -> a the other way: in angle order, each b -> a triangle is joined to the next one.
   std::vector<std::array<int, 2>> joins;
-  std::vector<std::vector<std::array<int, 2>>> multiple;  // the pairs of each such edge
+  std::vector<MultipleEdge> multiple;
   for (const auto& [edge, around] : edges) {
     if (around.size() == 2) {
       joins.push_back({around[0], around[1]});
@@ -337,7 +343,7 @@ void splitNonManifold(TriangleSurface& surface) {
       continue;
     }
     joins.insert(joins.end(), pairs.begin(), pairs.end());
-    multiple.push_back(pairs);
+    multiple.push_back({edge.first, edge.second, pairs});
   }
   // Around each vertex, the triangles joined across the edges at that vertex make one
   // sheet; every sheet after the first gets its own copy of the vertex.
@@ -383,35 +389,55 @@ void splitNonManifold(TriangleSurface& surface) {
   // itself along an edge and is connected around it) keeps one vertex pair after the copies:
   // each wedge after the first then gets the edge's midpoint as a vertex of its own, its two
   // triangles split in two there, so that the wedges share no edge.
-  for (const std::vector<std::array<int, 2>>& pairs : multiple) {
-    const auto shared = [&](const std::array<int, 2>& pair) {
-      std::array<int, 2> ends{-1, -1};
-      int found = 0;
-      for (const int a : surface.triangles[static_cast<std::size_t>(pair[0])]) {
-        const auto& other = surface.triangles[static_cast<std::size_t>(pair[1])];
-        if (found < 2 && std::find(other.begin(), other.end(), a) != other.end()) {
-          ends[static_cast<std::size_t>(found++)] = a;
-        }
+  // A triangle on two such edges is split for the first and must be found for the second:
+  // `children` keeps the triangles each one was split into, and an edge is found again by
+  // its ends' coordinates (copies keep them).
+  std::vector<std::vector<int>> children(surface.triangles.size());
+  // The triangle (t or one split from it) that has an edge from `pa` to `pb`, with the
+  // indices of those two vertices; {-1, -1, -1} when none has.
+  const auto locate = [&](int t, const Vec3& pa, const Vec3& pb) {
+    std::vector<int> todo{t};
+    while (!todo.empty()) {
+      const int u = todo.back();
+      todo.pop_back();
+      int ia = -1, ib = -1;
+      for (const int v : surface.triangles[static_cast<std::size_t>(u)]) {
+        if (surface.vertices[static_cast<std::size_t>(v)] == pa) ia = v;
+        if (surface.vertices[static_cast<std::size_t>(v)] == pb) ib = v;
       }
-      return std::array<int, 2>{std::min(ends[0], ends[1]), std::max(ends[0], ends[1])};
-    };
-    const std::array<int, 2> first = shared(pairs[0]);
-    for (std::size_t p = 1; p < pairs.size(); ++p) {
-      const std::array<int, 2> ends = shared(pairs[p]);
-      if (ends != first || ends[0] < 0) continue;
+      if (ia >= 0 && ib >= 0) return std::array<int, 3>{u, ia, ib};
+      if (static_cast<std::size_t>(u) < children.size()) {
+        todo.insert(todo.end(), children[static_cast<std::size_t>(u)].begin(),
+                    children[static_cast<std::size_t>(u)].end());
+      }
+    }
+    return std::array<int, 3>{-1, -1, -1};
+  };
+  for (const MultipleEdge& multi : multiple) {
+    const Vec3 pa = surface.vertices[static_cast<std::size_t>(multi.a)];
+    const Vec3 pb = surface.vertices[static_cast<std::size_t>(multi.b)];
+    const std::array<int, 3> first = locate(multi.pairs[0][0], pa, pb);
+    if (first[0] < 0) continue;
+    for (std::size_t p = 1; p < multi.pairs.size(); ++p) {
+      const std::array<int, 3> here = locate(multi.pairs[p][0], pa, pb);
+      if (here[0] < 0 || here[1] != first[1] || here[2] != first[2]) continue;  // apart
       const int middle = static_cast<int>(surface.vertices.size());
-      surface.vertices.push_back(0.5 * (surface.vertices[static_cast<std::size_t>(ends[0])] +
-                                        surface.vertices[static_cast<std::size_t>(ends[1])]));
-      for (const int t : pairs[p]) {
+      surface.vertices.push_back(0.5 * (pa + pb));
+      for (const int t : multi.pairs[p]) {
+        const std::array<int, 3> holder = locate(t, pa, pb);
+        if (holder[0] < 0) continue;
         // (x, y, z) with x -> y the edge: (x, m, z) and (m, y, z), the same orientation.
-        auto& tri = surface.triangles[static_cast<std::size_t>(t)];
+        auto& tri = surface.triangles[static_cast<std::size_t>(holder[0])];
         for (int k = 0; k < 3; ++k) {
           const int x = tri[static_cast<std::size_t>(k)];
           const int y = tri[static_cast<std::size_t>((k + 1) % 3)];
           const int z = tri[static_cast<std::size_t>((k + 2) % 3)];
-          if ((x == ends[0] && y == ends[1]) || (x == ends[1] && y == ends[0])) {
+          if ((x == holder[1] && y == holder[2]) || (x == holder[2] && y == holder[1])) {
             tri = {x, middle, z};
+            children[static_cast<std::size_t>(holder[0])].push_back(
+                static_cast<int>(surface.triangles.size()));
             surface.triangles.push_back({middle, y, z});
+            children.emplace_back();
             break;
           }
         }
