@@ -27,15 +27,15 @@ std::string rqdGridName(double threshold) {
   // In millimetres, the integer part zero-padded to 5 digits: the names sort as the
   // thresholds do (ParaView and the OpenVDB tools list grids by name; "rqd_10m" came before
   // "rqd_1m"), up to 99.999 m.
-  // To the micrometre, so that 0.3 m is 300 mm and not 299.99999999999997.
-  const double mm = std::round(threshold * 1e6) / 1e3;
-  const double whole = std::floor(mm);
-  std::string digits = std::to_string(static_cast<long long>(whole));
+  // In whole micrometres: 0.3 m is 300 mm, not 299.99999999999997, and 1.3 mm keeps its
+  // fraction ".3", not ".30000000000000004".
+  const long long um = std::llround(threshold * 1e6);
+  std::string digits = std::to_string(um / 1000);
   if (digits.size() < 5) digits.insert(0, 5 - digits.size(), '0');
   std::string fraction;
-  if (mm != whole) {
-    fraction = formatDouble(mm - whole);  // "0.5" ...
-    fraction = fraction.substr(fraction.find('.'));
+  if (um % 1000 != 0) {
+    fraction = std::to_string(1000 + um % 1000).substr(1);  // three digits
+    fraction = '.' + fraction.substr(0, fraction.find_last_not_of('0') + 1);
   }
   return "rqd_" + digits + fraction + "mm";
 }

@@ -135,6 +135,7 @@ TEST(RqdGridName, NamesSortAsTheThresholds) {
   EXPECT_EQ(rqdGridName(2.5), "rqd_02500mm");
   EXPECT_EQ(rqdGridName(10.0), "rqd_10000mm");
   EXPECT_EQ(rqdGridName(0.0625), "rqd_00062.5mm");
+  EXPECT_EQ(rqdGridName(0.0013), "rqd_00001.3mm");  // 1.3 - 1 is 0.30000000000000004
   // In name order as in threshold order (the paper's thresholds and more).
   const std::vector<double> thresholds{0.0625, 0.1, 0.3, 1.0, 1.5, 2.0, 3.0, 7.0, 10.0, 25.0};
   for (std::size_t k = 1; k < thresholds.size(); ++k) {
