@@ -239,10 +239,6 @@ void insertEdgeVertices(std::vector<std::vector<int>>& loops, const std::vector<
   }
 }
 
-}  // namespace
-
-namespace {
-
 /// An edge of more than two triangles and the pairs of triangles of its wedges.
 struct MultipleEdge {
   int a = 0, b = 0;  ///< its vertices before the copies
@@ -406,10 +402,9 @@ void splitNonManifold(TriangleSurface& surface) {
         if (surface.vertices[static_cast<std::size_t>(v)] == pb) ib = v;
       }
       if (ia >= 0 && ib >= 0) return std::array<int, 3>{u, ia, ib};
-      if (static_cast<std::size_t>(u) < children.size()) {
-        todo.insert(todo.end(), children[static_cast<std::size_t>(u)].begin(),
-                    children[static_cast<std::size_t>(u)].end());
-      }
+      // Every triangle has its entry: `children` grows with the triangles.
+      todo.insert(todo.end(), children[static_cast<std::size_t>(u)].begin(),
+                  children[static_cast<std::size_t>(u)].end());
     }
     return std::array<int, 3>{-1, -1, -1};
   };

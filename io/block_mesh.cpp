@@ -19,21 +19,6 @@ namespace rockmass::io {
 
 namespace {
 
-/// assimp's exporter id of a format.
-const char* exporterId(MeshFormat format) {
-  switch (format) {
-    case MeshFormat::Obj:
-      return "objnomtl";  // no .mtl side file: the blocks carry no material colours
-    case MeshFormat::Ply:
-      return "plyb";
-    case MeshFormat::Stl:
-      return "stlb";
-    case MeshFormat::Glb:
-      return "glb2";
-  }
-  return "";
-}
-
 /// One assimp mesh holding a block surface (vertices rounded to float).
 aiMesh* makeMesh(const std::string& name, const blocks::TriangleSurface& surface) {
   auto mesh = std::make_unique<aiMesh>();
@@ -219,11 +204,13 @@ std::string formatGlb(const blocks::BlockModel& model,
   // One glTF material per material the blocks use (the validator reports unused ones), in
   // the order of the material indices; "none" for a block with no known material.
   const int materials = static_cast<int>(material_names.size());
+  // The block's material index, or `materials` ("none") when the names do not have it.
+  const auto slot = [&](const blocks::Block& block) {
+    return static_cast<std::size_t>(
+        block.material >= 0 && block.material < materials ? block.material : materials);
+  };
   std::vector<int> gltf_material(static_cast<std::size_t>(materials) + 1, -1);
-  for (const blocks::Block& block : model.blocks) {
-    const int m = block.material >= 0 && block.material < materials ? block.material : materials;
-    gltf_material[static_cast<std::size_t>(m)] = 0;
-  }
+  for (const blocks::Block& block : model.blocks) gltf_material[slot(block)] = 0;
   for (int m = 0; m <= materials; ++m) {
     if (gltf_material[static_cast<std::size_t>(m)] < 0) continue;
     gltf_material[static_cast<std::size_t>(m)] = static_cast<int>(gltf.materials.size());
@@ -286,8 +273,7 @@ std::string formatGlb(const blocks::BlockModel& model,
     primitive.attributes["POSITION"] = static_cast<int>(gltf.accessors.size()) - 2;
     primitive.indices = static_cast<int>(gltf.accessors.size()) - 1;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.material = gltf_material[static_cast<std::size_t>(
-        block.material >= 0 && block.material < materials ? block.material : materials)];
+    primitive.material = gltf_material[slot(block)];
     tinygltf::Mesh mesh;
     mesh.name = name;
     mesh.primitives.push_back(primitive);
@@ -354,12 +340,20 @@ std::string formatBlockMesh(const blocks::BlockModel& model, MeshFormat format,
   }
   // glb through tinygltf: assimp's glTF exporter took 8 min 53 s on the Xiangjiaba model's
   // 42 786 blocks (OBJ 31-37 s), and wrote it z-up with no block data.
-  if (format == MeshFormat::Glb) return formatGlb(model, surfaces, material_names);
-  if (format == MeshFormat::Ply) return formatPly(model, surfaces);
-  if (format == MeshFormat::Stl) return formatStl(model, surfaces);
+  switch (format) {
+    case MeshFormat::Glb:
+      return formatGlb(model, surfaces, material_names);
+    case MeshFormat::Ply:
+      return formatPly(model, surfaces);
+    case MeshFormat::Stl:
+      return formatStl(model, surfaces);
+    case MeshFormat::Obj:
+      break;
+  }
+  // OBJ through assimp ("objnomtl": no .mtl side file, the blocks carry no material colours).
   const std::unique_ptr<aiScene> scene = makeScene(model, surfaces);
   Assimp::Exporter exporter;
-  const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), exporterId(format));
+  const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), "objnomtl");
   if (blob == nullptr) {
     throw std::runtime_error("assimp cannot export the blocks as " + meshExtension(format) + ": " +
                              exporter.GetErrorString());

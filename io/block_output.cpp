@@ -19,6 +19,14 @@ std::string materialName(int material, const std::vector<Material>& materials) {
   return materials[static_cast<std::size_t>(material)].name;
 }
 
+/// The indices in `welder`'s points of the vertices of `shape`, in `point_of`.
+void weldVertices(PointWelder& welder, const geometry::Polyhedron& shape,
+                  std::vector<std::int64_t>& point_of) {
+  point_of.clear();
+  for (const geometry::Vec3& v : shape.vertices)
+    point_of.push_back(welder.index(v.x(), v.y(), v.z()));
+}
+
 }  // namespace
 
 std::string formatBlocksCsv(const blocks::BlockModel& model, const std::vector<Material>& materials,
@@ -51,11 +59,8 @@ std::string formatBlocksVtu(const blocks::BlockModel& model) {
   std::vector<std::int64_t> point_of;
   for (const blocks::Block& b : model.blocks) {
     for (const blocks::Piece& p : b.pieces) {
-      point_of.clear();
-      for (const geometry::Vec3& v : p.shape.vertices) {
-        point_of.push_back(welder.index(v.x(), v.y(), v.z()));
-        vtu.connectivity.push_back(point_of.back());
-      }
+      weldVertices(welder, p.shape, point_of);
+      vtu.connectivity.insert(vtu.connectivity.end(), point_of.begin(), point_of.end());
       vtu.offsets.push_back(static_cast<std::int64_t>(vtu.connectivity.size()));
       vtu.types.push_back(42);
       vtu.faces.push_back(static_cast<std::int64_t>(p.shape.faces.size()));
@@ -87,10 +92,7 @@ std::string formatFacesVtu(const blocks::BlockModel& model,
     for (std::size_t p = 0; p < b.pieces.size(); ++p) {
       const blocks::Piece& piece = b.pieces[p];
       const std::vector<std::vector<int>>& faces = piece.shape.faces;
-      point_of.clear();
-      for (const geometry::Vec3& x : piece.shape.vertices) {
-        point_of.push_back(welder.index(x.x(), x.y(), x.z()));
-      }
+      weldVertices(welder, piece.shape, point_of);
       for (std::size_t f = 0; f < faces.size(); ++f) {
         const blocks::FaceSource from =
             f < piece.face_sources.size() ? piece.face_sources[f] : blocks::FaceSource{};

@@ -1,7 +1,6 @@
 #include "io/fab.h"
 
 #include <algorithm>
-
 #include <cassert>
 #include <charconv>
 #include <cmath>
@@ -384,14 +383,14 @@ std::optional<std::string> readWholeFile(const std::filesystem::path& file) {
   }
 }
 
-}  // namespace
-
 /// `name` as a FAB string: its double quotes (which would end it) become single quotes.
 std::string fabString(const std::string& name) {
   std::string out = name;
   std::replace(out.begin(), out.end(), '"', '\'');
   return '"' + out + '"';
 }
+
+}  // namespace
 
 /// FORMAT, PROPERTIES and SETS blocks, one FRACTURE section with header, vertex and
 /// Newell-normal lines, an empty TESSFRACTURE section.

@@ -33,8 +33,7 @@ std::string compressedText(const std::string& bytes) {
     uLongf packed_size = compressBound(static_cast<uLong>(size));
     std::string& block = packed[b];
     block.resize(packed_size);
-    // Level 6, zlib's default and VTK's: measured on the Xiangjiaba blocks.vtu
-    // (docs/scene-format.md, "VTU files").
+    // Level 6, zlib's default and VTK's (sizes and times: docs/blocks.md, "Outputs").
     if (compress2(reinterpret_cast<Bytef*>(block.data()), &packed_size,
                   reinterpret_cast<const Bytef*>(bytes.data() + begin), static_cast<uLong>(size),
                   Z_DEFAULT_COMPRESSION) != Z_OK) {
@@ -201,11 +200,9 @@ std::string formatVtu(const VtuPiece& given) {
   if (!piece.field_data.empty()) {
     out += "    <FieldData>\n";
     for (const VtuArray& array : piece.field_data) {
-      const std::size_t size = array.type == "Float64" || array.type == "Int64" ? 8
-                               : array.type == "UInt8"                          ? 1
-                                                                                : 4;
-      appendArray(out, array,
-                  array.bytes.size() / (size * static_cast<std::size_t>(array.components)));
+      appendArray(
+          out, array,
+          array.bytes.size() / static_cast<std::size_t>(array.value_size * array.components));
     }
     out += "    </FieldData>\n";
   }

@@ -17,6 +17,7 @@ struct VtuArray {
   std::string name;    ///< Name attribute
   std::string type;    ///< VTK type name: Float64, Float32, Int64, Int32 or UInt8
   int components = 1;  ///< values per tuple
+  int value_size = 8;  ///< bytes per value (sizeof the C++ type)
   std::string bytes;   ///< the values' bytes (x86-64 and ARM are little-endian)
   /// Names of the components (VTK's ComponentName0.. attributes: ParaView labels them);
   /// empty, or one per component.
@@ -47,6 +48,7 @@ VtuArray makeVtuArray(std::string name, const std::vector<T>& values, int compon
   array.name = std::move(name);
   array.type = vtkTypeName<T>();
   array.components = components;
+  array.value_size = static_cast<int>(sizeof(T));
   array.bytes =
       std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   return array;

@@ -58,6 +58,15 @@ def unit_for(values):
     return UNITS[-1]
 
 
+def compass(ax, fontsize=9):
+    """N, E, S and W around the unit circle of a projection (x east, y north)."""
+    for label, (x, y, ha, va) in {"N": (0, 1.04, "center", "bottom"),
+                                  "E": (1.04, 0, "left", "center"),
+                                  "S": (0, -1.04, "center", "top"),
+                                  "W": (-1.04, 0, "right", "center")}.items():
+        ax.text(x, y, label, ha=ha, va=va, fontsize=fontsize)
+
+
 def describe(fig, facts=None):
     """What the figure shows, as the tests read it: the suptitle, and per panel its title,
     axis labels, legend entries and texts, plus the script's `facts` (the population drawn,

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from matplotlib.tri import Triangulation
 
-from figure_io import add_scene_argument, number, plt, read_rows, save
+from figure_io import add_scene_argument, compass, number, plt, read_rows, save
 
 
 def project(d):
@@ -81,11 +81,7 @@ def main(argv=None):
                 keep = np.hypot(x, y) <= 1.0 + 1e-9
                 tri = Triangulation(x[keep], y[keep])
                 image = ax.tricontourf(tri, rqd[keep], levels=levels, cmap="RdYlGn")
-            for label, (tx, ty, ha, va) in {"N": (0, 1.04, "center", "bottom"),
-                                            "E": (1.04, 0, "left", "center"),
-                                            "S": (0, -1.04, "center", "top"),
-                                            "W": (-1.04, 0, "right", "center")}.items():
-                ax.text(tx, ty, label, ha=ha, va=va, fontsize=7)
+            compass(ax, fontsize=7)
             mean = f", mean {values[:, 3].mean():.0f} %" if len(values) else ""
             ax.set_title(f"{ball}, t = {t:g} m{mean}", fontsize=9)
             ax.set_aspect("equal")

@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from figure_io import add_scene_argument, plt, save
+from figure_io import add_scene_argument, compass, plt, save
 
 # Fewest discs of a set for density contours.
 MIN_CONTOURED = 10
@@ -102,11 +102,7 @@ def graticule(ax):
         a = math.radians(trend)
         ax.plot([0.0, math.sin(a)], [0.0, math.cos(a)], lw=0.4, color="#999", ls=":")
     ax.add_patch(plt.Circle((0, 0), 1, fill=False, lw=1))
-    for label, (x, y, ha, va) in {"N": (0, 1.04, "center", "bottom"),
-                                  "E": (1.04, 0, "left", "center"),
-                                  "S": (0, -1.04, "center", "top"),
-                                  "W": (-1.04, 0, "right", "center")}.items():
-        ax.text(x, y, label, ha=ha, va=va, fontsize=9)
+    compass(ax)
 
 
 def main():
