@@ -58,6 +58,12 @@ io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
                                                   static_cast<std::size_t>(options.threads));
   }
   io::Scene scene = io::loadScene(options.scene);
+  applyCommonOptions(scene, options, mesh_domain_supported);
+  return scene;
+}
+
+void applyCommonOptions(io::Scene& scene, const CommonOptions& options,
+                        bool mesh_domain_supported) {
   if (options.seed) scene.seed = *options.seed;
   scene.generation_limits.max_discs = options.max_discs;
   scene.max_blocks = options.max_blocks;
@@ -70,7 +76,6 @@ io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported) {
                          ": domain.mesh: mesh domains are not supported by this version yet; "
                          "give domain.box (mesh domains work with dfn and blocks)");
   }
-  return scene;
 }
 
 namespace {

@@ -47,6 +47,11 @@ void addCommonOptions(CLI::App& command, CommonOptions& options);
 /// `mesh_domain_supported`, else it is an io::InputError (the command works on boxes only).
 io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported = false);
 
+/// The command-line overrides of loadScene applied to a scene read otherwise (an ensemble's
+/// realizations): --seed, --max-discs, --max-blocks, and the mesh domain.
+void applyCommonOptions(io::Scene& scene, const CommonOptions& options,
+                        bool mesh_domain_supported = false);
+
 /// Creates the output folder (an error naming it when that is impossible) and removes a
 /// stale interruption marker from it.
 std::filesystem::path prepareOutput(const std::string& output);
@@ -71,6 +76,7 @@ Command addDdaCommand(CLI::App& app);
 Command addOverloadCommand(CLI::App& app);
 Command addStrengthCommand(CLI::App& app);
 Command addRunCommand(CLI::App& app);
+Command addEnsembleCommand(CLI::App& app);
 
 /// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
 void addCutterOption(CLI::App& command, std::string& cutter);

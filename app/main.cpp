@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
       rockmass::app::addOverloadCommand(app),
       rockmass::app::addStrengthCommand(app),
       rockmass::app::addRunCommand(app),
+      rockmass::app::addEnsembleCommand(app),
   };
   // clang-format on
 

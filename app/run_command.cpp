@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "app/run.h"
 #include "app/stability.h"
 #include "app/stages.h"
 #include "geometry/plane_section.h"
@@ -33,18 +34,6 @@ namespace rockmass::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Options of `rockmass run` beyond the common ones.
-struct RunOptions {
-  CommonOptions common;
-  bool quick = false;           ///< the smaller test run (see quickScene)
-  std::string cutter;           ///< "", "exact" or "fast" ("": the scene's choice)
-  std::string section;          ///< "", "none" or AXIS=VALUE, e.g. y=10
-  std::string solver = "auto";  ///< DDA linear solver
-  bool no_figures = false;      ///< skip the matplotlib figures
-  std::string figure_scripts = ROCKMASS_FIGURE_SCRIPTS;  ///< folder of the figure scripts
-  std::string python = "/usr/bin/python3";               ///< interpreter of the figures
-};
 
 // -------------------------------------------------------------------------------------------
 // run --quick
@@ -571,9 +560,11 @@ void finishRun(RunContext& ctx) {
                ctx.out.string().c_str());
 }
 
-int runAll(const RunOptions& options) {
+}  // namespace
+
+int runScene(const RunOptions& options, io::Scene scene_in) {
   const std::string& scene_path = options.common.scene;
-  RunContext ctx{options, loadScene(options.common), {}, {}, {}, {}, {}, 0.0};
+  RunContext ctx{options, std::move(scene_in), {}, {}, {}, {}, {}, 0.0};
   io::Scene& scene = ctx.scene;
   const geometry::Box full_domain = scene.dfn.domain;
   ctx.report.quick = options.quick;
@@ -618,8 +609,6 @@ int runAll(const RunOptions& options) {
   return 0;
 }
 
-}  // namespace
-
 Command addRunCommand(CLI::App& app) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* cli = app.add_subcommand(
@@ -641,7 +630,7 @@ Command addRunCommand(CLI::App& app) {
                   "Folder of make_figures.py (default: the source tree's scripts/figures)");
   cli->add_option("--python", options->python,
                   "Python interpreter with matplotlib for the figures (default /usr/bin/python3)");
-  return {cli, [options] { return runAll(*options); }};
+  return {cli, [options] { return runScene(*options, loadScene(options->common)); }};
 }
 
 }  // namespace rockmass::app

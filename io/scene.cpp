@@ -48,9 +48,10 @@ class SceneReader {
   /// Reads the whole scene from its root node.
   Scene read(const Cursor& root, const fs::path& file) {
     const Cursor m =
-        root.map({"version", "name", "seed", "domain", "materials", "rock_material", "joints",
-                  "default_joint", "joint_sets", "fractures", "faults", "interlayers", "structures",
-                  "loads", "supports", "monitors", "bolts", "bolt_patterns", "analysis"});
+        root.map({"version",       "name",        "seed",          "domain",     "materials",
+                  "rock_material", "joints",      "default_joint", "joint_sets", "fractures",
+                  "faults",        "interlayers", "structures",    "loads",      "supports",
+                  "monitors",      "bolts",       "bolt_patterns", "analysis",   "uncertainty"});
     scene_.file = file;
     const Cursor version = m.at("version");
     if (const int number = version.integer(); number != 1) {
@@ -126,6 +127,9 @@ class SceneReader {
     if (const auto analysis = m.get("analysis")) {
       scene_.analysis = readAnalysis(*analysis, namesOf(scene_.dfn.joint_sets), scene_.dfn.domain,
                                      !scene_.domain_mesh.empty(), !scene_.monitors.empty());
+    }
+    if (const auto uncertainty = m.get("uncertainty")) {
+      scene_.uncertainty = readUncertainty(*uncertainty, root.node());
     }
     return std::move(scene_);
   }
@@ -664,6 +668,33 @@ Scene parseScene(const std::string& text, const std::filesystem::path& file) {
   const Source source{file, fs::absolute(file).parent_path()};
   const Cursor root(source, loadDocument(text, file), "", YAML::Mark());
   return SceneReader().read(root, file);
+}
+
+Scene parseSampledScene(const fs::path& file, const std::vector<double>& values,
+                        std::uint64_t seed) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot read the scene file");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const Source source{file, fs::absolute(file).parent_path()};
+  YAML::Node document = loadDocument(text, file);
+  const Cursor root(source, document, "", YAML::Mark());
+  const Scene scene = SceneReader().read(root, file);
+  if (!scene.uncertainty || scene.uncertainty->inputs.size() != values.size()) {
+    throw std::logic_error("parseSampledScene: one value per uncertainty input");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const UncertainInput& input = scene.uncertainty->inputs[i];
+    std::string why;
+    std::optional<YAML::Node> node = resolveKey(document, input.key, why);
+    if (!node) throw std::logic_error("parseSampledScene: " + why);
+    *node = formatDouble(values[i]);  // yaml-cpp keeps the node's mark: errors point at it
+  }
+  document["seed"] = std::to_string(seed);
+  try {
+    return SceneReader().read(root, file);
+  } catch (const InputError& error) {
+    throw InputError(std::string(error.what()) + " (a sampled value of uncertainty.inputs)");
+  }
 }
 
 }  // namespace rockmass::io

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -276,6 +277,34 @@ struct Analysis {
   std::optional<EquilibriumAnalysis> equilibrium;
 };
 
+/// One uncertain input of the `uncertainty` section: a number of the scene that varies from
+/// realization to realization of an ensemble (docs/ensemble.md).
+struct UncertainInput {
+  std::string key;           ///< its key path, e.g. "joints.bedrock_III2.friction"
+  std::string distribution;  ///< normal | lognormal | uniform | triangular | sample_mean
+  double value = 0.0;        ///< the scene's own value at `key`
+  /// Parameters as resolved: mean and std (normal, lognormal; sample_mean: the mean's
+  /// normal, std / sqrt(count)), min and max (uniform, triangular, or a normal's truncation),
+  /// mode (triangular).
+  double mean = 0.0;
+  double std = 0.0;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  double mode = 0.0;
+  KeyLocation location;  ///< of the entry's `key`
+};
+
+/// The `uncertainty` section: which inputs vary across the realizations of an ensemble and
+/// how they are sampled; without it realizations differ by their DFN seed only.
+struct Uncertainty {
+  bool latin_hypercube = false;  ///< sampling: latin_hypercube (else monte_carlo)
+  int size = 0;                  ///< the Latin hypercube's size (its strata per input)
+  KeyLocation size_location;     ///< of `sampling` (for an ensemble larger than `size`)
+  std::vector<UncertainInput> inputs;
+  std::optional<double> overload_target;  ///< targets.overload: P(K_s < target)
+  std::optional<double> strength_target;  ///< targets.strength_reduction: P(SRF < target)
+};
+
 /// The keys of a joint set that drive how many discs it draws.
 struct JointSetKeys {
   KeyLocation intensity;     ///< `spacing` or `intensity`
@@ -311,6 +340,7 @@ struct Scene {
   std::vector<Monitor> monitors;         ///< measure points
   std::vector<BoltSpec> bolts;           ///< bolts, then the patterns' bolts row by row
   Analysis analysis;                     ///< what to compute
+  std::optional<Uncertainty> uncertainty;  ///< ensembles: the inputs that vary
 };
 
 /// "file:line:column: path: what" for a key of `scene`.
@@ -323,5 +353,11 @@ Scene loadScene(const std::filesystem::path& file);
 
 /// The same, from text; `file` is used in messages and to resolve relative paths.
 Scene parseScene(const std::string& text, const std::filesystem::path& file);
+
+/// The scene of one realization of an ensemble: the file read again with `values` (one per
+/// uncertainty input, in order) written at their keys and `seed` as its seed. A value the
+/// key cannot take is an InputError located at the key's line, naming the value.
+Scene parseSampledScene(const std::filesystem::path& file, const std::vector<double>& values,
+                        std::uint64_t seed);
 
 }  // namespace rockmass::io

@@ -135,6 +135,9 @@ class Cursor {
   /// 1-based column of this node in the scene file.
   int column() const { return mark_.column + 1; }
 
+  /// The YAML node itself (the uncertainty section resolves key paths on the root's).
+  const YAML::Node& node() const { return node_; }
+
   /// The key path, e.g. "materials.concrete.young" ("" at the root).
   const std::string& path() const { return path_; }
 

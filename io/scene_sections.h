@@ -105,4 +105,14 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors);
 Analysis readAnalysis(const Cursor& c, const std::vector<std::string>& joint_sets,
                       const geometry::Box& domain, bool mesh_domain, bool has_monitors);
 
+/// The number node at a key path of the scene ("joints.soft.friction", "loads.water[0].level",
+/// "joint_sets.J1.dip.mean": a list item by index or by its `name`), or an empty optional with
+/// `why` saying what is missing.
+std::optional<YAML::Node> resolveKey(const YAML::Node& root, const std::string& key,
+                                     std::string& why);
+
+/// The `uncertainty` section (docs/ensemble.md); `root` is the scene's root node, on which
+/// every input's key is resolved.
+Uncertainty readUncertainty(const Cursor& c, const YAML::Node& root);
+
 }  // namespace rockmass::io::scene_detail

@@ -19,6 +19,8 @@ packages=(
   libassimp-dev          # blocks, io: mesh domains and block meshes
   libtinygltf-dev        # io: the blocks as glb
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
+  libboost-dev           # ensemble: Boost.Math distributions (quantiles)
+  libopenmpi-dev openmpi-bin   # ensemble: realizations over MPI ranks (optional at build time)
   python3-matplotlib python3-numpy     # figures from the CSV outputs
   python3-meshio python3-vtk9   # tests: the VTU files read by meshio and by VTK
   libgtest-dev libgmock-dev   # tests
