@@ -51,6 +51,10 @@ struct EnsembleOptions {
   bool no_figures = false;  ///< skip the ensemble's figures
 };
 
+/// Who runs realizations on this thread ("rank 1"), named in the progress lines; empty on a
+/// single process.
+thread_local std::string worker_label;
+
 /// What a realization is: its index, seed and sampled inputs (its marker without the status).
 Json identityOf(const io::Scene& base, int index) {
   Json j;
@@ -117,7 +121,8 @@ void runRealization(const EnsembleOptions& o, const io::Scene& base, int index) 
   }
   std::error_code error;
   fs::remove_all(folder, error);  // a half-written realization starts again
-  std::fprintf(stderr, "ensemble: realization %d of %d (seed %llu)\n", index, o.realizations,
+  std::fprintf(stderr, "ensemble: %srealization %d of %d (seed %llu)\n",
+               worker_label.empty() ? "" : (worker_label + ": ").c_str(), index, o.realizations,
                static_cast<unsigned long long>(identity["seed"].get<std::uint64_t>()));
   RunOptions run = o.run;
   run.common.output = folder.string();
@@ -223,6 +228,7 @@ bool runMpi(const EnsembleOptions& o, const io::Scene& base, const std::vector<i
     std::exception_ptr local_error;
     std::atomic<bool> local_failed{false};
     std::thread local([&] {
+      worker_label = "rank 0";
       try {
         for (std::size_t k; (k = next++) < list.size();) runRealization(o, base, list[k]);
       } catch (...) {
@@ -250,6 +256,7 @@ bool runMpi(const EnsembleOptions& o, const io::Scene& base, const std::vector<i
     local.join();
     if (local_error) std::rethrow_exception(local_error);
   } else {
+    worker_label = "rank " + std::to_string(rank);
     for (;;) {
       const int request = 0;
       MPI_Send(&request, 1, MPI_INT, 0, kRequestTag, MPI_COMM_WORLD);

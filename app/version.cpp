@@ -12,6 +12,10 @@
 #include <CLI/Version.hpp>
 #include <nlohmann/json.hpp>
 
+#ifdef ROCKMASS_WITH_MPI
+#include <mpi.h>
+#endif
+
 #include <Eigen/Core>
 #include <string>
 
@@ -51,6 +55,12 @@ std::string versionText() {
   for (const auto& [name, version] : libraries) {
     text += "  " + std::string(name) + ' ' + version + '\n';
   }
+#ifdef ROCKMASS_WITH_MPI
+  // The MPI standard the headers declare (the ensemble command's ranks; docs/ensemble.md).
+  text += "  MPI " + std::to_string(MPI_VERSION) + '.' + std::to_string(MPI_SUBVERSION) + '\n';
+#else
+  text += "  (built without MPI: ensembles run on local processes)\n";
+#endif
   return text;
 }
 

@@ -283,7 +283,9 @@ Json writeAggregate(const fs::path& out, const io::Scene& scene, int count) {
   Json input_list = Json::array();
   for (const io::UncertainInput& input : inputs) {
     Json e{{"key", input.key}, {"distribution", input.distribution}, {"scene_value", input.value}};
-    if (input.distribution == "uniform" || input.distribution == "triangular") {
+    if (input.distribution == "list") {
+      e["values"] = input.values;
+    } else if (input.distribution == "uniform" || input.distribution == "triangular") {
       e["min"] = input.min;
       e["max"] = input.max;
       if (input.distribution == "triangular") e["mode"] = input.mode;

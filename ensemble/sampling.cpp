@@ -90,6 +90,11 @@ double quantile(const io::UncertainInput& input, double p) {
 std::vector<double> sampleInputs(const io::Uncertainty& u, std::uint64_t scene_seed, int index) {
   std::vector<double> values;
   for (std::size_t j = 0; j < u.inputs.size(); ++j) {
+    const io::UncertainInput& input = u.inputs[j];
+    if (input.distribution == "list") {
+      values.push_back(input.values[static_cast<std::size_t>(index) % input.values.size()]);
+      continue;
+    }
     values.push_back(
         quantile(u.inputs[j], probabilityOf(u, scene_seed, index, static_cast<int>(j))));
   }

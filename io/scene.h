@@ -281,7 +281,8 @@ struct Analysis {
 /// realization to realization of an ensemble (docs/ensemble.md).
 struct UncertainInput {
   std::string key;           ///< its key path, e.g. "joints.bedrock_III2.friction"
-  std::string distribution;  ///< normal | lognormal | uniform | triangular | sample_mean
+  /// normal | lognormal | uniform | triangular | sample_mean | list
+  std::string distribution;
   double value = 0.0;        ///< the scene's own value at `key`
   /// Parameters as resolved: mean and std (normal, lognormal; sample_mean: the mean's
   /// normal, std / sqrt(count)), min and max (uniform, triangular, or a normal's truncation),
@@ -291,6 +292,8 @@ struct UncertainInput {
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
   double mode = 0.0;
+  /// list: realization i takes values[i mod size] (a design of chosen cases, not a draw).
+  std::vector<double> values;
   KeyLocation location;  ///< of the entry's `key`
 };
 

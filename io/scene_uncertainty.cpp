@@ -123,7 +123,8 @@ std::optional<double> siblingStd(const YAML::Node& root, const std::string& key)
 }
 
 UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
-  const Cursor m = c.map({"key", "distribution", "mean", "std", "min", "max", "mode", "count"});
+  const Cursor m =
+      c.map({"key", "distribution", "mean", "std", "min", "max", "mode", "count", "values"});
   UncertainInput input;
   const Cursor key = m.at("key");
   input.key = key.string();
@@ -132,8 +133,8 @@ UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
   const std::optional<YAML::Node> node = resolveKey(root, input.key, why);
   if (!node) key.fail(why);
   input.value = *parseNumber(node->Scalar());
-  const std::vector<std::string> kinds{"normal", "lognormal", "uniform", "triangular",
-                                       "sample_mean"};
+  const std::vector<std::string> kinds{"normal",     "lognormal",   "uniform",
+                                       "triangular", "sample_mean", "list"};
   const Cursor kind = m.at("distribution");
   input.distribution = kinds[kind.choice("distribution", kinds)];
   // Keys each kind takes; any other is an error (a typo would silently change nothing).
@@ -142,8 +143,9 @@ UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
       : input.distribution == "lognormal"  ? std::vector<std::string>{"mean", "std"}
       : input.distribution == "uniform"    ? std::vector<std::string>{"min", "max"}
       : input.distribution == "triangular" ? std::vector<std::string>{"min", "mode", "max"}
+      : input.distribution == "list"       ? std::vector<std::string>{"values"}
                                            : std::vector<std::string>{"count", "std"};
-  for (const std::string name : {"mean", "std", "min", "max", "mode", "count"}) {
+  for (const std::string name : {"mean", "std", "min", "max", "mode", "count", "values"}) {
     if (const auto given = m.get(name);
         given && std::find(takes.begin(), takes.end(), name) == takes.end()) {
       given->fail("a " + input.distribution + " distribution takes " + joined(takes) + ", not " +
@@ -180,6 +182,10 @@ UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
                   formatDouble(input.min) + ", " + formatDouble(input.max) + "]");
       }
     }
+  } else if (input.distribution == "list") {
+    const Cursor values = m.at("values");
+    for (const Cursor& item : values.items()) input.values.push_back(item.number());
+    if (input.values.empty()) values.failExpected("a list of at least one number");
   } else {  // sample_mean: the mean of `count` samples of standard deviation `std`
     const int count = m.at("count").integer(atLeast(2));
     double std = 0.0;
