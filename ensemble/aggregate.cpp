@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <tuple>
 
 #include "io/atomic_file.h"
 
@@ -128,15 +129,27 @@ Json toJson(const Stats& s) {
           {"p05", s.p05}, {"p50", s.p50},   {"p95", s.p95}, {"max", s.max}};
 }
 
-Probability probabilityBelow(const std::vector<double>& values, double target) {
+Probability probabilityBelow(const std::vector<double>& values, double target,
+                             const std::vector<double>& last_stable,
+                             const std::vector<double>& first_unstable) {
   Probability p;
-  for (double v : values) {
-    if (!std::isfinite(v)) {
-      ++p.undetermined;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double v = values[i];
+    if (std::isfinite(v)) {
+      ++p.known;
+      p.below += v < target;
       continue;
     }
-    ++p.known;
-    p.below += v < target;
+    const double low = i < last_stable.size() ? last_stable[i] : kNaN;
+    const double high = i < first_unstable.size() ? first_unstable[i] : kNaN;
+    if (std::isfinite(high) && high <= target) {
+      ++p.known;
+      ++p.below;
+    } else if (std::isfinite(low) && low >= target) {
+      ++p.known;
+    } else {
+      ++p.undetermined;
+    }
   }
   if (p.known > 0) {
     p.p = static_cast<double>(p.below) / p.known;
@@ -260,12 +273,17 @@ Json writeAggregate(const fs::path& out, const io::Scene& scene, int count) {
         }
       }
     }
-    // Stability
-    if (s.contains("overload"))
-      table.set("K_s", r, rows, numberAt(s, "/overload/K_s"_json_pointer));
-    if (s.contains("strength_reduction")) {
-      table.set("critical_srf", r, rows,
-                numberAt(s, "/strength_reduction/critical_srf"_json_pointer));
+    // The factors, and the bracket of their searches (a factor outside the factors tried is
+    // not a number, but its bracket may still decide P(factor < target)).
+    for (const auto& [section, name] : {std::pair<std::string, std::string>{"overload", "K_s"},
+                                        {"strength_reduction", "critical_srf"}}) {
+      if (!s.contains(section)) continue;
+      const std::string at = "/" + section + "/";
+      table.set(name, r, rows, numberAt(s, Json::json_pointer(at + name)));
+      table.set(name + "_last_stable", r, rows,
+                numberAt(s, Json::json_pointer(at + "last_stable")));
+      table.set(name + "_first_unstable", r, rows,
+                numberAt(s, Json::json_pointer(at + "first_unstable")));
     }
   }
 
@@ -314,7 +332,8 @@ Json writeAggregate(const fs::path& out, const io::Scene& scene, int count) {
     Json f;
     f["stats"] = toJson(statsOf(v));
     if (target) {
-      const Probability p = probabilityBelow(v, *target);
+      const Probability p = probabilityBelow(v, *target, table.columns[name + "_last_stable"],
+                                             table.columns[name + "_first_unstable"]);
       f["target"] = *target;
       f["probability_below"] = p.p;
       f["standard_error"] = p.standard_error;

@@ -34,13 +34,18 @@ Stats statsOf(std::vector<double> values);
 nlohmann::json toJson(const Stats& s);
 
 /// The fraction of `values` below `target` with its binomial standard error, over the values
-/// that are known (NaN: undetermined, left out and counted).
+/// that are known. A NaN value (the search did not bracket the factor) is decided by its
+/// bracket where it can be: below when its first unstable factor is at most the target, not
+/// below when its last stable factor is at least the target; else it is undetermined, left
+/// out and counted. `last_stable` and `first_unstable` are per value (empty: none known).
 struct Probability {
   double p = 0.0;
   double standard_error = 0.0;
   int below = 0, known = 0, undetermined = 0;
 };
-Probability probabilityBelow(const std::vector<double>& values, double target);
+Probability probabilityBelow(const std::vector<double>& values, double target,
+                             const std::vector<double>& last_stable = {},
+                             const std::vector<double>& first_unstable = {});
 
 /// Spearman's rank correlation of x and y over the pairs where both are numbers (average
 /// ranks for ties); NaN with fewer than 3 pairs or a constant variable.

@@ -173,13 +173,25 @@ TEST_F(EnsembleCli, ProbabilityOfSlidingMatchesTheNormalCdf) {
   std::stringstream lines(csv);
   std::string line;
   std::getline(lines, line);
-  ASSERT_NE(line.find("input:joints.plane.friction"), std::string::npos) << line;
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> f;
+    std::stringstream fields(text);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    return f;
+  };
+  const std::vector<std::string> header = split(line);
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(at, header.end()) << name << " in " << line;
+    return static_cast<std::size_t>(at - header.begin());
+  };
+  const std::size_t friction_at = column("input:joints.plane.friction");
+  const std::size_t srf_at = column("critical_srf");
   int rows = 0;
   while (std::getline(lines, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
-    const double friction = std::stod(f[2]), factor = std::stod(f.back());
+    const std::vector<std::string> f = split(line);
+    ASSERT_GT(f.size(), srf_at) << line;
+    const double friction = std::stod(f[friction_at]), factor = std::stod(f[srf_at]);
     EXPECT_NEAR(factor, friction / tan30, 0.02 + 1e-9) << line;
     ++rows;
   }
@@ -192,10 +204,7 @@ TEST_F(EnsembleCli, ProbabilityOfSlidingMatchesTheNormalCdf) {
   std::stringstream again(csv);
   std::getline(again, line);
   while (std::getline(again, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
-    const double z = (std::stod(f[2]) - 0.65) / 0.1;
+    const double z = (std::stod(split(line)[friction_at]) - 0.65) / 0.1;
     const double u = 0.5 * std::erfc(-z / std::sqrt(2.0));
     strata.insert(static_cast<int>(std::floor(u * n)));
   }

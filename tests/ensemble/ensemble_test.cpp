@@ -164,6 +164,12 @@ TEST(EnsembleAggregate, ProbabilityBelowATargetCountsTheKnownValues) {
   EXPECT_EQ(p.undetermined, 1);
   EXPECT_DOUBLE_EQ(p.p, 0.5);
   EXPECT_DOUBLE_EQ(p.standard_error, std::sqrt(0.25 / 4));
+  // Factors outside the list tried: decided by their bracket where it reaches the target.
+  const Probability q =
+      probabilityBelow({nan, nan, nan, 1.2}, 1.0, {1.5, nan, 0.8, 1.1}, {nan, 0.7, 1.2, 1.3});
+  EXPECT_EQ(q.known, 3);  // stable at 1.5 >= 1: not below; unstable at 0.7 <= 1: below
+  EXPECT_EQ(q.below, 1);
+  EXPECT_EQ(q.undetermined, 1);  // between 0.8 and 1.2
 }
 
 }  // namespace
