@@ -44,12 +44,39 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
 struct EnsembleOptions {
-  RunOptions run;           ///< what every realization runs (output: OUT/r<i>)
-  int realizations = 0;     ///< --realizations N
-  std::optional<int> only;  ///< --only I: realization I alone
-  int jobs = 1;             ///< --jobs J: local processes
-  bool no_figures = false;  ///< skip the ensemble's figures
+  RunOptions run;                   ///< what every realization runs (output: OUT/r<i>)
+  int realizations = 0;             ///< --realizations N
+  std::optional<int> only;          ///< --only I: realization I alone
+  int jobs = 1;                     ///< --jobs J: local processes
+  bool no_figures = false;          ///< skip the ensemble's figures
+  std::vector<std::string> stages;  ///< --stages: the analyses kept (empty: the scene's)
 };
+
+/// The scene's analyses reduced to `stages` (the DFN always runs; a stage the scene does not
+/// name is an error: nothing would compute it).
+void keepStages(io::Scene& scene, const std::vector<std::string>& stages, const std::string& file) {
+  if (stages.empty()) return;
+  io::Analysis& a = scene.analysis;
+  const auto keep = [&](const char* name, bool present) {
+    const bool wanted = std::find(stages.begin(), stages.end(), name) != stages.end();
+    if (wanted && !present) {
+      throw io::InputError("--stages " + std::string(name) + ": " + file + " has no analysis." +
+                           name + " section");
+    }
+    return wanted;
+  };
+  const bool blocks = keep("blocks", a.blocks.has_value());
+  const bool rqd = keep("rqd", a.rqd.has_value());
+  const bool overload = keep("overload", a.overload.has_value());
+  const bool strength = keep("strength_reduction", a.strength_reduction.has_value());
+  // The stability analyses run on analysis.dda's model: it stays with either of them.
+  const bool dda = keep("dda", a.dda.has_value()) || overload || strength;
+  if (!blocks) a.blocks.reset();
+  if (!rqd) a.rqd.reset();
+  if (!dda) a.dda.reset();
+  if (!overload) a.overload.reset();
+  if (!strength) a.strength_reduction.reset();
+}
 
 /// Who runs realizations on this thread ("rank 1"), named in the progress lines; empty on a
 /// single process.
@@ -86,6 +113,7 @@ io::Scene realizationScene(const EnsembleOptions& o, const io::Scene& base, int 
     scene = base;
     scene.seed = seed;
   }
+  keepStages(scene, o.stages, o.run.common.scene);
   return scene;
 }
 
@@ -369,6 +397,11 @@ Command addEnsembleCommand(CLI::App& app) {
                   "cores / jobs threads unless --threads)")
       ->check(CLI::Range(1, 4096));
   cli->add_flag("--quick", options->run.quick, "Each realization as `run --quick`");
+  cli->add_option("--stages", options->stages,
+                  "Analyses each realization runs, of those the scene names (default all): "
+                  "blocks, rqd, dda, overload, strength_reduction (dfn always)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"blocks", "rqd", "dda", "overload", "strength_reduction"}));
   addCutterOption(*cli, options->run.cutter);
   cli->add_option("--solver", options->run.solver, "DDA linear solver: auto, cholmod, eigen, pcg")
       ->check(CLI::IsMember({"auto", "cholmod", "eigen", "pcg"}));

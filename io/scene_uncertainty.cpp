@@ -144,7 +144,7 @@ UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
       : input.distribution == "uniform"    ? std::vector<std::string>{"min", "max"}
       : input.distribution == "triangular" ? std::vector<std::string>{"min", "mode", "max"}
       : input.distribution == "list"       ? std::vector<std::string>{"values"}
-                                           : std::vector<std::string>{"count", "std"};
+                                           : std::vector<std::string>{"count", "std", "min", "max"};
   for (const std::string name : {"mean", "std", "min", "max", "mode", "count", "values"}) {
     if (const auto given = m.get(name);
         given && std::find(takes.begin(), takes.end(), name) == takes.end()) {
@@ -200,6 +200,12 @@ UncertainInput readInput(const Cursor& c, const YAML::Node& root) {
     }
     input.mean = input.value;
     input.std = std / std::sqrt(static_cast<double>(count));
+    input.min = m.numberOr("min", input.min, kAnyNumber);
+    input.max = m.numberOr("max", input.max, kAnyNumber);
+    if (!(input.min < input.max)) {
+      m.at("max").fail("expected max > min (" + formatDouble(input.min) + "), got " +
+                       formatDouble(input.max));
+    }
   }
   return input;
 }
