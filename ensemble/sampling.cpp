@@ -4,8 +4,11 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/triangular.hpp>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace rockmass::ensemble {
@@ -33,15 +36,22 @@ std::uint64_t hashOf(std::uint64_t seed, Stream stream, std::uint64_t a, std::ui
 }
 
 /// The stratum of realization `index` in the random permutation of `size` strata for an
-/// input (Fisher-Yates, from the end).
+/// input (Fisher-Yates, from the end). Each permutation is made once and kept: an ensemble
+/// draws every realization's inputs before it starts (O(size) each, not O(size^2) in all).
 int stratumOf(std::uint64_t seed, int input, int size, int index) {
-  std::vector<int> order(static_cast<std::size_t>(size));
-  std::iota(order.begin(), order.end(), 0);
-  for (int k = size - 1; k > 0; --k) {
-    const std::uint64_t bits = hashOf(seed, kPermutation, static_cast<std::uint64_t>(input),
-                                      static_cast<std::uint64_t>(k));
-    const auto j = static_cast<int>(bits % static_cast<std::uint64_t>(k + 1));
-    std::swap(order[static_cast<std::size_t>(k)], order[static_cast<std::size_t>(j)]);
+  static std::mutex mutex;
+  static std::map<std::tuple<std::uint64_t, int, int>, std::vector<int>> permutations;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::vector<int>& order = permutations[{seed, input, size}];
+  if (order.empty()) {
+    order.resize(static_cast<std::size_t>(size));
+    std::iota(order.begin(), order.end(), 0);
+    for (int k = size - 1; k > 0; --k) {
+      const std::uint64_t bits = hashOf(seed, kPermutation, static_cast<std::uint64_t>(input),
+                                        static_cast<std::uint64_t>(k));
+      const auto j = static_cast<int>(bits % static_cast<std::uint64_t>(k + 1));
+      std::swap(order[static_cast<std::size_t>(k)], order[static_cast<std::size_t>(j)]);
+    }
   }
   return order[static_cast<std::size_t>(index)];
 }

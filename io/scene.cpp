@@ -690,9 +690,8 @@ Scene parseSampledScene(const fs::path& file, const std::vector<double>& values,
     // A whole number is written as one ("200000", not "2e+05"), so that integer keys take it;
     // yaml-cpp keeps the node's mark: errors point at the key's line.
     const double v = values[i];
-    *node = std::abs(v) < 0x1.0p53 && v == std::trunc(v)
-                ? std::to_string(static_cast<long long>(v))
-                : formatDouble(v);
+    *node = std::abs(v) < 0x1.0p53 && v == std::trunc(v) ? std::to_string(static_cast<long long>(v))
+                                                         : formatDouble(v);
   }
   document["seed"] = std::to_string(seed);
   try {

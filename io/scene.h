@@ -280,10 +280,10 @@ struct Analysis {
 /// One uncertain input of the `uncertainty` section: a number of the scene that varies from
 /// realization to realization of an ensemble (docs/ensemble.md).
 struct UncertainInput {
-  std::string key;           ///< its key path, e.g. "joints.bedrock_III2.friction"
+  std::string key;  ///< its key path, e.g. "joints.bedrock_III2.friction"
   /// normal | lognormal | uniform | triangular | sample_mean | list
   std::string distribution;
-  double value = 0.0;        ///< the scene's own value at `key`
+  double value = 0.0;  ///< the scene's own value at `key`
   /// Parameters as resolved: mean and std (normal, lognormal; sample_mean: the mean's
   /// normal, std / sqrt(count)), min and max (uniform, triangular, or a normal's truncation),
   /// mode (triangular).

@@ -223,7 +223,8 @@ Uncertainty readUncertainty(const Cursor& c, const YAML::Node& root) {
   if (const auto size = m.get("size")) {
     if (!u.latin_hypercube)
       size->fail("size is the Latin hypercube's: give sampling: latin_hypercube");
-    u.size = size->integer(atLeast(1));
+    // At most the largest ensemble (--realizations): each input keeps a permutation of size.
+    u.size = size->integer(closed(1, 1e6));
     u.size_location = locationOf(*size);
   } else if (u.latin_hypercube) {
     m.at("sampling")

@@ -41,6 +41,9 @@ GROUPS = [
      "level, the uplift diagram with drains (rockmass CLI)."),
     ("Earthquakes", "Pseudo-static seismic coefficients and Westergaard's added pressure."),
     ("Dams", "A gravity-dam block on a rock slab: overload and strength reduction (rockmass CLI)."),
+    ("Ensembles",
+     "Statistics across realizations of `rockmass ensemble` against their known distributions "
+     "(rockmass CLI)."),
 ]
 
 # Cases listed before their tests exist: a recorded case of the same group and name replaces

@@ -181,7 +181,7 @@ TEST(Cli, MistypedCommandsAndOptionsAreNamedWithTheClosestValidOne) {
   const Result command = test::runCli("rn scene.yaml -o out");
   EXPECT_EQ(command.exit_code, 2);
   EXPECT_NE(command.output.find("error: unknown command 'rn'; expected one of: dfn, blocks, rqd, "
-                                "dda, overload, strength, run (did you mean 'run'?)"),
+                                "dda, overload, strength, run, ensemble (did you mean 'run'?)"),
             std::string::npos)
       << command.output;
   const Result option = test::runCli("dda scene.yaml -o out --solvr pcg");

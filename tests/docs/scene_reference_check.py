@@ -31,7 +31,8 @@ import os
 import re
 import sys
 
-READER_SOURCES = ["io/scene_cursor.h", "io/scene_sections.cpp", "io/scene.cpp"]
+READER_SOURCES = ["io/scene_cursor.h", "io/scene_sections.cpp", "io/scene_uncertainty.cpp",
+                  "io/scene.cpp"]
 CURSOR_HEADER = "io/scene_cursor.h"
 PAGE = "docs/scene-reference.md"
 

@@ -76,7 +76,8 @@ TEST(SceneErrors, UnknownTopLevelKeyHasNoPath) {
   EXPECT_EQ(errorOf(valid_head + "joint_set: []\n"),
             "bad.yaml:3:1: unknown key 'joint_set'; expected one of: version, name, seed, domain, "
             "materials, rock_material, joints, default_joint, joint_sets, fractures, faults, "
-            "interlayers, structures, loads, supports, monitors, bolts, bolt_patterns, analysis "
+            "interlayers, structures, loads, supports, monitors, bolts, bolt_patterns, analysis, "
+            "uncertainty "
             "(did you mean 'joint_sets'?)");
 }
 
