@@ -331,29 +331,38 @@ std::vector<io::DdaContactRecord> contactRecords(const dda3d::Simulation& sim,
 
 }  // namespace
 
+DdaRun makeDdaRun(const io::Scene& scene, const blocks::BlockModel& blocks,
+                  const geometry::FractureNetwork& network, const DdaOverrides& options) {
+  const io::DdaAnalysis& dda = *scene.analysis.dda;
+  dda3d::DdaModel model = scene_model::buildDdaModel(scene, blocks, network);
+  const dda3d::DdaSettings settings = settingsOf(dda, options);
+  DdaRun run;
+  std::vector<dda3d::Contact> start_contacts;
+  if (dda.settle) std::tie(run.settled, start_contacts) = settleFirst(dda, model, settings);
+  run.simulation = std::make_unique<dda3d::Simulation>(std::move(model), settings);
+  if (dda.settle) {
+    run.simulation->adoptContacts(std::move(start_contacts));
+    run.simulation->startAtRest();
+  }
+  return run;
+}
+
 DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
                      const geometry::FractureNetwork& network, const DdaOverrides& options,
                      const fs::path& out, const std::optional<blocks::MergeReport>& glued) {
   const io::DdaAnalysis& dda = *scene.analysis.dda;
   const int steps = options.steps.value_or(dda.steps);
   DdaStage stage;
-  dda3d::DdaModel model = scene_model::buildDdaModel(scene, blocks, network);
+  DdaRun run = makeDdaRun(scene, blocks, network, options);
+  dda3d::Simulation& sim = *run.simulation;
+  stage.summary.settled = run.settled;
   int fixed_blocks = 0, pieces = 0;
-  for (const dda3d::DdaBlock& b : model.blocks) {
+  for (const dda3d::DdaBlock& b : sim.model().blocks) {
     fixed_blocks += b.fixed;
     pieces += static_cast<int>(b.pieces.size());
   }
-  for (const dda3d::DdaMonitor& m : model.monitors) stage.monitor_names.push_back(m.name);
+  for (const dda3d::DdaMonitor& m : sim.model().monitors) stage.monitor_names.push_back(m.name);
   for (const io::BoltSpec& b : scene.bolts) stage.bolt_names.push_back(b.name);
-  const dda3d::DdaSettings settings = settingsOf(dda, options);
-  std::vector<dda3d::Contact> start_contacts;
-  if (dda.settle)
-    std::tie(stage.summary.settled, start_contacts) = settleFirst(dda, model, settings);
-  dda3d::Simulation sim(std::move(model), settings);
-  if (dda.settle) {
-    sim.adoptContacts(std::move(start_contacts));
-    sim.startAtRest();
-  }
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   io::DdaFrameWriter frames(out, frame_every);

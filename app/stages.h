@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "dda3d/simulation.h"
 #include "geometry/fracture_network.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
@@ -125,6 +126,18 @@ struct DdaStage {
   std::vector<std::string> bolt_names;   ///< in model order
   std::vector<std::string> frame_files;  ///< dda.pvd's frames (dda_<step>.vtu)
 };
+
+/// A DDA ready to step: what runDdaStage runs.
+struct DdaRun {
+  std::unique_ptr<dda3d::Simulation> simulation;
+  std::optional<io::DdaRunSummary::Settled> settled;  ///< analysis.dda.settle's static run
+};
+
+/// The DDA of analysis.dda (which must be present) on `blocks`: the model built from the scene
+/// (loads, supports, monitors, the joints of the piece faces), the engine settings with
+/// `overrides`, settled first when the scene asks (analysis.dda.settle).
+DdaRun makeDdaRun(const io::Scene& scene, const blocks::BlockModel& blocks,
+                  const geometry::FractureNetwork& network, const DdaOverrides& overrides);
 
 /// Builds the DDA model of `blocks` (cut with the discs of `network`) from the scene (loads,
 /// supports, monitors, the joints of the piece faces) and runs

@@ -110,6 +110,13 @@ class Simulation {
       block.acceleration.setZero();
     }
   }
+  /// Changes the loads from the next step on (a loading path scripted step by step, e.g. from
+  /// Python): gravity (m/s^2, with any seismic coefficient kept apart), and the force of point
+  /// load k (N, model().point_loads order; std::out_of_range for another k).
+  void setGravity(const geometry::Vec3& gravity) { model_.gravity = gravity; }
+  void setPointLoadForce(std::size_t k, const geometry::Vec3& force) {
+    model_.point_loads.at(k).force = force;
+  }
   ContactCounts contactCounts() const;
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.

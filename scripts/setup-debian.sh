@@ -21,6 +21,7 @@ packages=(
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
   libboost-dev           # ensemble: Boost.Math distributions (quantiles)
   libopenmpi-dev openmpi-bin   # ensemble: realizations over MPI ranks (optional at build time)
+  pybind11-dev python3-dev python3-pytest   # python/: the rockmass module and its tests
   python3-matplotlib python3-numpy     # figures from the CSV outputs
   python3-meshio python3-vtk9   # tests: the VTU files read by meshio and by VTK
   libgtest-dev libgmock-dev   # tests
