@@ -3,6 +3,7 @@
 // normally distributed), realizations that are the same alone, in an ensemble and under MPI,
 // resuming, load balancing over ranks, and the errors of bad input.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <chrono>
@@ -360,6 +361,62 @@ TEST_F(EnsembleCli, ResumeRunsOnlyTheMissingRealizations) {
   EXPECT_EQ(mixed.exit_code, 2) << mixed.output;
   EXPECT_NE(mixed.output.find("was made from another scene, seed or sample"), std::string::npos)
       << mixed.output;
+}
+
+TEST_F(EnsembleCli, AnEnsembleStoppedByCtrlCResumesWhereItStopped) {
+  // Six realizations of about half a second each (an RQD ball of 30 000 directions), SIGINT
+  // after 1.5 s: the ensemble stops at the running realization's next safe point (exit 130), the
+  // realizations done have their markers, the one it was running has none. The same command
+  // again runs only the others, and the aggregate is that of an uninterrupted ensemble.
+  const std::string text = R"(version: 1
+name: interrupted
+seed: 9
+domain:
+  box: {min: [0, 0, -20], max: [20, 20, 0]}
+joint_sets:
+  - name: S1
+    dip_direction: {distribution: normal, mean: 90, std: 10}
+    dip: {distribution: normal, mean: 45, std: 8}
+    spacing: {distribution: exponential, mean: 0.5}
+    trace_length: {distribution: lognormal, mean: 4, std: 2}
+analysis:
+  rqd:
+    thresholds: [0.1, 1]
+    balls:
+      - {name: mid, center: [10, 10, -10], length: 16, directions: 30000}
+)";
+  const std::string path = scene("interrupted", text);
+  const fs::path out = dir.path() / "stopped";
+  const auto whole = test::runCli("ensemble " + path + " -o " + out.string() +
+                                  " --realizations 6 --no-figures --threads 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;  // the uninterrupted reference
+  const auto reference = test::readFile(out / "ensemble.json");
+  fs::remove_all(out);
+  const int code = std::system(("timeout --preserve-status -s INT 1.5 " +
+                                std::string(ROCKMASS_BINARY) + " ensemble " + path + " -o " +
+                                out.string() + " --realizations 6 --no-figures --threads 1 > " +
+                                (dir.path() / "stopped.log").string() + " 2>&1")
+                                   .c_str());
+  const std::string output = test::readFile(dir.path() / "stopped.log");
+  ASSERT_TRUE(WIFEXITED(code)) << output;
+  EXPECT_EQ(WEXITSTATUS(code), 130) << output;
+  std::vector<int> done;
+  for (int i = 0; i < 6; ++i) {
+    if (fs::exists(out / ("r" + std::to_string(i)) / "realization.json")) done.push_back(i);
+  }
+  EXPECT_LT(done.size(), 6u) << output;
+  EXPECT_FALSE(fs::exists(out / "ensemble.json")) << output;  // no aggregate of a part
+  const auto resumed = ensemble(path, "stopped", "--realizations 6 --threads 1");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  for (int i = 0; i < 6; ++i) {
+    const bool was_done = std::find(done.begin(), done.end(), i) != done.end();
+    EXPECT_EQ(resumed.output.find("ensemble: realization " + std::to_string(i) + " of 6") ==
+                  std::string::npos,
+              was_done)
+        << i << "\n"
+        << resumed.output;
+  }
+  EXPECT_EQ(test::readFile(out / "ensemble.json"), reference);
 }
 
 TEST_F(EnsembleCli, RanksTakeTheNextRealizationWhenTheyAreFree) {
