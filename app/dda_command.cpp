@@ -170,7 +170,7 @@ void describeRun(const dda3d::Simulation& sim, const io::DdaAnalysis& dda,
     const std::size_t k = summary.monitors.size();
     summary.monitors.push_back(
         {m.name, blocks.blocks[static_cast<std::size_t>(sim.model().monitors[k].block)].id,
-         m.displacement});
+         m.displacement, m.position - m.displacement});
   }
 }
 

@@ -331,6 +331,34 @@ std::vector<std::string> makeFigures(const RunOptions& options, const fs::path& 
   return figures;
 }
 
+/// report.html (scripts/report/make_report.py, next to the figure scripts); false with a
+/// warning when it could not be written (no numpy, no three.js).
+bool makeReport(const RunOptions& options, const fs::path& out,
+                std::vector<std::string>& warnings) {
+  const fs::path script =
+      (fs::path(options.figure_scripts) / ".." / "report" / "make_report.py").lexically_normal();
+  const std::string command = shellQuote(options.python) + " " + shellQuote(script.string()) + " " +
+                              shellQuote(out.string()) + " 2>&1";
+  FILE* pipe = fs::exists(script) ? popen(command.c_str(), "r") : nullptr;
+  bool written = false;
+  if (pipe) {
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe)) {
+      std::string line(buffer);
+      while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+      std::fprintf(stderr, "run: %s\n", line.c_str());
+      written = written || line == "report: report.html";
+    }
+    written = pclose(pipe) == 0 && written;
+  }
+  if (!written) {
+    warnings.push_back("report: report.html was not written (" + script.string() +
+                       ", numpy and Debian's libjs-three; see the messages above)");
+    std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
+  }
+  return written;
+}
+
 /// An empty RunInfo of `command` for a stage's own summary (its header is dropped when the
 /// stage summaries are merged; only its extra timings are kept).
 io::RunInfo stageRun(const io::RunInfo& run, io::Timings timings) {
@@ -551,6 +579,14 @@ void finishRun(RunContext& ctx) {
     const auto start = Clock::now();
     ctx.report.figures = makeFigures(ctx.options, ctx.out, ctx.report.warnings);
     ctx.run.timings.emplace_back("figures", secondsSince(start));
+    // The report reads the summary with its figures, then is named in it.
+    io::writeFileAtomically(ctx.out / "summary.json",
+                            io::formatRunSummary(ctx.run, ctx.parts, ctx.report));
+    const auto report_start = Clock::now();
+    if (makeReport(ctx.options, ctx.out, ctx.report.warnings)) {
+      ctx.report.files.insert(ctx.report.files.end() - 1, "report.html");
+    }
+    ctx.run.timings.emplace_back("report", secondsSince(report_start));
     io::writeFileAtomically(ctx.out / "summary.json",
                             io::formatRunSummary(ctx.run, ctx.parts, ctx.report));
   }

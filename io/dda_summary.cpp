@@ -131,7 +131,8 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
                         {"ux", m.displacement.x()},
                         {"uy", m.displacement.y()},
                         {"uz", m.displacement.z()},
-                        {"u", m.displacement.norm()}});
+                        {"u", m.displacement.norm()},
+                        {"point", {m.point.x(), m.point.y(), m.point.z()}}});
   }
   j["monitors"] = monitors;
   const auto& s = dda.steps;

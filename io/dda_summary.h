@@ -37,6 +37,7 @@ struct DdaMonitorResult {
   std::string name;                                      ///< monitor name
   int block = 0;                                         ///< block id it is attached to
   geometry::Vec3 displacement = geometry::Vec3::Zero();  ///< since time 0 (m)
+  geometry::Vec3 point = geometry::Vec3::Zero();         ///< where it was at time 0 (m)
 };
 
 /// What the dda stage reports.

@@ -22,6 +22,8 @@ packages=(
   libboost-dev           # ensemble: Boost.Math distributions (quantiles)
   libopenmpi-dev openmpi-bin   # ensemble: realizations over MPI ranks (optional at build time)
   pybind11-dev python3-dev python3-pytest   # python/: the rockmass module and its tests
+  libjs-three            # run: report.html's 3D viewer (three.js, inlined)
+  chromium               # tests: report.html opened in headless Chromium
   python3-matplotlib python3-numpy     # figures from the CSV outputs
   python3-meshio python3-vtk9   # tests: the VTU files read by meshio and by VTK
   libgtest-dev libgmock-dev   # tests
