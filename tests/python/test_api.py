@@ -22,39 +22,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 XIANGJIABA = os.path.join(ROOT, "examples", "xiangjiaba", "scene.yaml")
 BINARY = os.environ.get("ROCKMASS_BINARY", os.path.join(ROOT, "build", "app", "rockmass"))
 
-SMALL = """version: 1
-name: small
-seed: 42
-domain:
-  box: {min: [0, 0, -6], max: [6, 6, 0]}
-materials:
-  rock: {density: 2600, young: 10.0e9, poisson: 0.25}
-rock_material: rock
-joints:
-  rj: {friction: 0.4, cohesion: 0}
-default_joint: rj
-joint_sets:
-  - name: S1
-    dip_direction: {distribution: normal, mean: 90, std: 10}
-    dip: {distribution: normal, mean: 45, std: 8}
-    spacing: {distribution: exponential, mean: 2.0}
-    trace_length: {distribution: lognormal, mean: 8, std: 2}
-  - name: S2
-    dip_direction: {distribution: normal, mean: 200, std: 10}
-    dip: {distribution: normal, mean: 70, std: 8}
-    spacing: {distribution: exponential, mean: 2.5}
-    trace_length: {distribution: lognormal, mean: 8, std: 2}
-loads:
-  gravity: 9.81
-supports:
-  fixed: [bottom]
-monitors:
-  - {name: top, point: [3, 3, -0.5]}
-  - {name: side, point: [5.5, 3, -3]}
-analysis:
-  blocks: {cutter: fast}
-  dda: {mode: dynamic, kinematics: rigid, steps: 15, time_step: 0.002}
-"""
+with open(os.path.join(ROOT, "tests", "data", "two_sets_small.yaml")) as f:
+    SMALL = f.read()  # shared with tests/report
 
 
 def cli(*args):
@@ -146,9 +115,10 @@ def test_blocks_give_the_numbers_of_rockmass_blocks(small, tmp_path):
 def test_a_bad_scene_raises_scene_error_with_file_line_and_key(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(SMALL.replace("friction: 0.4", "friction: -0.4"))
+    line = 1 + SMALL[:SMALL.index("rj: {friction")].count("\n")
     with pytest.raises(rockmass.SceneError) as error:
         rockmass.load_scene(str(bad))
-    assert str(error.value).startswith(f"{bad}:10:")
+    assert str(error.value).startswith(f"{bad}:{line}:")
     assert "joints.rj.friction: expected a number >= 0, got -0.4" in str(error.value)
     # The same message as the command line's (after "error: ").
     done = subprocess.run([BINARY, "dfn", str(bad), "-o", str(tmp_path / "o")],
@@ -168,7 +138,7 @@ def test_step_by_step_dda_reproduces_rockmass_dda(small, tmp_path):
     scene = rockmass.load_scene(small)
     dda = rockmass.Dda(scene, rockmass.dfn(scene))
     samples = {name: [] for name in dda.monitor_names}
-    while dda.time < 15 * 0.002 * (1 - 1e-9):
+    while dda.time < 10 * 0.002 * (1 - 1e-9):
         dda.step()
         for m in dda.monitors():
             samples[m["name"]].append(np.concatenate([m["displacement"], m["velocity"]]))
@@ -177,7 +147,7 @@ def test_step_by_step_dda_reproduces_rockmass_dda(small, tmp_path):
     for name, series in samples.items():
         expected = [[float(r[k]) for k in ("ux", "uy", "uz", "vx", "vy", "vz")]
                     for r in history if r["monitor"] == name][1:]  # t = 0 first
-        assert len(expected) == len(series) == 15
+        assert len(expected) == len(series) == 10
         np.testing.assert_allclose(series, expected, rtol=1e-12, atol=1e-15)
     states = dda.blocks()
     assert states["velocity"].shape[1] == 12 and states["fixed"].dtype == bool
@@ -190,8 +160,8 @@ def test_loads_can_change_between_steps(small):
     free = rockmass.Dda(scene, rockmass.dfn(scene))
     weightless = rockmass.Dda(scene, rockmass.dfn(scene))
     weightless.set_gravity([0, 0, 0])
-    free.run(5)
-    weightless.run(5)
+    free.run(10)
+    weightless.run(10)
     # Without gravity nothing loads the blocks: they move only by the acceleration the time
     # integration started with (gravity's, at t = 0: a change acts from the next step on),
     # nanometres against the free blocks' fall.

@@ -18,42 +18,8 @@ import subprocess
 import sys
 import tempfile
 
-SCENE = """version: 1
-name: report-test
-seed: 42
-domain:
-  box: {min: [0, 0, -6], max: [6, 6, 0]}
-materials:
-  rock: {density: 2600, young: 10.0e9, poisson: 0.25}
-rock_material: rock
-joints:
-  rj: {friction: 0.4, cohesion: 0}
-default_joint: rj
-joint_sets:
-  - name: S1
-    dip_direction: {distribution: normal, mean: 90, std: 10}
-    dip: {distribution: normal, mean: 45, std: 8}
-    spacing: {distribution: exponential, mean: 1.5}
-    trace_length: {distribution: lognormal, mean: 8, std: 2}
-  - name: S2
-    dip_direction: {distribution: normal, mean: 200, std: 10}
-    dip: {distribution: normal, mean: 70, std: 8}
-    spacing: {distribution: exponential, mean: 2.0}
-    trace_length: {distribution: lognormal, mean: 8, std: 2}
-loads:
-  gravity: 9.81
-supports:
-  fixed: [bottom]
-monitors:
-  - {name: top, point: [3, 3, -0.5]}
-analysis:
-  blocks: {cutter: fast}
-  rqd:
-    thresholds: [0.1, 1]
-    balls:
-      - {name: mid, center: [3, 3, -3], length: 4, directions: 300}
-  dda: {mode: dynamic, kinematics: rigid, steps: 10, time_step: 0.002}
-"""
+SCENE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data",
+                     "two_sets_small.yaml")
 
 FLAGS = ["--headless", "--no-sandbox", "--enable-unsafe-swiftshader", "--use-angle=swiftshader",
          "--window-size=1400,900", "--virtual-time-budget=30000"]
@@ -76,9 +42,7 @@ def main():
     import matplotlib.image as mpimg
     import numpy as np
     with tempfile.TemporaryDirectory() as d:
-        scene = os.path.join(d, "scene.yaml")
-        with open(scene, "w") as f:
-            f.write(SCENE)
+        scene = SCENE
         out = os.path.join(d, "out")
         done = subprocess.run([binary, "run", scene, "-o", out], capture_output=True, text=True)
         print(done.stderr[-1500:])
