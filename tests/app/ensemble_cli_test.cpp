@@ -313,7 +313,7 @@ TEST_F(EnsembleCli, RealizationIsTheSameAloneInAnEnsembleAndUnderMpi) {
             test::readFile(dir.path() / "jobs" / "ensemble.json"));
 
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
-  if (test::runCli("--version").output.find("MPI") == std::string::npos) {
+  if (test::runCli("--version").output.find("\n  MPI ") == std::string::npos) {
     GTEST_SKIP() << "rockmass built without MPI";
   }
   std::string output;
@@ -421,7 +421,7 @@ analysis:
 
 TEST_F(EnsembleCli, RanksTakeTheNextRealizationWhenTheyAreFree) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
-  if (test::runCli("--version").output.find("MPI") == std::string::npos) {
+  if (test::runCli("--version").output.find("\n  MPI ") == std::string::npos) {
     GTEST_SKIP() << "rockmass built without MPI";
   }
   // Realization 0 casts an RQD ball of 200 000 directions, the nine others 2 000 (a `list`
