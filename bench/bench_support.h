@@ -64,4 +64,22 @@ class RecordingReporter : public benchmark::ConsoleReporter {
   std::map<std::string, Record> records;  ///< by benchmark name, as Google Benchmark gives it
 };
 
+/// Removes --NAME=VALUE from argv; returns VALUE, or `fallback` when absent.
+inline std::string takeFlag(int& argc, char** argv, const std::string& name,
+                            const std::string& fallback) {
+  std::string value = fallback;
+  const std::string flag = "--" + name + "=";
+  int out = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind(flag, 0) == 0) {
+      value = arg.substr(flag.size());
+    } else {
+      argv[out++] = argv[i];
+    }
+  }
+  argc = out;
+  return value;
+}
+
 }  // namespace rockmass::bench

@@ -231,35 +231,19 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
   return sxy / sxx;
 }
 
-/// Removes --NAME=VALUE from argv; returns VALUE, or `fallback` when absent.
-std::string takeFlag(int& argc, char** argv, const std::string& name, const std::string& fallback) {
-  std::string value = fallback;
-  const std::string flag = "--" + name + "=";
-  int out = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind(flag, 0) == 0) {
-      value = arg.substr(flag.size());
-    } else {
-      argv[out++] = argv[i];
-    }
-  }
-  argc = out;
-  return value;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<SolverSpec> solvers;
-  std::stringstream list(takeFlag(argc, argv, "dda_solvers", "pcg,cholmod"));
-  warm_up_steps = std::stoi(takeFlag(argc, argv, "dda_warmup", std::to_string(warm_up_steps)));
+  std::stringstream list(rockmass::bench::takeFlag(argc, argv, "dda_solvers", "pcg,cholmod"));
+  warm_up_steps =
+      std::stoi(rockmass::bench::takeFlag(argc, argv, "dda_warmup", std::to_string(warm_up_steps)));
   for (std::string item; std::getline(list, item, ',');) {
     solvers.push_back(parseSolver(item, pileSettings()));
   }
   // --dda_deformable=1: the same piles with 12-unknown blocks too (BM_PileDeformable), and
   // their time per step over the rigid piles' (same run).
-  const bool deformable = takeFlag(argc, argv, "dda_deformable", "0") == "1";
+  const bool deformable = rockmass::bench::takeFlag(argc, argv, "dda_deformable", "0") == "1";
   const std::vector<int> sizes{100, 1000, 5000};
   for (const SolverSpec& spec : solvers) {
     for (int blocks : sizes) {

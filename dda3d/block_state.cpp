@@ -31,6 +31,17 @@ PieceTopology pieceTopology(const geometry::Polyhedron& piece) {
       }
     }
   }
+  // The faces around both ends of each edge.
+  topology.edge_face_start.push_back(0);
+  for (const std::array<int, 2>& edge : topology.edges) {
+    const std::vector<int>& second = topology.vertex_faces[static_cast<std::size_t>(edge[1])];
+    for (int f : topology.vertex_faces[static_cast<std::size_t>(edge[0])]) {
+      if (std::find(second.begin(), second.end(), f) != second.end()) {
+        topology.edge_face_list.push_back(f);
+      }
+    }
+    topology.edge_face_start.push_back(static_cast<int>(topology.edge_face_list.size()));
+  }
   return topology;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,10 +26,40 @@ struct PieceTopology {
   std::vector<std::array<int, 2>> edges;       ///< unique vertex pairs
   std::vector<std::vector<int>> neighbours;    ///< vertices joined to each vertex by an edge
   std::vector<std::vector<int>> vertex_faces;  ///< faces around each vertex
+  /// Faces along each edge (those holding both its vertices, in face order): edge e's are
+  /// edge_face_list[edge_face_start[e] .. edge_face_start[e + 1]).
+  std::vector<int> edge_face_start, edge_face_list;
+  std::span<const int> edgeFaces(std::size_t e) const {
+    return {edge_face_list.data() + edge_face_start[e],
+            static_cast<std::size_t>(edge_face_start[e + 1] - edge_face_start[e])};
+  }
+  /// On the block's surface (markExterior): each face not wholly covered by faces of the
+  /// block's other pieces, each vertex and edge with such a face around it, and the piece
+  /// when any face is. Empty: everything exterior (a block of one piece).
+  std::vector<char> exterior_faces, exterior_vertices, exterior_edges;
+  bool exterior = true;
+  /// Each vertex's index among the block's corners (markExterior): the copies of one point
+  /// in the block's pieces, equal within round-off, share it. Empty: not numbered.
+  std::vector<int> block_vertex;
+  bool faceExterior(std::size_t f) const { return exterior_faces.empty() || exterior_faces[f]; }
+  bool vertexExterior(std::size_t v) const {
+    return exterior_vertices.empty() || exterior_vertices[v];
+  }
+  bool edgeExterior(std::size_t e) const { return exterior_edges.empty() || exterior_edges[e]; }
 };
 
 /// Edges, vertex neighbours and vertex faces of a polyhedron given by its faces.
 PieceTopology pieceTopology(const geometry::Polyhedron& piece);
+
+/// Marks what of a block's convex pieces lies on the block's surface (PieceTopology's
+/// exterior flags). A face is interior when faces of other pieces of the block lying in its
+/// plane, facing it, cover its whole area (within 1e-6 of it); the pieces of a glued block
+/// meet on such faces. Contacts with other blocks need only the exterior faces, vertices and
+/// edges: a point of another block reaches an interior face only through the surface.
+/// Also numbers the block's corners (PieceTopology::block_vertex): vertices of its pieces
+/// within 1e-9 of the block's size of each other are one corner.
+void markExterior(const std::vector<geometry::Polyhedron>& pieces,
+                  std::vector<PieceTopology>& topology);
 
 /// A sub-contact point: a material point inside a face of a piece, with its share of the
 /// face's area (docs/stability.md, "Contact points").

@@ -91,11 +91,12 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
                   std::vector<AreaSample>& out, std::vector<Contact>& contacts) {
   for (std::size_t fb = 0; fb < b.planes.size(); ++fb) {
     const Plane& pb = b.planes[fb];
+    if (!b.topology->faceExterior(fb)) continue;
     if (pb.area <= 0.0 || pb.normal.dot(a.centroid) - pb.offset <= -tolerance) continue;
     for (std::size_t fa = 0; fa < a.planes.size(); ++fa) {
       const Plane& pa = a.planes[fa];
       const double facing = pa.normal.dot(pb.normal);
-      if (facing > -kAreaCosine || pa.area <= 0.0) continue;
+      if (facing > -kAreaCosine || pa.area <= 0.0 || !a.topology->faceExterior(fa)) continue;
       if (pa.normal.dot(b.centroid) - pa.offset <= -tolerance) continue;
       // Cheap reject before clipping: a's face wholly beyond the range from b's plane.
       const std::vector<int>& face_a = a.shape->faces[fa];
@@ -184,30 +185,36 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     return block_a < block_b ? Key{block_a, block_b, piece_a, piece_b}
                              : Key{block_b, block_a, piece_b, piece_a};
   };
-  const auto contactKey = [&](const Contact& c) {
-    return keyOf(c.block_i, c.piece_i, c.block_j, c.piece_j);
-  };
-  const auto sampleKey = [&](const AreaSample& s) {
-    return keyOf(s.block_a, s.piece_a, s.block_b, s.piece_b);
-  };
+  // The keys are computed once and sorted as compact copies (in parallel; the index breaks
+  // ties, so the order is the serial one): read through the contacts, every comparison was
+  // a cache miss.
+  std::vector<Key> contact_keys(contacts.size()), sample_keys(samples.size());
+  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
+    Contact& c = contacts[k];
+    contact_keys[k] = keyOf(c.block_i, c.piece_i, c.block_j, c.piece_j);
+    if (c.kind != ContactKind::FacePoint) c.area = 0.0;
+  });
+  tbb::parallel_for(std::size_t{0}, samples.size(), [&](std::size_t k) {
+    const AreaSample& s = samples[k];
+    sample_keys[k] = keyOf(s.block_a, s.piece_a, s.block_b, s.piece_b);
+  });
+  const auto contactKey = [&](std::size_t k) -> const Key& { return contact_keys[k]; };
+  const auto sampleKey = [&](std::size_t k) -> const Key& { return sample_keys[k]; };
   const auto sameBlocks = [](const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1]; };
-  std::vector<std::size_t> by_pair(contacts.size());
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    by_pair[k] = k;
-    if (contacts[k].kind != ContactKind::FacePoint) contacts[k].area = 0.0;
-  }
-  std::sort(by_pair.begin(), by_pair.end(), [&](std::size_t x, std::size_t y) {
-    return std::pair{contactKey(contacts[x]), x} < std::pair{contactKey(contacts[y]), y};
-  });
-  std::vector<std::size_t> order(samples.size());
-  for (std::size_t k = 0; k < samples.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-    return std::pair{sampleKey(samples[x]), x} < std::pair{sampleKey(samples[y]), y};
-  });
+  const auto sortedBy = [](const std::vector<Key>& keys) {
+    std::vector<std::pair<Key, std::size_t>> sorted(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k) sorted[k] = {keys[k], k};
+    tbb::parallel_sort(sorted.begin(), sorted.end());
+    std::vector<std::size_t> order(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k) order[k] = sorted[k].second;
+    return order;
+  };
+  std::vector<std::size_t> by_pair = sortedBy(contact_keys);
+  const std::vector<std::size_t> order = sortedBy(sample_keys);
   // Groups of samples of one pair of blocks (each touches its own entries only).
   std::vector<std::size_t> group_start;
   for (std::size_t k = 0; k < order.size(); ++k) {
-    if (k == 0 || !sameBlocks(sampleKey(samples[order[k]]), sampleKey(samples[order[k - 1]]))) {
+    if (k == 0 || !sameBlocks(sampleKey(order[k]), sampleKey(order[k - 1]))) {
       group_start.push_back(k);
     }
   }
@@ -233,28 +240,26 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     return nearest;
   };
   const auto assignGroup = [&](std::size_t g) {
-    const Key first = sampleKey(samples[order[group_start[g]]]);
+    const Key first = sampleKey(order[group_start[g]]);
     const Key low{first[0], first[1], std::numeric_limits<int>::min(),
                   std::numeric_limits<int>::min()};
     const Key high{first[0], first[1], std::numeric_limits<int>::max(),
                    std::numeric_limits<int>::max()};
-    const auto below = [&](std::size_t k, const Key& value) {
-      return contactKey(contacts[k]) < value;
-    };
+    const auto below = [&](std::size_t k, const Key& value) { return contactKey(k) < value; };
     const Iterator begin = std::lower_bound(by_pair.begin(), by_pair.end(), low, below);
-    const Iterator end = std::upper_bound(
-        begin, by_pair.end(), high,
-        [&](const Key& value, std::size_t k) { return value < contactKey(contacts[k]); });
+    const Iterator end =
+        std::upper_bound(begin, by_pair.end(), high,
+                         [&](const Key& value, std::size_t k) { return value < contactKey(k); });
     for (std::size_t k = group_start[g]; k < group_start[g + 1]; ++k) {
       const AreaSample& sample = samples[order[k]];
       // The corner's entry is almost always one of the same two pieces (a vertex of either,
       // or a crossing of their edges): searched first, taken when it lies on the corner (within
       // the sample's distance); else (the entry was kept from another piece of the same block,
       // a duplicate dropped) every entry of the two blocks.
-      const Key key = sampleKey(sample);
+      const Key key = sampleKey(order[k]);
       const Iterator piece_begin = std::lower_bound(begin, end, key, below);
       Iterator piece_end = piece_begin;
-      while (piece_end != end && contactKey(contacts[*piece_end]) == key) ++piece_end;
+      while (piece_end != end && contactKey(*piece_end) == key) ++piece_end;
       double distance = 0.0;
       Contact* nearest = nearestIn(sample, piece_begin, piece_end, distance);
       if (!nearest || distance > sample.distance * sample.distance) {

@@ -45,6 +45,22 @@ double outsideDistance(const std::vector<Plane>& planes, const Vec3& p) {
   return outside;
 }
 
+/// For a point p inside piece b: the largest signed distance of p to b's surface planes (its
+/// exterior faces), i.e. minus how deep p lies below the block's surface there. The faces
+/// between b and the block's other pieces are no surface: a point of another block sunk
+/// 1 mm into the block's top beside such a face, 1e-5 m from it, read as 1e-5 m deep behind
+/// it, the top face was then "far behind the nearest" and the point had no entry at all (the
+/// deformable Xiangjiaba quick box crept on such points).
+double surfaceOutsideDistance(const PieceView& b, const Vec3& p) {
+  double outside = -std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < b.planes.size(); ++f) {
+    if (!b.topology->faceExterior(f)) continue;
+    const Plane& plane = b.planes[f];
+    outside = std::max(outside, plane.normal.dot(p) - plane.offset);
+  }
+  return outside;
+}
+
 /// Lowest and highest height n . (v - origin) of `vertices` (m).
 std::pair<double, double> heightRange(const std::vector<Vec3>& vertices, const Vec3& n,
                                       const Vec3& origin) {
@@ -62,10 +78,14 @@ std::pair<double, double> heightRange(const std::vector<Vec3>& vertices, const V
 /// outer side: a and b are then farther apart than `distance` (b lies on the inner side).
 bool separatedBeyond(const PieceView& a, const PieceView& b, double distance) {
   for (const Plane& plane : b.planes) {
-    if (heightRange(a.shape->vertices, plane.normal, plane.normal * plane.offset).first >
-        distance) {
-      return true;
+    bool beyond = true;  // until a vertex of a lies within `distance` of the plane
+    for (const Vec3& v : a.shape->vertices) {
+      if (plane.normal.dot(v) - plane.offset <= distance) {
+        beyond = false;
+        break;
+      }
     }
+    if (beyond) return true;
   }
   return false;
 }
@@ -92,16 +112,6 @@ double faceOverlap(const PieceView& a, const PieceView& b) {
 /// tilt their faces by 1.1 deg against each other; with a 1 deg bound, the corner of one
 /// such face beside the other's edge had no entry and sank 3 mm unseen into its neighbour.
 constexpr double kFaceToFaceCosine = kAreaCosine;
-
-/// The faces of `piece` on both ends of edge `e` (the faces around both vertices).
-std::vector<int> edgeFaces(const PieceTopology& topology, const std::array<int, 2>& edge) {
-  std::vector<int> faces;
-  for (int f : topology.vertex_faces[static_cast<std::size_t>(edge[0])]) {
-    const std::vector<int>& other = topology.vertex_faces[static_cast<std::size_t>(edge[1])];
-    if (std::find(other.begin(), other.end(), f) != other.end()) faces.push_back(f);
-  }
-  return faces;
-}
 
 /// Which vertices of the two pieces of a pair have a vertex-to-face entry against the other.
 struct VertexEntries {
@@ -134,9 +144,9 @@ FaceCrossing faceCrossing(const PieceView& a, const PieceView& b, std::size_t ea
   const std::array<int, 2>& edge_b = b.topology->edges[eb];
   FaceCrossing crossing;
   double best = -kFaceToFaceCosine;
-  for (int fa : edgeFaces(*a.topology, edge_a)) {
+  for (int fa : a.topology->edgeFaces(ea)) {
     const Plane& pa = a.planes[static_cast<std::size_t>(fa)];
-    for (int fb : edgeFaces(*b.topology, edge_b)) {
+    for (int fb : b.topology->edgeFaces(eb)) {
       const Plane& pb = b.planes[static_cast<std::size_t>(fb)];
       // Both planes pass within `distance` of the crossing. (Not |offset_a + offset_b|: for
       // faces tilted by 0.3 deg against each other, 11 m from the origin, that reads 6 cm.)
@@ -198,14 +208,20 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
   const Box reach = b.box.enlarged(range.gap);
   for (std::size_t v = 0; v < a.shape->vertices.size(); ++v) {
     const Vec3& p = a.shape->vertices[v];
-    if (!reach.contains(p)) continue;
-    const double outside = outsideDistance(b.planes, p);
-    if (outside > range.gap) continue;
-    const bool is_outside = outside > tolerance;
+    if (!a.topology->vertexExterior(v) || !reach.contains(p)) continue;
+    const double piece_outside = outsideDistance(b.planes, p);
+    if (piece_outside > range.gap) continue;
+    const bool is_outside = piece_outside > tolerance;
+    // Outside b: how far (across any of its faces); inside: how deep below the block's
+    // surface faces of b (surfaceOutsideDistance).
+    const double outside = is_outside ? piece_outside : surfaceOutsideDistance(b, p);
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
     int best = -1;
     double best_gap = 0.0, best_alignment = 0.0;
     for (std::size_t f = 0; f < b.planes.size(); ++f) {
+      // Interior faces of b's block are no contact faces: a vertex near one is near (or in)
+      // the neighbouring piece, whose exterior faces carry it.
+      if (!b.topology->faceExterior(f)) continue;
       const Plane& plane = b.planes[f];
       const double gap = plane.normal.dot(p) - plane.offset;
       // The face a vertex used last step keeps it while the vertex stays within a margin of
@@ -277,13 +293,15 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
 
 /// Crossing edges of `a` and `b`.
 void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
-                const VertexEntries& entries, std::vector<Contact>& out) {
+                const VertexEntries& entries, std::vector<std::pair<std::size_t, Box>>& near_b,
+                std::vector<Contact>& out) {
   const Box reach_b = b.box.enlarged(range.larger());
   // The edges of b within reach of a's box, with their boxes: the only ones any edge of a
   // can cross (computed once per pair, not once per edge of a).
   const Box reach_a = a.box.enlarged(range.larger());
-  std::vector<std::pair<std::size_t, Box>> near_b;
+  near_b.clear();
   for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
+    if (!b.topology->edgeExterior(eb)) continue;
     const Box box =
         segmentBox(b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])],
                    b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])]);
@@ -292,6 +310,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
   if (near_b.empty()) return;
   std::optional<double> overlap;  // faceOverlap(a, b)
   for (std::size_t ea = 0; ea < a.topology->edges.size(); ++ea) {
+    if (!a.topology->edgeExterior(ea)) continue;
     const Vec3& a0 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][0])];
     const Vec3& a1 = a.shape->vertices[static_cast<std::size_t>(a.topology->edges[ea][1])];
     const Box edge_box = segmentBox(a0, a1);
@@ -384,11 +403,30 @@ void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = n.cross(t1);
 }
 
+const std::vector<PiecePair>& CandidatePairs::pairs(const std::vector<BlockState>& blocks,
+                                                    const std::vector<double>& reach) {
+  bool covered = grown_.size() == blocks.size();
+  for (std::size_t b = 0; covered && b < blocks.size(); ++b) {
+    if (moved_[b] + reach[b] > grown_[b]) covered = false;
+  }
+  if (covered) return pairs_;
+  grown_.resize(blocks.size());
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    grown_[b] = blocks[b].fixed ? 0.0 : reach[b] + margin_;
+  moved_.assign(blocks.size(), 0.0);
+  pairs_ = broadPhase(blocks, grown_);
+  ++builds_;
+  return pairs_;
+}
+
 std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach) {
   std::vector<PieceBox> boxes;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     for (std::size_t p = 0; p < blocks[b].pieces.size(); ++p) {
+      // A piece inside its block (every face against another piece of it) meets no other
+      // block but through the pieces around it.
+      if (!blocks[b].topology[p].exterior) continue;
       boxes.push_back({geometry::bounds(blocks[b].pieces[p]).enlarged(reach[b]),
                        static_cast<int>(b), static_cast<int>(p), blocks[b].fixed});
     }
@@ -398,7 +436,48 @@ std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
 
 namespace {
 
-std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
+/// One point of block i pressed into block j has one entry per piece of j it was found
+/// against, each with that piece's least deep face. The block's surface is the union of
+/// its pieces' surface faces: a point sunk into piece q beside the face where q meets
+/// another piece p of j (no surface) is deep behind q's surface faces but shallow behind
+/// p's, the face it came through. As within one piece (vertexToFace: a face far behind the
+/// nearest is a guess), a penetrating vertex entry deeper than the least deep one of the
+/// point by more than the keep margin is dropped. On the Xiangjiaba quick box such an entry
+/// read a corner resting on a slope as 3.7 mm deep behind the region's side plane: its
+/// spring pushed the block against its roller and the foundation never came to rest.
+/// Open entries and entries as deep as the least deep (a point in a re-entrant corner of j,
+/// pressed into both faces) are kept. `group` (positions order[first, end)) is one point of
+/// block i against block j; `keep` marks what is kept.
+template <class Entry>
+void dropDeeperEntries(const std::vector<std::size_t>& order, std::size_t first, std::size_t end,
+                       std::vector<char>& keep, const Entry& entry,
+                       const std::vector<BlockState>& blocks) {
+  double least_deep = -std::numeric_limits<double>::infinity();
+  int penetrating = 0;
+  for (std::size_t k = first; k < end; ++k) {
+    const Contact& c = entry(order[k]);
+    if (!keep[order[k]] || c.kind != ContactKind::VertexFace || !(c.gap0 < 0.0)) continue;
+    least_deep = std::max(least_deep, c.gap0);
+    ++penetrating;
+  }
+  if (penetrating < 2) return;
+  const auto diagonal = [&](int block, int piece) {
+    return geometry::bounds(
+               blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)])
+        .diagonal();
+  };
+  for (std::size_t k = first; k < end; ++k) {
+    const Contact& c = entry(order[k]);
+    if (!keep[order[k]] || c.kind != ContactKind::VertexFace || !(c.gap0 < 0.0)) continue;
+    // The keep margin of the entry's pair of pieces (findContacts' Range::keep_margin).
+    const double size = diagonal(c.block_i, c.piece_i) + diagonal(c.block_j, c.piece_j);
+    if (c.gap0 < least_deep - std::max(1e-9 * size, 1e-4 * size)) keep[order[k]] = 0;
+  }
+}
+
+/// The entries of `chunks` (in chunk order) without the duplicates, in one vector.
+std::vector<Contact> withoutDuplicates(std::vector<std::vector<Contact>> chunks,
+                                       const std::vector<BlockState>& blocks) {
   // A vertex of a block made of several pieces belongs to each piece that meets there, and a
   // face of the other block may be split between its pieces: the same point of block i
   // against the same plane of block j is then found once per piece pair. Each copy is a
@@ -409,53 +488,84 @@ std::vector<Contact> withoutDuplicates(std::vector<Contact> contacts) {
   // rather than a map of per-point lists.
   // The keys are sorted as compact copies, the found order last (a stable order, in
   // parallel): reading them through the contacts cost a cache miss per comparison.
+  // A vertex entry's point is its block's vertex (PieceTopology::block_vertex: the pieces'
+  // copies of one corner, equal within round-off); other entries' points are their
+  // coordinates (vertex -1).
   struct Key {
-    int block_i, block_j;
+    int block_i, block_j, vertex;
     double x, y, z;
     std::size_t index;
-    auto tied() const { return std::tie(block_i, block_j, x, y, z); }
+    auto tied() const { return std::tie(block_i, block_j, vertex, x, y, z); }
     bool operator<(const Key& o) const {
-      return std::tie(block_i, block_j, x, y, z, index) <
-             std::tie(o.block_i, o.block_j, o.x, o.y, o.z, o.index);
+      return std::tie(block_i, block_j, vertex, x, y, z, index) <
+             std::tie(o.block_i, o.block_j, o.vertex, o.x, o.y, o.z, o.index);
     }
   };
-  std::vector<Key> keys(contacts.size());
-  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
-    const Contact& c = contacts[k];
-    keys[k] = {c.block_i, c.block_j, c.point.x(), c.point.y(), c.point.z(), k};
+  // Entry k of the joined list is chunk_of[k]'s entry k - start[chunk_of[k]]: the chunks
+  // are read in place, and the kept entries moved once, into the result.
+  std::vector<std::size_t> start(chunks.size() + 1, 0);
+  for (std::size_t ch = 0; ch < chunks.size(); ++ch) start[ch + 1] = start[ch] + chunks[ch].size();
+  const std::size_t total = start.back();
+  const auto entry = [&](std::size_t k) -> Contact& {
+    const std::size_t ch =
+        static_cast<std::size_t>(std::upper_bound(start.begin(), start.end(), k) - start.begin()) -
+        1;
+    return chunks[ch][k - start[ch]];
+  };
+  std::vector<Key> keys(total);
+  tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t ch) {
+    for (std::size_t i = 0; i < chunks[ch].size(); ++i) {
+      const Contact& c = chunks[ch][i];
+      const PieceTopology& t =
+          blocks[static_cast<std::size_t>(c.block_i)].topology[static_cast<std::size_t>(c.piece_i)];
+      const bool corner = c.kind == ContactKind::VertexFace && !t.block_vertex.empty();
+      keys[start[ch] + i] = {c.block_i,
+                             c.block_j,
+                             corner ? t.block_vertex[static_cast<std::size_t>(c.vertex)] : -1,
+                             corner ? 0.0 : c.point.x(),
+                             corner ? 0.0 : c.point.y(),
+                             corner ? 0.0 : c.point.z(),
+                             start[ch] + i};
+    }
   });
   // A NaN coordinate would break the sort's strict order (undefined behaviour): a step whose
   // geometry went non-finite fails here, by name.
-  for (const Key& k : keys) {
-    if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.z)) {
-      throw std::runtime_error("contact detection: a contact point of blocks " +
-                               std::to_string(k.block_i) + " and " + std::to_string(k.block_j) +
-                               " is not finite");
+  for (const std::vector<Contact>& chunk : chunks) {
+    for (const Contact& c : chunk) {
+      if (!c.point.allFinite()) {
+        throw std::runtime_error("contact detection: a contact point of blocks " +
+                                 std::to_string(c.block_i) + " and " + std::to_string(c.block_j) +
+                                 " is not finite");
+      }
     }
   }
   tbb::parallel_sort(keys.begin(), keys.end());
   std::vector<std::size_t> order(keys.size());
   for (std::size_t k = 0; k < keys.size(); ++k) order[k] = keys[k].index;
-  std::vector<char> keep(contacts.size(), 1);
+  std::vector<char> keep(total, 1);
   for (std::size_t first = 0; first < order.size();) {
     std::size_t end = first + 1;
     while (end < order.size() && keys[end].tied() == keys[first].tied()) ++end;
     // Within a group (found order), drop an entry whose normal matches a kept one's.
     for (std::size_t k = first + 1; k < end; ++k) {
-      const Vec3& n = contacts[order[k]].normal;
+      const Vec3& n = entry(order[k]).normal;
       for (std::size_t m = first; m < k; ++m) {
-        if (keep[order[m]] && contacts[order[m]].normal.dot(n) > 1.0 - kDuplicateNormalSlack) {
+        if (keep[order[m]] && entry(order[m]).normal.dot(n) > 1.0 - kDuplicateNormalSlack) {
           keep[order[k]] = 0;
           break;
         }
       }
     }
+    if (end - first > 1) dropDeeperEntries(order, first, end, keep, entry, blocks);
     first = end;
   }
   std::vector<Contact> kept;
-  kept.reserve(contacts.size());
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    if (keep[k]) kept.push_back(std::move(contacts[k]));
+  kept.reserve(static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1)));
+  for (std::size_t ch = 0; ch < chunks.size(); ++ch) {
+    for (std::size_t i = 0; i < chunks[ch].size(); ++i) {
+      if (keep[start[ch] + i]) kept.push_back(std::move(chunks[ch][i]));
+    }
+    std::vector<Contact>().swap(chunks[ch]);
   }
   return kept;
 }
@@ -484,10 +594,36 @@ std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks) {
 
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
-                                  const PreviousFace& previous_face) {
-  const std::vector<PiecePair> pairs = broadPhase(blocks, reach);
+                                  const PreviousFace& previous_face, CandidatePairs* candidates) {
   // Per-piece data, built once for the pieces that take part in some pair.
   const std::vector<std::size_t> first_piece = firstPieces(blocks);
+  std::vector<PiecePair> pairs;
+  if (candidates == nullptr) {
+    pairs = broadPhase(blocks, reach);
+  } else {
+    // The kept pairs whose boxes, grown by this step's reach, overlap: the broad phase's own.
+    const std::vector<PiecePair>& kept = candidates->pairs(blocks, reach);
+    std::vector<Box> boxes(first_piece.back());
+    tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+      for (std::size_t p = 0; p < blocks[b].pieces.size(); ++p) {
+        if (blocks[b].topology[p].exterior) {
+          boxes[first_piece[b] + p] = geometry::bounds(blocks[b].pieces[p]).enlarged(reach[b]);
+        }
+      }
+    });
+    std::vector<char> keep(kept.size());
+    tbb::parallel_for(std::size_t{0}, kept.size(), [&](std::size_t k) {
+      const PiecePair& pair = kept[k];
+      keep[k] = overlaps(boxes[first_piece[static_cast<std::size_t>(pair.block_a)] +
+                               static_cast<std::size_t>(pair.piece_a)],
+                         boxes[first_piece[static_cast<std::size_t>(pair.block_b)] +
+                               static_cast<std::size_t>(pair.piece_b)]);
+    });
+    pairs.reserve(kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      if (keep[k]) pairs.push_back(kept[k]);
+    }
+  }
   // Views of the pieces in some pair, built first so that the narrow phase only reads them.
   std::vector<PieceView> views(first_piece.back());
   std::vector<std::pair<int, int>> needed(first_piece.back(), {-1, -1});
@@ -508,6 +644,8 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   std::vector<std::vector<AreaSample>> areas(found.size());
   tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
     const std::size_t end = std::min(pairs.size(), (chunk + 1) * kChunk);
+    VertexEntries entries;  // scratch, reused by the chunk's pairs
+    std::vector<std::pair<std::size_t, Box>> near_b;
     for (std::size_t k = chunk * kChunk; k < end; ++k) {
       const PiecePair& pair = pairs[k];
       const PieceView& a = views[indexOf(pair.block_a, pair.piece_a)];
@@ -527,17 +665,17 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
       const std::size_t first = out.size();
       vertexToFace(a, b, range, tolerance, previous_face, out);
       vertexToFace(b, a, range, tolerance, previous_face, out);
-      VertexEntries entries{std::vector<char>(a.shape->vertices.size(), 0),
-                            std::vector<char>(b.shape->vertices.size(), 0)};
+      entries.a.assign(a.shape->vertices.size(), 0);
+      entries.b.assign(b.shape->vertices.size(), 0);
       for (std::size_t e = first; e < out.size(); ++e) {
         const bool of_a = out[e].block_i == a.block && out[e].piece_i == a.piece;
         (of_a ? entries.a : entries.b)[static_cast<std::size_t>(out[e].vertex)] = 1;
       }
-      edgeToEdge(a, b, range, tolerance, entries, out);
+      edgeToEdge(a, b, range, tolerance, entries, near_b, out);
       overlapAreas(a, b, range, tolerance, areas[chunk], out);
     }
   });
-  std::vector<Contact> contacts = withoutDuplicates(joined(std::move(found)));
+  std::vector<Contact> contacts = withoutDuplicates(std::move(found), blocks);
   assignAreas(contacts, joined(std::move(areas)));
   return contacts;
 }

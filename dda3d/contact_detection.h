@@ -54,6 +54,36 @@ double stepReach(const BlockState& block, double dt, double last_dt, const Reach
 std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach);
 
+/// The broad phase's pairs kept between steps (a Verlet list): found once with every
+/// block's piece boxes grown by its reach plus a margin, they hold every pair a broad phase
+/// with a later reach finds for as long as no block has moved farther than its margin since
+/// (how far each block moved is bounded by largestVertexDisplacement, summed over the steps).
+/// findContacts then only filters them by the step's own reach.
+class CandidatePairs {
+ public:
+  /// `margin`: how far (m) beyond its reach each block's boxes are grown.
+  explicit CandidatePairs(double margin = 0.0) : margin_(margin) {}
+  /// Adds `distance` (m, a bound on how far every point of `block` moved) after a step.
+  void moved(std::size_t block, double distance) {
+    if (block < moved_.size()) moved_[block] += distance;
+  }
+  /// Forgets the pairs (the blocks' geometry changed some other way).
+  void clear() { pairs_.clear(), grown_.clear(), moved_.clear(); }
+  /// The pairs for a step with `reach` (per block, m): the kept ones when they still cover
+  /// it, else the broad phase again (grown by reach + margin).
+  const std::vector<PiecePair>& pairs(const std::vector<BlockState>& blocks,
+                                      const std::vector<double>& reach);
+  /// How many times the broad phase ran.
+  int builds() const { return builds_; }
+
+ private:
+  double margin_;
+  std::vector<PiecePair> pairs_;
+  std::vector<double> grown_;  ///< per block: its boxes' growth when the pairs were found
+  std::vector<double> moved_;  ///< per block: how far it moved since (m)
+  int builds_ = 0;
+};
+
 /// Index of each block's first piece when the pieces of all blocks are numbered in order,
 /// then the total count (blocks.size() + 1 entries).
 std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks);
@@ -70,8 +100,11 @@ using PreviousFace =
 /// reference face of a vertex that persists (the face it entered through). Per-piece world-space
 /// data (face planes, boxes) is computed once per call. Geometry fields are set, states are not;
 /// the order is that of the sorted pairs, so deterministic.
+/// With `candidates`, the broad phase's pairs come from it (the same pairs, kept between
+/// steps).
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
-                                  const PreviousFace& previous_face);
+                                  const PreviousFace& previous_face,
+                                  CandidatePairs* candidates = nullptr);
 
 }  // namespace rockmass::dda3d

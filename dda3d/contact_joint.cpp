@@ -12,11 +12,16 @@ namespace {
 
 /// Among `faces` of `shape`, the one whose outward normal n_f maximises sign * n_f . n; -1
 /// when `faces` is empty.
-int mostAligned(const geometry::Polyhedron& shape, const std::vector<int>& faces,
-                const geometry::Vec3& n, double sign) {
+int mostAligned(const geometry::Polyhedron& shape, const PieceTopology& topology,
+                std::span<const int> faces, const geometry::Vec3& n, double sign) {
   int best = -1;
   double best_dot = -std::numeric_limits<double>::infinity();
+  // The block's surface: a face inside a glued block (against another of its pieces) is
+  // no contact face, unless the point has no other.
+  bool any_exterior = false;
+  for (int f : faces) any_exterior |= topology.faceExterior(static_cast<std::size_t>(f));
   for (int f : faces) {
+    if (any_exterior && !topology.faceExterior(static_cast<std::size_t>(f))) continue;
     const double dot = sign * geometry::faceNormal(shape, f).dot(n);
     if (dot > best_dot) {
       best_dot = dot;
@@ -24,23 +29,6 @@ int mostAligned(const geometry::Polyhedron& shape, const std::vector<int>& faces
     }
   }
   return best;
-}
-
-/// The faces of a piece along edge `edge` (those holding both of its vertices).
-std::vector<int> edgeFaces(const PieceTopology& topology, int edge) {
-  const std::array<int, 2>& ends = topology.edges.at(static_cast<std::size_t>(edge));
-  const std::vector<int>& first = topology.vertex_faces.at(static_cast<std::size_t>(ends[0]));
-  const std::vector<int>& second = topology.vertex_faces.at(static_cast<std::size_t>(ends[1]));
-  std::vector<int> out;
-  for (int f : first) {
-    for (int g : second) {
-      if (f == g) {
-        out.push_back(f);
-        break;
-      }
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -102,15 +90,15 @@ int contactJoint(const DdaModel& model, const std::vector<BlockState>& blocks, c
   if (c.kind == ContactKind::VertexFace) {
     face_j = c.face;
     face_i =
-        mostAligned(pi, ti.vertex_faces.at(static_cast<std::size_t>(c.vertex)), c.normal, -1.0);
+        mostAligned(pi, ti, ti.vertex_faces.at(static_cast<std::size_t>(c.vertex)), c.normal, -1.0);
   } else if (c.kind == ContactKind::FacePoint) {
     face_j = c.face;
     face_i = bi.face_points.at(static_cast<std::size_t>(c.piece_i))
                  .points.at(static_cast<std::size_t>(c.vertex))
                  .face;
   } else {
-    face_j = mostAligned(pj, edgeFaces(tj, c.edge_j), c.normal, 1.0);
-    face_i = mostAligned(pi, edgeFaces(ti, c.edge_i), c.normal, -1.0);
+    face_j = mostAligned(pj, tj, tj.edgeFaces(static_cast<std::size_t>(c.edge_j)), c.normal, 1.0);
+    face_i = mostAligned(pi, ti, ti.edgeFaces(static_cast<std::size_t>(c.edge_i)), c.normal, -1.0);
   }
   return weakerJoint(model.joints, faceJoint(model, c.block_i, c.piece_i, face_i),
                      faceJoint(model, c.block_j, c.piece_j, face_j));

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "dda3d/block_terms.h"
 #include "dda3d/simulation.h"
@@ -237,8 +240,10 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // the iteration never settled at any time step.
   rules.reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
   rules.allowed = settings_.allowed_penetration_ratio * half_domain_;
-  StateChanges changes;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+  // Each contact's update reads the solution and changes that contact only: in parallel,
+  // each recording how it changed (1 changed, 2 closed), then counted in order.
+  std::vector<char> how(contacts_.size(), 0);
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
     const Vec3 relative = relativeDisplacement(c, solution);
     const double d = c.gap0 + c.normal.dot(relative);
@@ -264,15 +269,18 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       const double holds = c.toggles >= 2 ? penalty_ * d / holdLimit(c) : kNeverHeld;
       updateClosedContact(c, d, slip, rigid_slip, holds, jointOf(c), rules);
     }
-    if (c.state != before) {
-      ++changes.changed;
-      const bool closed = before == ContactState::Open;
-      changes.closed += closed;
-      // The example names a contact that closed when any did (those always take another
-      // iteration), else the first that changed.
-      if (changes.example < 0 || (closed && changes.closed == 1)) {
-        changes.example = static_cast<int>(k);
-      }
+    if (c.state != before) how[k] = before == ContactState::Open ? 2 : 1;
+  });
+  StateChanges changes;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    if (how[k] == 0) continue;
+    ++changes.changed;
+    const bool closed = how[k] == 2;
+    changes.closed += closed;
+    // The example names a contact that closed when any did (those always take another
+    // iteration), else the first that changed.
+    if (changes.example < 0 || (closed && changes.closed == 1)) {
+      changes.example = static_cast<int>(k);
     }
   }
   return changes;

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 #include "dda3d/block_terms.h"
 #include "dda3d/contact_detection.h"
 #include "dda3d/contact_joint.h"
@@ -89,6 +91,7 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
       all.min = all.min.cwiseMin(box.min);
       all.max = all.max.cwiseMax(box.max);
     }
+    if (settings_.detection.surface_only) markExterior(s.pieces, s.topology);
     s.material = in.material;
     s.fixed = in.fixed;
     s.updateMassProperties();
@@ -110,6 +113,9 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
   }
   half_domain_ = settings_.half_domain_size > 0.0 ? settings_.half_domain_size
                                                   : 0.5 * (all.max - all.min).maxCoeff();
+  // The kept broad-phase pairs reach one step control limit beyond the blocks' reach.
+  candidates_ =
+      CandidatePairs(kAcceptedDisplacementRatio * settings_.max_displacement_ratio * half_domain_);
   // The stiffest material of the blocks in the model (a material no block uses, e.g. one the
   // scene declares for a structure elsewhere, does not stiffen the contacts).
   double young_max = 0.0;
@@ -229,7 +235,8 @@ int Simulation::detectContacts() {
     reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
   // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
   std::vector<Contact> detected =
-      findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face);
+      findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face,
+                   settings_.detection.keep_pairs ? &candidates_ : nullptr);
   std::vector<std::pair<int, int>> pairs;
   int late = 0;
   const double late_depth = settings_.allowed_penetration_ratio * half_domain_;
@@ -276,7 +283,9 @@ int Simulation::detectContacts() {
     const int j = bolt_b_[k].block >= 0 ? movableIndex(bolt_b_[k].block) : -1;
     if (i >= 0 && j >= 0 && i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
-  for (Contact& c : detected) c.joint = contactJoint(model_, blocks_, c);
+  tbb::parallel_for(std::size_t{0}, detected.size(), [&](std::size_t k) {
+    detected[k].joint = contactJoint(model_, blocks_, detected[k]);
+  });
   contacts_ = std::move(detected);
   // A contact that crept in the last step (its slip no longer than the shear spring's stretch
   // at the shear strength) starts this one stuck, its spring carrying the shear strength along
@@ -523,13 +532,14 @@ double Simulation::maxPenetration() const {
 }
 
 void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
-  for (Contact& c : contacts_) {
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    Contact& c = contacts_[k];
     if (c.state == ContactState::Locked) {
       c.shear = tangential(c.shear + relativeDisplacement(c, solution), c.normal);
     } else {
       c.shear.setZero();
     }
-  }
+  });
   const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
   const auto move = [&](std::vector<MaterialPoint>& points) {
     for (MaterialPoint& p : points) {
@@ -545,13 +555,13 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
   move(bolt_a_);
   move(bolt_b_);
   block_work_.resize(blocks_.size(), 0.0);
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+  // Each block moves on its own (in parallel); the loads' work is summed in block order.
+  std::vector<double> work(blocks_.size(), 0.0);
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
     BlockState& block = blocks_[b];
-    if (block.fixed) continue;
+    if (block.fixed) return;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
-    const double work = load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
-    work_of_loads_ += work;
-    block_work_[b] += work;
+    work[b] = load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
     for (geometry::Polyhedron& piece : block.pieces) {
       for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
     }
@@ -572,6 +582,11 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     block.acceleration = ratio * a1;
     block.last_displacement = d;
     block.updateMassProperties();
+  });
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (blocks_[b].fixed) continue;
+    work_of_loads_ += work[b];
+    block_work_[b] += work[b];
   }
 }
 
@@ -636,6 +651,15 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     accountDissipation(solution, dt);
     recordContactHistory(solution);
     updateBlocks(solution, dt);
+    // How far each block moved, for the kept broad-phase pairs (a first-order bound, from
+    // the moved geometry: 1 % over it covers the difference).
+    std::vector<double> moved(blocks_.size(), 0.0);
+    tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
+      if (!blocks_[b].fixed) {
+        moved[b] = 1.01 * largestVertexDisplacement(blocks_[b], blocks_[b].last_displacement);
+      }
+    });
+    for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
     springs_after_step_ = springEnergy();
     last_solution_ = solution;
     last_dt_ = dt;

@@ -18,6 +18,7 @@
 #include "dda3d/block_system.h"
 #include "dda3d/block_terms.h"
 #include "dda3d/contact.h"
+#include "dda3d/contact_detection.h"
 #include "dda3d/energy_account.h"
 #include "dda3d/linear_solver.h"
 #include "dda3d/model.h"
@@ -117,6 +118,8 @@ class Simulation {
   void setPointLoadForce(std::size_t k, const geometry::Vec3& force) {
     model_.point_loads.at(k).force = force;
   }
+  /// How many times the broad phase ran (its pairs are kept between steps, CandidatePairs).
+  int broadPhaseRuns() const { return candidates_.builds(); }
   ContactCounts contactCounts() const;
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.
@@ -254,6 +257,8 @@ class Simulation {
   std::vector<BoltState> bolt_state_;
   std::vector<Contact> contacts_;
   std::vector<double> reach_;  // per block, m (contactReach())
+  /// The broad phase's pairs, kept between steps while the blocks move less than a margin.
+  CandidatePairs candidates_;
   std::unique_ptr<BlockSystem> system_;
   std::unique_ptr<LinearSolver> solver_;
   std::vector<BlockMatrix> base_k_;  // block terms per movable block

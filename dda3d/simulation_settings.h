@@ -88,6 +88,21 @@ struct DdaSettings {
   /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
   /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
   SolverOptions solver{.kind = SolverKind::Auto};
+  /// How the contacts are searched (bench/dda_region_bench.cpp measures each choice,
+  /// docs/performance.md).
+  struct Detection {
+    /// Only the faces, edges and vertices on each block's surface take part (markExterior),
+    /// and a corner's copies in a glued block's pieces are one point. Off (the default), the
+    /// faces between the pieces of a glued block are searched too: a point pressed into the
+    /// block beside such a face can take it as its face (a spring across the block's inside;
+    /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not yet the default:
+    /// with it the deformable Xiangjiaba quick box does not come to rest at K = 1 within its
+    /// 40 steps (its unbalanced ratio wanders between 1e-3 and 1e-2; docs/dda3d.md,
+    /// "Deformable blocks at scale").
+    bool surface_only = false;
+    /// The broad phase's pairs are kept between steps (CandidatePairs): the same contacts.
+    bool keep_pairs = true;
+  } detection;
 };
 
 /// The relative residual |K d - F| / |F| that SolverKind::Auto gives PCG. The displacement
