@@ -158,4 +158,29 @@ void addCutterOption(CLI::App& command, std::string& cutter) {
       ->check(CLI::IsMember({"exact", "fast"}));
 }
 
+std::string shellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+ScriptRun runScript(const std::string& python, const fs::path& script, const fs::path& folder,
+                    const std::string& prefix) {
+  const std::string command = shellQuote(python) + " " + shellQuote(script.string()) + " " +
+                              shellQuote(folder.string()) + " 2>&1";
+  ScriptRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  run.started = true;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) {
+    std::string line(buffer);
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    std::fprintf(stderr, "%s: %s\n", prefix.c_str(), line.c_str());
+    run.lines.push_back(std::move(line));
+  }
+  run.succeeded = pclose(pipe) == 0;
+  return run;
+}
+
 }  // namespace rockmass::app

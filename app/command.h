@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -77,6 +78,21 @@ Command addOverloadCommand(CLI::App& app);
 Command addStrengthCommand(CLI::App& app);
 Command addRunCommand(CLI::App& app);
 Command addEnsembleCommand(CLI::App& app);
+
+/// `text` quoted for the shell (single quotes; a quote inside closed, escaped and reopened).
+std::string shellQuote(const std::string& text);
+
+/// What a helper script printed and how it ended (runScript).
+struct ScriptRun {
+  bool started = false;            ///< the interpreter could be started
+  bool succeeded = false;          ///< it exited with status 0
+  std::vector<std::string> lines;  ///< its output (stdout and stderr), line by line
+};
+
+/// Runs `python script folder` (the figure and report scripts), echoing each line it prints
+/// to stderr as "<prefix>: line" as it comes.
+ScriptRun runScript(const std::string& python, const std::filesystem::path& script,
+                    const std::filesystem::path& folder, const std::string& prefix);
 
 /// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
 void addCutterOption(CLI::App& command, std::string& cutter);

@@ -307,10 +307,10 @@ bool runMpi(const EnsembleOptions& o, const io::Scene& base, const std::vector<i
 
 /// The ensemble's figures (scripts/figures/ensemble_figures.py); a warning when they fail.
 void drawFigures(const EnsembleOptions& o) {
-  const std::string command = o.run.python + " '" + o.run.figure_scripts +
-                              "/ensemble_figures.py' '" + o.run.common.output + "'";
-  if (std::system(command.c_str()) != 0) {
-    std::fprintf(stderr, "ensemble: warning: the figures were not drawn (%s)\n", command.c_str());
+  const fs::path script = fs::path(o.run.figure_scripts) / "ensemble_figures.py";
+  if (!runScript(o.run.python, script, o.run.common.output, "ensemble").succeeded) {
+    std::fprintf(stderr, "ensemble: warning: the figures were not drawn (%s %s)\n",
+                 o.run.python.c_str(), script.string().c_str());
   }
 }
 

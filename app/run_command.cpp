@@ -288,13 +288,6 @@ StagePlan planStages(const io::Scene& scene, const RunOptions& options) {
   return plan;
 }
 
-/// Quotes a path for the shell.
-std::string shellQuote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 /// Runs scripts/figures/make_figures.py on the output folder; returns the PNG names it
 /// reports ("figure: NAME" lines). A missing python or matplotlib is a warning.
 std::vector<std::string> makeFigures(const RunOptions& options, const fs::path& out,
@@ -312,19 +305,13 @@ std::vector<std::string> makeFigures(const RunOptions& options, const fs::path& 
     std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
     return {};
   }
-  const std::string command = shellQuote(options.python) + " " + shellQuote(script.string()) + " " +
-                              shellQuote(out.string()) + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) throw std::runtime_error("figures: cannot start " + options.python);
+  const ScriptRun run = runScript(options.python, script, out, "run");
+  if (!run.started) throw std::runtime_error("figures: cannot start " + options.python);
   std::vector<std::string> figures;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) {
-    std::string line(buffer);
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    std::fprintf(stderr, "run: %s\n", line.c_str());
+  for (const std::string& line : run.lines) {
     if (line.rfind("figure: ", 0) == 0) figures.push_back(line.substr(8));
   }
-  if (pclose(pipe) != 0) {
+  if (!run.succeeded) {
     warnings.push_back("figures: make_figures.py failed (see the messages above)");
   }
   std::sort(figures.begin(), figures.end());
@@ -337,19 +324,11 @@ bool makeReport(const RunOptions& options, const fs::path& out,
                 std::vector<std::string>& warnings) {
   const fs::path script =
       (fs::path(options.figure_scripts) / ".." / "report" / "make_report.py").lexically_normal();
-  const std::string command = shellQuote(options.python) + " " + shellQuote(script.string()) + " " +
-                              shellQuote(out.string()) + " 2>&1";
-  FILE* pipe = fs::exists(script) ? popen(command.c_str(), "r") : nullptr;
   bool written = false;
-  if (pipe) {
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) {
-      std::string line(buffer);
-      while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-      std::fprintf(stderr, "run: %s\n", line.c_str());
-      written = written || line == "report: report.html";
-    }
-    written = pclose(pipe) == 0 && written;
+  if (fs::exists(script)) {
+    const ScriptRun run = runScript(options.python, script, out, "run");
+    written = run.succeeded && std::find(run.lines.begin(), run.lines.end(),
+                                         "report: report.html") != run.lines.end();
   }
   if (!written) {
     warnings.push_back("report: report.html was not written (" + script.string() +

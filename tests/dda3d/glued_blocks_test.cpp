@@ -145,6 +145,33 @@ TEST(ExteriorFaces, OnlyTheSurfaceOfAGluedBlockCarriesContacts) {
   }
 }
 
+// One point of block i found against two pieces of block j, shallow behind the first's top
+// (1e-5 m) and 0.1 m deep behind the second's side, keeps only the shallow entry: the face
+// it came through. The pieces overlap, standing for a point at the line where two pieces
+// meet (inside both within round-off), as a corner resting on a slope of the Xiangjiaba
+// quick box was, read 3.7 mm deep behind the region's side plane by the other piece.
+TEST(NarrowPhase, APointIsNotHeldDeeperThanItsShallowestEntry) {
+  const Polyhedron first = geometry::boxPolyhedron({Vec3(0, 0, 0), Vec3(1, 1, 1)});
+  const Polyhedron second = geometry::boxPolyhedron({Vec3(0.4, 0, 0), Vec3(2, 1, 1.5)});
+  // A's corner (0.5, 0.5, 1 - 1e-5) has edges along -x, +y and +z: none dives into either face.
+  const Polyhedron a =
+      geometry::boxPolyhedron({Vec3(-0.5, 0.5, 1.0 - 1e-5), Vec3(0.5, 1.5, 2.0 - 1e-5)});
+  const std::vector<BlockState> blocks = blocksOf({{a}, {first, second}});
+  const std::vector<Contact> contacts =
+      findContacts(blocks, {0.01, 0.01}, 0.2, [](int, int, int, int, int) { return -1; });
+  int at_corner = 0;
+  for (const Contact& c : contacts) {
+    if (c.block_i != 0 || c.kind != ContactKind::VertexFace ||
+        (c.point - Vec3(0.5, 0.5, 1.0 - 1e-5)).norm() > 1e-12) {
+      continue;
+    }
+    ++at_corner;
+    EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
+    EXPECT_NEAR(c.gap0, -1e-5, 1e-12);
+  }
+  EXPECT_EQ(at_corner, 1);
+}
+
 // The broad-phase pairs kept between steps (CandidatePairs) give exactly the contacts of a
 // broad phase run every step, while the blocks drift by random steps of up to 3 mm and turn
 // by up to 2 mrad, over 40 steps: the pairs are found again only when a block has moved
