@@ -128,32 +128,14 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
         if (contacts.size() - before >= kMinFacePoints) continue;
         contacts.resize(before);
       }
-      // 2D basis of b's face: t1 x t2 = n, so b's face (counter-clockwise seen from outside
-      // b) stays counter-clockwise; a's face, seen from the other side, is reversed.
       const Vec3& n = pb.normal;
-      Vec3 t1, t2;
-      tangents(n, t1, t2);
-      const std::vector<int>& face_b = b.shape->faces[fb];
-      const Vec3 origin = b.shape->vertices[static_cast<std::size_t>(face_b[0])];
-      const auto flat = [&](const Vec3& x) {
-        return Point2((x - origin).dot(t1), (x - origin).dot(t2));
-      };
-      std::vector<Point2> polygon;
-      for (auto v = face_a.rbegin(); v != face_a.rend(); ++v) {
-        polygon.push_back(flat(a.shape->vertices[static_cast<std::size_t>(*v)]));
-      }
-      for (std::size_t k = 0; k < face_b.size() && polygon.size() >= 3; ++k) {
-        const Point2 p = flat(b.shape->vertices[static_cast<std::size_t>(face_b[k])]);
-        const Point2 q =
-            flat(b.shape->vertices[static_cast<std::size_t>(face_b[(k + 1) % face_b.size()])]);
-        const Point2 edge = q - p;
-        polygon = clipped(polygon, [&](const Point2& x) { return -cross2(edge, x - p); });
-      }
+      const FaceFrame frame(*b.shape, b.shape->faces[fb], n);
+      std::vector<Point2> polygon =
+          facesOverlap(*a.shape, face_a, *b.shape, b.shape->faces[fb], frame);
       if (polygon.size() < 3) continue;
       // Height of a's face plane over b's along n at a point of b's plane: affine in x.
       const auto height = [&](const Point2& x) {
-        const Vec3 at = origin + x.x() * t1 + x.y() * t2;
-        return (pa.offset - pa.normal.dot(at)) / -facing;
+        return (pa.offset - pa.normal.dot(frame.at(x))) / -facing;
       };
       polygon = clipped(polygon, [&](const Point2& x) { return height(x) - range.gap; });
       if (polygon.size() < 3) continue;
@@ -164,8 +146,7 @@ void overlapAreas(const PieceView& a, const PieceView& b, const Range& range, do
       const std::vector<double> weight = cornerWeights(polygon, area);
       for (std::size_t k = 0; k < polygon.size(); ++k) {
         if (weight[k] == 0.0) continue;
-        out.push_back({a.block, b.block, a.piece, b.piece,
-                       origin + polygon[k].x() * t1 + polygon[k].y() * t2, n, weight[k],
+        out.push_back({a.block, b.block, a.piece, b.piece, frame.at(polygon[k]), n, weight[k],
                        range.larger() + tolerance});
       }
     }

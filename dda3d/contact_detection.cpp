@@ -38,25 +38,19 @@ constexpr double kConeSlack = 0.3;
 /// agree to 1 - cos within this (coplanar faces of two pieces of j).
 constexpr double kDuplicateNormalSlack = 1e-9;
 
-/// Largest signed distance of p outside the planes of a convex piece (<= 0: inside).
-double outsideDistance(const std::vector<Plane>& planes, const Vec3& p) {
+/// Largest signed distance of p outside the planes of a convex piece (<= 0: inside). With
+/// `surface`, only the planes of its faces on the block's surface count: for a point inside
+/// the piece, minus how deep it lies below the block's surface there. The faces between the
+/// piece and the block's other pieces are no surface: a point of another block sunk 1 mm into
+/// the block's top beside such a face, 1e-5 m from it, read as 1e-5 m deep behind it, the top
+/// face was then "far behind the nearest" and the point had no entry at all (the deformable
+/// Xiangjiaba quick box crept on such points).
+double outsideDistance(const std::vector<Plane>& planes, const Vec3& p,
+                       const PieceTopology* surface = nullptr) {
   double outside = -std::numeric_limits<double>::infinity();
-  for (const Plane& plane : planes) outside = std::max(outside, plane.normal.dot(p) - plane.offset);
-  return outside;
-}
-
-/// For a point p inside piece b: the largest signed distance of p to b's surface planes (its
-/// exterior faces), i.e. minus how deep p lies below the block's surface there. The faces
-/// between b and the block's other pieces are no surface: a point of another block sunk
-/// 1 mm into the block's top beside such a face, 1e-5 m from it, read as 1e-5 m deep behind
-/// it, the top face was then "far behind the nearest" and the point had no entry at all (the
-/// deformable Xiangjiaba quick box crept on such points).
-double surfaceOutsideDistance(const PieceView& b, const Vec3& p) {
-  double outside = -std::numeric_limits<double>::infinity();
-  for (std::size_t f = 0; f < b.planes.size(); ++f) {
-    if (!b.topology->faceExterior(f)) continue;
-    const Plane& plane = b.planes[f];
-    outside = std::max(outside, plane.normal.dot(p) - plane.offset);
+  for (std::size_t f = 0; f < planes.size(); ++f) {
+    if (surface != nullptr && !surface->faceExterior(f)) continue;
+    outside = std::max(outside, planes[f].normal.dot(p) - planes[f].offset);
   }
   return outside;
 }
@@ -213,8 +207,8 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     if (piece_outside > range.gap) continue;
     const bool is_outside = piece_outside > tolerance;
     // Outside b: how far (across any of its faces); inside: how deep below the block's
-    // surface faces of b (surfaceOutsideDistance).
-    const double outside = is_outside ? piece_outside : surfaceOutsideDistance(b, p);
+    // surface faces of b.
+    const double outside = is_outside ? piece_outside : outsideDistance(b.planes, p, b.topology);
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
     int best = -1;
     double best_gap = 0.0, best_alignment = 0.0;

@@ -5,8 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include "blocks/union_find.h"
 #include "dda3d/block_state.h"
-#include "dda3d/contact_detection.h"
+#include "dda3d/piece_view.h"
 #include "dda3d/polygon2d.h"
 #include "geometry/box.h"
 
@@ -22,47 +23,6 @@ namespace {
 constexpr double kOppositeSlack = 1e-6;
 /// A face counts as covered when the faces over it cover all but this share of its area.
 constexpr double kUncoveredShare = 1e-6;
-
-struct FacePlane {
-  Vec3 normal = Vec3::Zero();
-  double offset = 0.0;
-  double area = 0.0;
-};
-
-FacePlane planeOf(const Polyhedron& piece, const std::vector<int>& face) {
-  Vec3 newell = Vec3::Zero();
-  for (std::size_t k = 0; k < face.size(); ++k) {
-    newell += piece.vertices[static_cast<std::size_t>(face[k])].cross(
-        piece.vertices[static_cast<std::size_t>(face[(k + 1) % face.size()])]);
-  }
-  const double twice = newell.norm();
-  if (!(twice > 0.0)) return {};
-  const Vec3 n = newell / twice;
-  return {n, n.dot(piece.vertices[static_cast<std::size_t>(face[0])]), 0.5 * twice};
-}
-
-/// Area of face `fb` of `b` that face `fa` of `a` covers, both in one plane facing each other.
-double coveredArea(const Polyhedron& a, const std::vector<int>& face_a, const Polyhedron& b,
-                   const std::vector<int>& face_b, const Vec3& n) {
-  Vec3 t1, t2;
-  tangents(n, t1, t2);
-  const Vec3 origin = b.vertices[static_cast<std::size_t>(face_b[0])];
-  const auto flat = [&](const Vec3& x) {
-    return Point2((x - origin).dot(t1), (x - origin).dot(t2));
-  };
-  // b's face counter-clockwise about n; a's face, seen from the other side, reversed.
-  std::vector<Point2> polygon;
-  for (auto v = face_a.rbegin(); v != face_a.rend(); ++v) {
-    polygon.push_back(flat(a.vertices[static_cast<std::size_t>(*v)]));
-  }
-  for (std::size_t k = 0; k < face_b.size() && polygon.size() >= 3; ++k) {
-    const Point2 p = flat(b.vertices[static_cast<std::size_t>(face_b[k])]);
-    const Point2 q = flat(b.vertices[static_cast<std::size_t>(face_b[(k + 1) % face_b.size()])]);
-    const Point2 edge = q - p;
-    polygon = clipped(polygon, [&](const Point2& x) { return -cross2(edge, x - p); });
-  }
-  return polygon.size() >= 3 ? std::max(0.0, polygonArea(polygon)) : 0.0;
-}
 
 /// PieceTopology::block_vertex of every piece: vertices closer than 1e-9 of the block's
 /// size (the cutter's round-off on a corner shared by pieces) are one corner, numbered in
@@ -84,13 +44,8 @@ void numberCorners(const std::vector<Polyhedron>& pieces, std::vector<PieceTopol
   }
   const double tolerance = copies.empty() ? 0.0 : 1e-9 * all.diagonal();
   // Union of copies within the tolerance (a sweep along x), each group named by its
-  // earliest copy.
-  std::vector<std::size_t> root(copies.size());
-  for (std::size_t k = 0; k < root.size(); ++k) root[k] = k;
-  const auto find = [&](std::size_t k) {
-    while (root[k] != k) k = root[k] = root[root[k]];
-    return k;
-  };
+  // earliest copy (the union-find's root is the smallest id).
+  blocks::UnionFind corner(copies.size());
   std::vector<std::size_t> by_x(copies.size());
   for (std::size_t k = 0; k < by_x.size(); ++k) by_x[k] = k;
   std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
@@ -102,14 +57,13 @@ void numberCorners(const std::vector<Polyhedron>& pieces, std::vector<PieceTopol
       const Copy& b = copies[by_x[j]];
       if (b.at.x() - a.at.x() > tolerance) break;
       if ((a.at - b.at).cwiseAbs().maxCoeff() > tolerance) continue;
-      const std::size_t ra = find(a.serial), rb = find(b.serial);
-      if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+      corner.unite(static_cast<int>(a.serial), static_cast<int>(b.serial));
     }
   }
   std::vector<int> number(copies.size(), -1);
   int corners = 0;
   for (std::size_t k = 0; k < copies.size(); ++k) {
-    const std::size_t r = find(k);
+    const auto r = static_cast<std::size_t>(corner.find(static_cast<int>(k)));
     if (number[r] < 0) number[r] = corners++;
     number[k] = number[r];
   }
@@ -130,14 +84,13 @@ void markExterior(const std::vector<Polyhedron>& pieces, std::vector<PieceTopolo
   numberCorners(pieces, topology);
   if (pieces.size() < 2) return;
   std::vector<geometry::Box> boxes;
-  std::vector<std::vector<FacePlane>> planes(pieces.size());
+  std::vector<std::vector<detection::Plane>> planes(pieces.size());
   std::vector<std::vector<double>> covered(pieces.size());
   double size = 0.0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     boxes.push_back(geometry::bounds(pieces[p]));
     size = std::max(size, boxes.back().diagonal());
-    for (const std::vector<int>& face : pieces[p].faces)
-      planes[p].push_back(planeOf(pieces[p], face));
+    planes[p] = detection::facePlanes(pieces[p]);
     covered[p].assign(pieces[p].faces.size(), 0.0);
   }
   const double tolerance = 1e-9 * size;
@@ -158,10 +111,10 @@ void markExterior(const std::vector<Polyhedron>& pieces, std::vector<PieceTopolo
         continue;
       }
       for (std::size_t fa = 0; fa < planes[a].size(); ++fa) {
-        const FacePlane& pa = planes[a][fa];
+        const detection::Plane& pa = planes[a][fa];
         if (!(pa.area > 0.0)) continue;
         for (std::size_t fb = 0; fb < planes[b].size(); ++fb) {
-          const FacePlane& pb = planes[b][fb];
+          const detection::Plane& pb = planes[b][fb];
           if (!(pb.area > 0.0) || pa.normal.dot(pb.normal) > -1.0 + kOppositeSlack) continue;
           bool coplanar = true;
           for (int v : pieces[a].faces[fa]) {
@@ -170,8 +123,10 @@ void markExterior(const std::vector<Polyhedron>& pieces, std::vector<PieceTopolo
             if (std::abs(h) > tolerance) coplanar = false;
           }
           if (!coplanar) continue;
-          const double area = coveredArea(pieces[a], pieces[a].faces[fa], pieces[b],
-                                          pieces[b].faces[fb], pb.normal);
+          const std::vector<Point2> overlap = detection::facesOverlap(
+              pieces[a], pieces[a].faces[fa], pieces[b], pieces[b].faces[fb],
+              detection::FaceFrame(pieces[b], pieces[b].faces[fb], pb.normal));
+          const double area = overlap.size() >= 3 ? std::max(0.0, polygonArea(overlap)) : 0.0;
           covered[a][fa] += area;
           covered[b][fb] += area;
         }
@@ -193,16 +148,9 @@ void markExterior(const std::vector<Polyhedron>& pieces, std::vector<PieceTopolo
       }
     }
     t.exterior_edges.assign(t.edges.size(), 0);
-    for (std::size_t f = 0; f < pieces[p].faces.size(); ++f) {
-      if (!t.exterior_faces[f]) continue;
-      const std::vector<int>& face = pieces[p].faces[f];
-      for (std::size_t k = 0; k < face.size(); ++k) {
-        const int x = face[k], y = face[(k + 1) % face.size()];
-        for (std::size_t e = 0; e < t.edges.size(); ++e) {
-          if (t.edges[e] == std::array<int, 2>{std::min(x, y), std::max(x, y)}) {
-            t.exterior_edges[e] = 1;
-          }
-        }
+    for (std::size_t e = 0; e < t.edges.size(); ++e) {
+      for (int f : t.edgeFaces(e)) {
+        if (t.exterior_faces[static_cast<std::size_t>(f)]) t.exterior_edges[e] = 1;
       }
     }
   }

@@ -10,6 +10,7 @@
 #include "dda3d/block_state.h"
 #include "dda3d/contact.h"
 #include "dda3d/contact_detection.h"
+#include "dda3d/polygon2d.h"
 #include "geometry/box.h"
 #include "geometry/polyhedron.h"
 
@@ -43,6 +44,39 @@ inline std::vector<Plane> facePlanes(const Polyhedron& piece) {
     planes.push_back({n, n.dot(piece.vertices[face[0]]), 0.5 * twice_area});
   }
   return planes;
+}
+
+/// The 2D frame of a face with unit normal n: origin at its first vertex, axes t1, t2 of
+/// tangents(n) (t1 x t2 = n, so the face, counter-clockwise seen from outside, stays so).
+struct FaceFrame {
+  Vec3 origin, t1, t2;
+  FaceFrame(const Polyhedron& piece, const std::vector<int>& face, const Vec3& n)
+      : origin(piece.vertices[static_cast<std::size_t>(face[0])]) {
+    tangents(n, t1, t2);
+  }
+  Point2 flat(const Vec3& x) const { return Point2((x - origin).dot(t1), (x - origin).dot(t2)); }
+  Vec3 at(const Point2& x) const { return origin + x.x() * t1 + x.y() * t2; }
+};
+
+/// Where face `face_a` of piece a, facing face `face_b` of piece b, overlaps it: a's face
+/// projected along `frame`'s normal (b's face's frame) and clipped to b's face, in that frame,
+/// counter-clockwise (a's face, seen from the other side, is reversed). Fewer than 3 points:
+/// no overlap.
+inline std::vector<Point2> facesOverlap(const Polyhedron& a, const std::vector<int>& face_a,
+                                        const Polyhedron& b, const std::vector<int>& face_b,
+                                        const FaceFrame& frame) {
+  std::vector<Point2> polygon;
+  for (auto v = face_a.rbegin(); v != face_a.rend(); ++v) {
+    polygon.push_back(frame.flat(a.vertices[static_cast<std::size_t>(*v)]));
+  }
+  for (std::size_t k = 0; k < face_b.size() && polygon.size() >= 3; ++k) {
+    const Point2 p = frame.flat(b.vertices[static_cast<std::size_t>(face_b[k])]);
+    const Point2 q =
+        frame.flat(b.vertices[static_cast<std::size_t>(face_b[(k + 1) % face_b.size()])]);
+    const Point2 edge = q - p;
+    polygon = clipped(polygon, [&](const Point2& x) { return -cross2(edge, x - p); });
+  }
+  return polygon;
 }
 
 /// True when q (on the face's plane) lies inside the convex face, within `tolerance` (m).

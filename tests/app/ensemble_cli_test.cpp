@@ -212,6 +212,28 @@ TEST_F(EnsembleCli, ProbabilityOfSlidingMatchesTheNormalCdf) {
   EXPECT_EQ(strata.size(), static_cast<std::size_t>(n));
 }
 
+/// One joint set in a 20 m cube and one RQD ball of `directions` in its middle: a
+/// realization whose cost the ball sets.
+std::string rqdBallScene(const std::string& name, const std::string& thresholds, int directions) {
+  return "version: 1\nname: " + name + R"(
+seed: 9
+domain:
+  box: {min: [0, 0, -20], max: [20, 20, 0]}
+joint_sets:
+  - name: S1
+    dip_direction: {distribution: normal, mean: 90, std: 10}
+    dip: {distribution: normal, mean: 45, std: 8}
+    spacing: {distribution: exponential, mean: 0.5}
+    trace_length: {distribution: lognormal, mean: 4, std: 2}
+analysis:
+  rqd:
+    thresholds: [)" +
+         thresholds + R"(]
+    balls:
+      - {name: mid, center: [10, 10, -10], length: 16, directions: )" +
+         std::to_string(directions) + "}\n";
+}
+
 /// A small cut with sampled joint strength and orientation: blocks and a short DDA.
 std::string smallScene(const std::string& extra_inputs = "") {
   return R"(version: 1
@@ -368,24 +390,7 @@ TEST_F(EnsembleCli, AnEnsembleStoppedByCtrlCResumesWhereItStopped) {
   // after 1.5 s: the ensemble stops at the running realization's next safe point (exit 130), the
   // realizations done have their markers, the one it was running has none. The same command
   // again runs only the others, and the aggregate is that of an uninterrupted ensemble.
-  const std::string text = R"(version: 1
-name: interrupted
-seed: 9
-domain:
-  box: {min: [0, 0, -20], max: [20, 20, 0]}
-joint_sets:
-  - name: S1
-    dip_direction: {distribution: normal, mean: 90, std: 10}
-    dip: {distribution: normal, mean: 45, std: 8}
-    spacing: {distribution: exponential, mean: 0.5}
-    trace_length: {distribution: lognormal, mean: 4, std: 2}
-analysis:
-  rqd:
-    thresholds: [0.1, 1]
-    balls:
-      - {name: mid, center: [10, 10, -10], length: 16, directions: 30000}
-)";
-  const std::string path = scene("interrupted", text);
+  const std::string path = scene("interrupted", rqdBallScene("interrupted", "0.1, 1", 30000));
   const fs::path out = dir.path() / "stopped";
   const auto whole = test::runCli("ensemble " + path + " -o " + out.string() +
                                   " --realizations 6 --no-figures --threads 1");
@@ -428,23 +433,7 @@ TEST_F(EnsembleCli, RanksTakeTheNextRealizationWhenTheyAreFree) {
   // input): about 15 times the work (measured: 2.5 s against 0.15 s on one thread). Over two
   // ranks, the one that runs realization 0 must run few others while the other rank takes
   // the rest (dynamic balancing); a fixed half of the list each would give it five.
-  const std::string text = R"(version: 1
-name: balance
-seed: 9
-domain:
-  box: {min: [0, 0, -20], max: [20, 20, 0]}
-joint_sets:
-  - name: S1
-    dip_direction: {distribution: normal, mean: 90, std: 10}
-    dip: {distribution: normal, mean: 45, std: 8}
-    spacing: {distribution: exponential, mean: 0.5}
-    trace_length: {distribution: lognormal, mean: 4, std: 2}
-analysis:
-  rqd:
-    thresholds: [0.1]
-    balls:
-      - {name: mid, center: [10, 10, -10], length: 16, directions: 2000}
-uncertainty:
+  const std::string text = rqdBallScene("balance", "0.1", 2000) + R"(uncertainty:
   inputs:
     - {key: analysis.rqd.balls.mid.directions, distribution: list,
        values: [200000, 2000, 2000, 2000, 2000, 2000, 2000, 2000, 2000, 2000]}

@@ -309,7 +309,7 @@ using geometry::Vec3;
 using testing::blocksOf;
 using testing::cutCube;
 
-const PreviousFace kNoPrevious = [](int, int, int, int, int) { return -1; };
+using testing::kNoPrevious;
 
 // Pieces that only touch never penetrate: every entry found between the pieces of a cube cut
 // by random planes has gap0 >= 0 up to round-off. The search reach (0.3 m) and depth are as

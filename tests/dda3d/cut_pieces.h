@@ -7,6 +7,7 @@
 
 #include "blocks/convex_split.h"
 #include "dda3d/block_state.h"
+#include "dda3d/contact_detection.h"
 #include "geometry/polyhedron.h"
 #include "geometry/random.h"
 
@@ -55,5 +56,8 @@ inline std::vector<BlockState> blocksOf(
   }
   return blocks;
 }
+
+/// No vertex used a face last step (a first detection).
+inline const PreviousFace kNoPrevious = [](int, int, int, int, int) { return -1; };
 
 }  // namespace rockmass::dda3d::testing

@@ -19,6 +19,7 @@ using geometry::Polyhedron;
 using geometry::Vec3;
 using testing::blocksOf;
 using testing::cutCube;
+using testing::kNoPrevious;
 
 double faceArea(const Polyhedron& p, std::size_t f) {
   Vec3 newell = Vec3::Zero();
@@ -130,8 +131,7 @@ TEST(ExteriorFaces, OnlyTheSurfaceOfAGluedBlockCarriesContacts) {
       }
     }
     const std::vector<BlockState> blocks = blocksOf({upper, lower});
-    const std::vector<Contact> contacts =
-        findContacts(blocks, {1e-4, 1e-4}, 1e-3, [](int, int, int, int, int) { return -1; });
+    const std::vector<Contact> contacts = findContacts(blocks, {1e-4, 1e-4}, 1e-3, kNoPrevious);
     ASSERT_GT(contacts.size(), 4u) << "seed " << seed;
     double area = 0.0;
     for (const Contact& c : contacts) {
@@ -157,8 +157,7 @@ TEST(NarrowPhase, APointIsNotHeldDeeperThanItsShallowestEntry) {
   const Polyhedron a =
       geometry::boxPolyhedron({Vec3(-0.5, 0.5, 1.0 - 1e-5), Vec3(0.5, 1.5, 2.0 - 1e-5)});
   const std::vector<BlockState> blocks = blocksOf({{a}, {first, second}});
-  const std::vector<Contact> contacts =
-      findContacts(blocks, {0.01, 0.01}, 0.2, [](int, int, int, int, int) { return -1; });
+  const std::vector<Contact> contacts = findContacts(blocks, {0.01, 0.01}, 0.2, kNoPrevious);
   int at_corner = 0;
   for (const Contact& c : contacts) {
     if (c.block_i != 0 || c.kind != ContactKind::VertexFace ||
@@ -203,14 +202,13 @@ TEST(CandidatePairs, KeptPairsGiveTheContactsOfAFreshBroadPhase) {
     }
     std::vector<BlockState> blocks = blocksOf(groups);
     const std::vector<double> reach(blocks.size(), 0.004);
-    const PreviousFace none = [](int, int, int, int, int) { return -1; };
     CandidatePairs kept(0.01);
     geometry::Rng rng = geometry::makeRng(seed, 7);
     const auto uniform = [&rng] { return static_cast<double>(rng() % 2000001) / 1e6 - 1.0; };
     int compared = 0;
     for (int step = 0; step < 40; ++step) {
-      const std::vector<Contact> fresh = findContacts(blocks, reach, 0.02, none);
-      const std::vector<Contact> reused = findContacts(blocks, reach, 0.02, none, &kept);
+      const std::vector<Contact> fresh = findContacts(blocks, reach, 0.02, kNoPrevious);
+      const std::vector<Contact> reused = findContacts(blocks, reach, 0.02, kNoPrevious, &kept);
       ASSERT_EQ(fresh.size(), reused.size()) << "seed " << seed << " step " << step;
       for (std::size_t k = 0; k < fresh.size(); ++k) {
         EXPECT_EQ(fresh[k].block_i, reused[k].block_i);
