@@ -43,6 +43,10 @@ constexpr double kLateRestitution = 1.0;
 /// points, whose strengths are small enough for the share to bind at every point, held 10 %
 /// above its strength: eccentric dams came out 2-5 % above the shear-friction factor.
 constexpr double kStickAllowance = 0.01;
+/// Static mode: a contact that closed in the last open-close iteration no deeper than this
+/// share of the allowed penetration counts in the iteration's allowance of state changes
+/// (Simulation::openCloseIterate).
+constexpr double kStaticClosingShare = 0.01;
 
 }  // namespace
 
@@ -272,11 +276,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     if (c.state != before) how[k] = before == ContactState::Open ? 2 : 1;
   });
   StateChanges changes;
+  const double shallow =
+      settings_.mode == AnalysisMode::Static ? kStaticClosingShare * rules.allowed : -1.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     if (how[k] == 0) continue;
     ++changes.changed;
     const bool closed = how[k] == 2;
     changes.closed += closed;
+    changes.closed_deep += closed && -contacts_[k].gap > shallow;
     // The example names a contact that closed when any did (those always take another
     // iteration), else the first that changed.
     if (changes.example < 0 || (closed && changes.closed == 1)) {

@@ -76,6 +76,10 @@ struct DdaFixedPoint {
   /// Zero: held in every direction. A unit vector: only the displacement along it is held
   /// (a roller support on a plane with this normal).
   geometry::Vec3 direction = geometry::Vec3::Zero();
+  /// Where the material point is at the start (m), when it has already moved from `point`
+  /// (a model settled before, settledModel): its spring starts stretched by the difference,
+  /// carrying the reaction it carried. Unset: at `point`.
+  std::optional<geometry::Vec3> current = std::nullopt;
 };
 
 /// The half-space normal . x <= offset (m).

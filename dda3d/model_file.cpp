@@ -15,7 +15,7 @@ namespace rockmass::dda3d {
 
 namespace {
 
-constexpr char kMagic[] = "rockmass-dda-model 1\n";
+constexpr char kMagic[] = "rockmass-dda-model 2\n";
 
 /// Appends plain values to a byte string.
 class Writer {
@@ -145,7 +145,11 @@ std::string serialized(const DdaModel& m) {
   w.put(static_cast<std::uint64_t>(m.point_loads.size()));
   for (const DdaPointLoad& x : m.point_loads) w.put(x.block), w.put(x.point), w.put(x.force);
   w.put(static_cast<std::uint64_t>(m.fixed_points.size()));
-  for (const DdaFixedPoint& x : m.fixed_points) w.put(x.block), w.put(x.point), w.put(x.direction);
+  for (const DdaFixedPoint& x : m.fixed_points) {
+    w.put(x.block), w.put(x.point), w.put(x.direction);
+    w.put(static_cast<std::uint8_t>(x.current.has_value()));
+    w.put(x.current.value_or(x.point));
+  }
   w.put(static_cast<std::uint64_t>(m.pressures.size()));
   for (const DdaPressure& x : m.pressures) {
     w.put(x.block), w.put(x.piece), w.put(x.face), w.put(x.level), w.put(x.unit_weight);
@@ -205,9 +209,12 @@ DdaModel deserialized(const std::string& data, const std::string& name) {
   m.point_loads.resize(r.count(52));
   for (DdaPointLoad& x : m.point_loads)
     x.block = r.get<int>(), x.point = r.vec3(), x.force = r.vec3();
-  m.fixed_points.resize(r.count(52));
+  m.fixed_points.resize(r.count(77));
   for (DdaFixedPoint& x : m.fixed_points) {
     x.block = r.get<int>(), x.point = r.vec3(), x.direction = r.vec3();
+    const bool moved = r.get<std::uint8_t>() != 0;
+    const geometry::Vec3 current = r.vec3();
+    if (moved) x.current = current;
   }
   m.pressures.resize(r.count(62));
   for (DdaPressure& x : m.pressures) {
@@ -266,7 +273,7 @@ DdaModel loadModel(const std::filesystem::path& path) {
   const std::size_t header = sizeof kMagic - 1 + sizeof(std::uint64_t);
   if (file.size() < header || file.compare(0, sizeof kMagic - 1, kMagic) != 0) {
     throw std::runtime_error(path.string() +
-                             ": not a DDA model file (no rockmass-dda-model 1 header)");
+                             ": not a DDA model file (no rockmass-dda-model 2 header)");
   }
   std::uint64_t size = 0;
   std::memcpy(&size, file.data() + sizeof kMagic - 1, sizeof size);

@@ -139,6 +139,7 @@ Simulation::Simulation(DdaModel model, DdaSettings settings)
   }
   for (const DdaFixedPoint& f : model_.fixed_points) {
     fixed_points_.push_back(attach(f.block, f.point));
+    if (f.current) fixed_points_.back().current = *f.current;
     fixed_points_.back().direction = f.direction;
   }
   for (const DdaBolt& bolt : model_.bolts) {
@@ -491,7 +492,7 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     // it was solved open and may sit deep in the other block.
     const auto allowed =
         static_cast<int>(settings_.open_close_tolerance * static_cast<double>(contacts_.size()));
-    if (changes.closed == 0 && changes.changed <= allowed) {
+    if (changes.closed_deep == 0 && changes.changed <= allowed) {
       settled = true;
       return iteration;
     }

@@ -77,6 +77,12 @@ class Simulation {
     for (const MaterialPoint& p : load_points_) out.push_back(p.current);
     return out;
   }
+  /// Where each fixed point's material point is now (m), in model().fixed_points order.
+  std::vector<geometry::Vec3> fixedPointPositions() const {
+    std::vector<geometry::Vec3> out;
+    for (const MaterialPoint& p : fixed_points_) out.push_back(p.current);
+    return out;
+  }
   /// Displacement of block b's centroid since time 0 (m).
   geometry::Vec3 centroidDisplacement(int b) const;
   /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
@@ -197,8 +203,11 @@ class Simulation {
   double pointSpringEnergy() const;
   /// State changes of one open-close update.
   struct StateChanges {
-    int changed = 0;   ///< contacts whose state changed
-    int closed = 0;    ///< of them, contacts that were open
+    int changed = 0;  ///< contacts whose state changed
+    int closed = 0;   ///< of them, contacts that were open
+    /// Of those, the contacts that closed deeper than a static step may leave them
+    /// (kStaticClosingShare of the allowed penetration; all of them in a dynamic run).
+    int closed_deep = 0;
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
   /// Largest pull (N) of a contact held closed for the rest of the step.

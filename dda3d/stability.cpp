@@ -119,6 +119,15 @@ DdaModel settledModel(const Simulation& sim) {
   for (std::size_t k = 0; k < out.point_loads.size() && k < loads.size(); ++k) {
     out.point_loads[k].point = loads[k];
   }
+  // Supports keep their anchors and carry their reactions on: each fixed point's spring
+  // stays stretched from where it was fixed to where its block carried it. Re-anchored where
+  // the block is now, a roller lost its reaction at the restart, the blocks against it were
+  // pushed by their neighbours alone, and the quick Xiangjiaba scene's deformable toe block
+  // on the downstream rollers did not come back to rest (RunCli.XiangjiabaQuickDeformable*).
+  const std::vector<geometry::Vec3> supports = sim.fixedPointPositions();
+  for (std::size_t k = 0; k < out.fixed_points.size() && k < supports.size(); ++k) {
+    out.fixed_points[k].current = supports[k];
+  }
   // Bolts carry their force on: set between their points as they are now, pretensioned to the
   // force they hold (the same spring), broken ones still broken.
   const auto positions = sim.boltPositions();

@@ -42,6 +42,7 @@ DdaModel everyField() {
   m.monitors.push_back({"toe \"A\"", Vec3(0.5, 0.5, 0.5), 1});
   m.point_loads.push_back({1, Vec3(0.5, 0.5, 1), Vec3(0, 0, -1e4)});
   m.fixed_points.push_back({1, Vec3(0, 0, 0), Vec3(0, 1, 0)});
+  m.fixed_points.push_back({1, Vec3(1, 0, 0), Vec3::Zero(), Vec3(1, 0, -1e-6)});  // settled
   DdaPressure p = hydrostaticPressure(1, 1, 3, 2.5, 9810, true);
   p.pore = true;
   p.head_gradient = Vec3(-0.01, 0, 0);
@@ -81,6 +82,9 @@ TEST(ModelFile, ReadsBackBitForBit) {
   EXPECT_EQ(back.seismic, model.seismic);
   EXPECT_EQ(back.monitors[0].name, "toe \"A\"");
   EXPECT_EQ(back.fixed_points[0].direction, Vec3(0, 1, 0));
+  EXPECT_FALSE(back.fixed_points[0].current.has_value());
+  ASSERT_TRUE(back.fixed_points[1].current.has_value());
+  EXPECT_EQ(*back.fixed_points[1].current, Vec3(1, 0, -1e-6));
   EXPECT_TRUE(back.pressures[0].uplift && back.pressures[0].pore);
   EXPECT_EQ(back.pressures[0].within[0].offset, 1.25);
   EXPECT_EQ(back.hydrodynamic[0].k_h, 0.1);

@@ -192,6 +192,44 @@ TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
   EXPECT_LE(restart.steps, equilibrium.settle_steps);
 }
 
+TEST(SettledStart, SupportsCarryTheirReactionsIntoTheSettledModel) {
+  // A cube on nothing but four rollers under its corners (held vertically only): the rollers'
+  // springs carry its weight once stretched by W / (4 k). The settled model keeps each
+  // support's anchor and starts its material point where the block carried it, so the restart
+  // is at rest at once. Re-anchored where the cube is now, the springs started unstretched and
+  // the cube fell by the whole stretch again (the Xiangjiaba quick box's toe block against the
+  // downstream rollers did not come back to rest).
+  DdaModel model;
+  scenes::setRock(model, 30.0);
+  model.blocks.push_back(scenes::boxBlock({-1, -1, 0}, {1, 1, 2}, 0, false));
+  model.gravity = Vec3(0, 0, -kG);
+  for (const double x : {-1.0, 1.0}) {
+    for (const double y : {-1.0, 1.0}) {
+      model.fixed_points.push_back({0, Vec3(x, y, 0), Vec3::UnitZ()});
+    }
+  }
+  DdaSettings settings = staticRigid();
+  settings.penalty = 1e9;
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 400;
+  Simulation first(model, settings);
+  const double first_step = first.step().displacement_ratio;
+  ASSERT_TRUE(runToEquilibrium(first, equilibrium).reached);
+  const DdaModel settled = settledModel(first);
+  ASSERT_EQ(settled.fixed_points.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(settled.fixed_points[k].point, model.fixed_points[k].point);  // the anchor kept
+    ASSERT_TRUE(settled.fixed_points[k].current.has_value());
+    EXPECT_EQ(*settled.fixed_points[k].current, first.fixedPointPositions()[k]);
+    EXPECT_LT(settled.fixed_points[k].current->z(), 0.0);  // carried down by the weight
+  }
+  Simulation again(settled, settings);
+  EXPECT_LT(again.step().displacement_ratio, 1e-3 * first_step);
+  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
+  EXPECT_TRUE(restart.reached);
+  EXPECT_LE(restart.steps, equilibrium.settle_steps);
+}
+
 TEST(SettledStart, BoltsCarryTheirPointsAndForceIntoTheSettledModel) {
   // A cube hung from a fixed slab above by a bolt (k = 1e8 N/m, no pretension) and resting on
   // nothing: the bolt takes the cube's weight (W = 2600 kg/m3 x 8 m3 x g = 204 kN) once it
