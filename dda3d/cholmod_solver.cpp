@@ -51,6 +51,13 @@ class CholmodSolver final : public LinearSolver {
 
 }  // namespace
 
+double cholmodFactorFlops(const SparseMatrix& k) {
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
+  llt.cholmod().print = 0;
+  llt.analyzePattern(k);
+  return llt.cholmod().fl;
+}
+
 std::unique_ptr<LinearSolver> makeCholmodSolver() {
   return std::make_unique<CholmodSolver>();
 }

@@ -12,6 +12,45 @@ double relativeResidual(const SparseMatrix& k, const Eigen::VectorXd& x, const E
   return scale > 0.0 ? residual / scale : residual;
 }
 
+namespace {
+
+/// SolverKind::Auto above auto_cholmod_unknowns: the backend is chosen from the first matrix it
+/// factorizes and kept for the run (a run's solver, and so its answers, depend on the model
+/// only, not on timings).
+class AutoSolver final : public LinearSolver {
+ public:
+  explicit AutoSolver(const SolverOptions& options) : options_(options) {}
+
+  bool factorize(const SparseMatrix& k) override {
+    if (!chosen_) {
+      const double direct = cholmodFactorFlops(k);
+      const double iterative = 2.0 * static_cast<double>(k.nonZeros()) *
+                               static_cast<double>(options_.auto_pcg_iterations);
+      SolverOptions pcg = options_;
+      pcg.kind = SolverKind::Pcg;
+      chosen_ = direct <= options_.auto_cholmod_flop_ratio * iterative ? makeCholmodSolver()
+                                                                       : makePcgSolver(pcg);
+    }
+    return chosen_->factorize(k);
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& f) override { return chosen_->solve(f); }
+  Eigen::VectorXd solveWithGuess(const Eigen::VectorXd& f, const Eigen::VectorXd& guess) override {
+    return chosen_->solveWithGuess(f, guess);
+  }
+  SolveStats stats() const override { return chosen_ ? chosen_->stats() : SolveStats{}; }
+  std::string name() const override { return chosen_ ? chosen_->name() : "auto"; }
+
+ private:
+  SolverOptions options_;
+  std::unique_ptr<LinearSolver> chosen_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> makeAutoSolver(const SolverOptions& options) {
+  return std::make_unique<AutoSolver>(options);
+}
+
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options) {
   switch (options.kind) {
     case SolverKind::Cholmod:
@@ -21,7 +60,7 @@ std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options) {
     case SolverKind::Pcg:
       return makePcgSolver(options);
     case SolverKind::Auto:
-      throw std::invalid_argument("makeLinearSolver: resolve SolverKind::Auto first");
+      return makeAutoSolver(options);
   }
   throw std::invalid_argument("makeLinearSolver: unknown solver kind");
 }

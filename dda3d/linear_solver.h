@@ -18,8 +18,10 @@ enum class SolverKind {
   Cholmod,  ///< CHOLMOD supernodal Cholesky (SuiteSparse)
   Eigen,    ///< Eigen::SimplicialLDLT
   Pcg,      ///< conjugate gradients with a block-Jacobi (12x12 or 6x6) preconditioner
-  /// Resolved by the Simulation from the number of unknowns of the movable blocks: Cholmod
-  /// up to SolverOptions::auto_cholmod_unknowns, Pcg (warm-started) above.
+  /// Cholmod up to SolverOptions::auto_cholmod_unknowns unknowns of the movable blocks
+  /// (resolvedSolverOptions); above, chosen at the first factorization from the matrix: Cholmod
+  /// when its factorization costs at most auto_cholmod_flop_ratio times the flops of a PCG
+  /// solve (auto_pcg_iterations products with K), else warm-started Pcg.
   Auto,
 };
 
@@ -39,6 +41,14 @@ struct SolverOptions {
   /// resting step, its overload steps taking 0.7 of PCG's time (docs/performance.md, "DDA
   /// linear solvers").
   int auto_cholmod_unknowns = 6000;
+  /// Auto above auto_cholmod_unknowns: CHOLMOD's factorization flops (its symbolic analysis'
+  /// count) over those of one PCG solve, 2 nnz(K) auto_pcg_iterations, up to which CHOLMOD is
+  /// kept. The fill of a factor is the model's: a 3D pile of 1000 deformable cubes fills in
+  /// so much that PCG solves it faster, the 20 m slice of the Xiangjiaba foundation (933
+  /// deformable blocks, nearly plane) so little that CHOLMOD factorizes it 4 times faster than
+  /// PCG solves it (docs/performance.md, "DDA linear solvers").
+  double auto_cholmod_flop_ratio = 1.0;
+  int auto_pcg_iterations = 400;  ///< PCG iterations a solve is reckoned at (Auto's choice)
 };
 
 /// One solve's account, for the step statistics.
@@ -71,7 +81,8 @@ class LinearSolver {
   virtual std::string name() const = 0;
 };
 
-/// A backend of the requested kind (Auto must have been resolved: std::invalid_argument).
+/// A backend of the requested kind (Auto: the backend that chooses at its first
+/// factorization, with `options.tolerance` for PCG).
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options);
 
 }  // namespace rockmass::dda3d

@@ -21,7 +21,7 @@ SolverOptions resolvedSolverOptions(const DdaSettings& settings, int movable) {
     if (movable * options.block_size <= options.auto_cholmod_unknowns) {
       options.kind = SolverKind::Cholmod;
     } else {
-      options.kind = SolverKind::Pcg;
+      // Stays Auto: CHOLMOD or PCG by the first matrix's factorization cost (AutoSolver).
       options.tolerance = autoPcgTolerance(settings);
     }
   }

@@ -85,8 +85,9 @@ struct DdaSettings {
   double contact_point_spacing = 0.0;
   /// Half the domain size l0 (m); 0 = half the largest extent of all blocks' bounding box.
   double half_domain_size = 0.0;
-  /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns, above it PCG warm-started
-  /// from the previous step with the tolerance autoPcgTolerance() (docs/performance.md).
+  /// Auto: CHOLMOD up to solver.auto_cholmod_unknowns unknowns; above, CHOLMOD or PCG
+  /// (warm-started from the previous step, tolerance autoPcgTolerance()) by the cost of the
+  /// first matrix's factorization (SolverKind::Auto, docs/performance.md).
   SolverOptions solver{.kind = SolverKind::Auto};
   /// How the contacts are searched (bench/dda_region_bench.cpp measures each choice,
   /// docs/performance.md).

@@ -14,6 +14,12 @@ std::unique_ptr<LinearSolver> makeCholmodSolver();
 /// Block-Jacobi preconditioned conjugate gradients (pcg_solver.cpp).
 std::unique_ptr<LinearSolver> makePcgSolver(const SolverOptions& options);
 
+/// CHOLMOD's count of the flops of a supernodal factorization of K (its symbolic analysis,
+/// with the ordering it would use), without factorizing.
+double cholmodFactorFlops(const SparseMatrix& k);
+/// SolverKind::Auto: Cholmod or Pcg, chosen at the first factorization (linear_solver.cpp).
+std::unique_ptr<LinearSolver> makeAutoSolver(const SolverOptions& options);
+
 /// |K x - f| / |f| (|K x| when f = 0): what a solve left over, relative to the load.
 double relativeResidual(const SparseMatrix& k, const Eigen::VectorXd& x, const Eigen::VectorXd& f);
 

@@ -417,8 +417,8 @@ TEST(RunCli, XiangjiabaQuickDeformableComesToRest) {
   const Json& run = s["overload"]["runs"][0];
   EXPECT_EQ(run["factor"].get<double>(), 1.0);
   EXPECT_TRUE(run["at_rest"].get<bool>()) << run.dump(2);
-  // At rest by the rule: an unbalanced ratio below 1e-3 for 5 steps in a row (measured: 10
-  // steps, 8.7e-4).
+  // At rest by the rule: an unbalanced ratio below 1e-3 for 5 steps in a row (measured: 26
+  // steps from the settled start, 1.3e-4; 178 when the restart re-anchored the supports).
   EXPECT_LE(run["steps"].get<int>(), 40);
   EXPECT_LT(run["unbalanced_ratio"].get<double>(), 1e-3);
   EXPECT_TRUE(s["coarse_strain"].is_array());

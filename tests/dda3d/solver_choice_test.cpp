@@ -1,5 +1,6 @@
-// The solver a DDA run uses: SolverKind::Auto (CHOLMOD for small systems, warm-started PCG
-// above DdaSettings::solver.auto_cholmod_unknowns unknowns), and a PCG run reproducing the CHOLMOD
+// The solver a DDA run uses: SolverKind::Auto (CHOLMOD for small systems; above
+// DdaSettings::solver.auto_cholmod_unknowns unknowns CHOLMOD or warm-started PCG by the cost of
+// the first matrix's factorization), and a PCG run reproducing the CHOLMOD
 // trajectory of a settling pile within what the PCG tolerance allows.
 #include <gtest/gtest.h>
 
@@ -15,7 +16,7 @@ namespace {
 
 using geometry::Vec3;
 
-TEST(SolverChoice, AutoIsCholmodForSmallAndPcgForLargeSystems) {
+TEST(SolverChoice, AutoIsCholmodForSmallSystemsAndChosenByTheMatrixForLargeOnes) {
   DdaSettings settings;
   settings.kinematics = Kinematics::Rigid;
   EXPECT_EQ(settings.solver.kind, SolverKind::Auto);
@@ -24,12 +25,14 @@ TEST(SolverChoice, AutoIsCholmodForSmallAndPcgForLargeSystems) {
   const SolverOptions small = resolvedSolverOptions(settings, 1000);
   EXPECT_EQ(small.kind, SolverKind::Cholmod);
   EXPECT_EQ(small.block_size, 6);
+  // Above: CHOLMOD or PCG by the first matrix's factorization cost (the AutoSolver,
+  // LinearSolver.AutoTakesCholmodWhereItsFactorIsCheapAndPcgWhereItFillsIn).
   const SolverOptions large = resolvedSolverOptions(settings, 1001);
-  EXPECT_EQ(large.kind, SolverKind::Pcg);
+  EXPECT_EQ(large.kind, SolverKind::Auto);
   DdaSettings deformable = settings;
   deformable.kinematics = Kinematics::Deformable;
   EXPECT_EQ(resolvedSolverOptions(deformable, 500).kind, SolverKind::Cholmod);
-  EXPECT_EQ(resolvedSolverOptions(deformable, 501).kind, SolverKind::Pcg);
+  EXPECT_EQ(resolvedSolverOptions(deformable, 501).kind, SolverKind::Auto);
   EXPECT_EQ(resolvedSolverOptions(deformable, 501).block_size, 12);
   // The error bound 1e-2 g3 / g2 / 1e3 is 4e-6 with the defaults g2 = 0.001, g3 = 4e-4
   // (simulation_settings.h), looser than the 1e-8 cap that bench/dda_accuracy_bench.cpp calls
