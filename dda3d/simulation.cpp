@@ -488,8 +488,10 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     last_changes_ = changes;
     if (!finite) return iteration;
     // The allowance covers contacts that opened or changed between locked and sliding (they
-    // carried a spring or a friction force one iteration too long), never one that closed:
-    // it was solved open and may sit deep in the other block.
+    // carried a spring or a friction force one iteration too long), and in a static run those
+    // that closed within kStaticClosingShare of the allowed penetration (the next step, from
+    // rest, pushes them back); never a deeper closing, nor any closing in a dynamic run: it
+    // was solved open and may sit deep in the other block.
     const auto allowed =
         static_cast<int>(settings_.open_close_tolerance * static_cast<double>(contacts_.size()));
     if (changes.closed_deep == 0 && changes.changed <= allowed) {
