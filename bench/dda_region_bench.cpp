@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -52,8 +53,9 @@ struct Region {
 int warm_up = 2;
 int timed_steps = 6;
 
-/// The model of the scene's DDA region: read from `model_path` when it exists, else built
-/// from the scene and saved there. The settings are always the scene's (cheap to read).
+/// The model of the scene's DDA region: read from `model_path` when it exists and is of this
+/// version of the format, else built from the scene and saved there. The settings are always the
+/// scene's (cheap to read).
 Region loadRegion(const std::filesystem::path& scene_path,
                   const std::filesystem::path& model_path) {
   const io::Scene scene = io::loadScene(scene_path);
@@ -64,10 +66,15 @@ Region loadRegion(const std::filesystem::path& scene_path,
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   if (std::filesystem::exists(model_path)) {
-    region.model = dda3d::loadModel(model_path);
-    std::fprintf(stderr, "region model read from %s in %.2f s\n", model_path.string().c_str(),
-                 seconds());
-    return region;
+    try {
+      region.model = dda3d::loadModel(model_path);
+      std::fprintf(stderr, "region model read from %s in %.2f s\n", model_path.string().c_str(),
+                   seconds());
+      return region;
+    } catch (const std::runtime_error& e) {
+      // A model saved by another version of the format (or damaged): built afresh below.
+      std::fprintf(stderr, "%s: rebuilding it\n", e.what());
+    }
   }
   std::fprintf(stderr, "building the region model from %s (DFN, cut, glue)...\n",
                scene_path.string().c_str());
