@@ -18,8 +18,22 @@ class CholmodSolver final : public LinearSolver {
     llt_.cholmod().print = 0;
   }
 
+  /// The symbolic analysis of K's pattern (kept for the factorizations that follow while
+  /// the pattern holds); returns CHOLMOD's count of the factorization's flops.
+  double analyze(const SparseMatrix& k) {
+    k_ = k;
+    k_.makeCompressed();
+    llt_.analyzePattern(k_);
+    pattern_.remember(k_);
+    analyzed_ahead_ = true;
+    return llt_.cholmod().fl;
+  }
+
   bool factorize(const SparseMatrix& k) override {
     stats_ = {};
+    // An analysis done by analyze() counts as this factorization's.
+    stats_.analyzed = analyzed_ahead_;
+    analyzed_ahead_ = false;
     k_ = k;
     k_.makeCompressed();
     if (!pattern_.matches(k_)) {
@@ -47,19 +61,25 @@ class CholmodSolver final : public LinearSolver {
   SparsityPattern pattern_;
   SparseMatrix k_;  ///< the factorized matrix, for the residual
   SolveStats stats_;
+  bool analyzed_ahead_ = false;  ///< analyze() ran since the last factorize
 };
 
 }  // namespace
 
-double cholmodFactorFlops(const SparseMatrix& k) {
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
-  llt.cholmod().print = 0;
-  llt.analyzePattern(k);
-  return llt.cholmod().fl;
-}
-
 std::unique_ptr<LinearSolver> makeCholmodSolver() {
   return std::make_unique<CholmodSolver>();
+}
+
+std::unique_ptr<LinearSolver> makeAnalyzedCholmodSolver(const SparseMatrix& k, double& flops) {
+  auto solver = std::make_unique<CholmodSolver>();
+  flops = solver->analyze(k);
+  return solver;
+}
+
+double cholmodFactorFlops(const SparseMatrix& k) {
+  double flops = 0.0;
+  makeAnalyzedCholmodSolver(k, flops);
+  return flops;
 }
 
 }  // namespace rockmass::dda3d

@@ -1,6 +1,7 @@
 #include "dda3d/linear_solver.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include "dda3d/solver_backends.h"
 
@@ -23,12 +24,14 @@ class AutoSolver final : public LinearSolver {
 
   bool factorize(const SparseMatrix& k) override {
     if (!chosen_) {
-      const double direct = cholmodFactorFlops(k);
+      // The analysis that counts CHOLMOD's flops is the one it keeps when it is chosen.
+      double direct = 0.0;
+      std::unique_ptr<LinearSolver> cholmod = makeAnalyzedCholmodSolver(k, direct);
       const double iterative = 2.0 * static_cast<double>(k.nonZeros()) *
                                static_cast<double>(options_.auto_pcg_iterations);
       SolverOptions pcg = options_;
       pcg.kind = SolverKind::Pcg;
-      chosen_ = direct <= options_.auto_cholmod_flop_ratio * iterative ? makeCholmodSolver()
+      chosen_ = direct <= options_.auto_cholmod_flop_ratio * iterative ? std::move(cholmod)
                                                                        : makePcgSolver(pcg);
     }
     return chosen_->factorize(k);

@@ -72,17 +72,9 @@ class Simulation {
   /// displacement, stress, accumulated strain.
   const std::vector<BlockState>& blocks() const { return blocks_; }
   /// Where each point load's material point is now (m), in model().point_loads order.
-  std::vector<geometry::Vec3> pointLoadPositions() const {
-    std::vector<geometry::Vec3> out;
-    for (const MaterialPoint& p : load_points_) out.push_back(p.current);
-    return out;
-  }
+  std::vector<geometry::Vec3> pointLoadPositions() const { return positionsOf(load_points_); }
   /// Where each fixed point's material point is now (m), in model().fixed_points order.
-  std::vector<geometry::Vec3> fixedPointPositions() const {
-    std::vector<geometry::Vec3> out;
-    for (const MaterialPoint& p : fixed_points_) out.push_back(p.current);
-    return out;
-  }
+  std::vector<geometry::Vec3> fixedPointPositions() const { return positionsOf(fixed_points_); }
   /// Displacement of block b's centroid since time 0 (m).
   geometry::Vec3 centroidDisplacement(int b) const;
   /// How far each block's vertices could move in the last step (m, 0 for fixed blocks):
@@ -149,6 +141,13 @@ class Simulation {
     /// Fixed points: zero, or the only direction held (a roller).
     geometry::Vec3 direction = geometry::Vec3::Zero();
   };
+  /// The current positions of `points`, in order.
+  static std::vector<geometry::Vec3> positionsOf(const std::vector<MaterialPoint>& points) {
+    std::vector<geometry::Vec3> out;
+    out.reserve(points.size());
+    for (const MaterialPoint& p : points) out.push_back(p.current);
+    return out;
+  }
 
   /// Finds the step's contacts, carrying states over; returns how many were found late
   /// (first seen deeper than the allowed penetration, Contact::overlap).

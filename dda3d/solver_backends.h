@@ -14,6 +14,9 @@ std::unique_ptr<LinearSolver> makeCholmodSolver();
 /// Block-Jacobi preconditioned conjugate gradients (pcg_solver.cpp).
 std::unique_ptr<LinearSolver> makePcgSolver(const SolverOptions& options);
 
+/// A CHOLMOD backend whose symbolic analysis of K's pattern is done (its first factorize of
+/// that pattern does not redo it); `flops` gets CHOLMOD's count of the factorization's flops.
+std::unique_ptr<LinearSolver> makeAnalyzedCholmodSolver(const SparseMatrix& k, double& flops);
 /// CHOLMOD's count of the flops of a supernodal factorization of K (its symbolic analysis,
 /// with the ordering it would use), without factorizing.
 double cholmodFactorFlops(const SparseMatrix& k);

@@ -160,6 +160,17 @@ TEST(Equilibrium, BlockAtRestWhenPhiExceedsTheSlopeAndNotOtherwise) {
 // step (1e-3 of it: the springs carry the weight from the start; only the contact states and
 // the unloaded shear springs are new, and nothing pulls sideways), and the run is at rest
 // after settle_steps.
+/// A run from `settled` starts at rest: its first step moves less than 1e-3 of the settling
+/// run's first (`first_step`, a displacement ratio), and it is at rest after settle_steps.
+void expectRestartAtRest(const DdaModel& settled, const DdaSettings& settings,
+                         const EquilibriumSettings& equilibrium, double first_step) {
+  Simulation again(settled, settings);
+  EXPECT_LT(again.step().displacement_ratio, 1e-3 * first_step);
+  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
+  EXPECT_TRUE(restart.reached);
+  EXPECT_LE(restart.steps, equilibrium.settle_steps);
+}
+
 TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
   DdaModel model;
   scenes::setRock(model, 30.0);
@@ -184,12 +195,7 @@ TEST(SettledStart, ARunFromTheSettledStateStartsAtRest) {
   EXPECT_EQ(settled.blocks[2].pieces[0].vertices, first.blocks()[2].pieces[0].vertices);
   EXPECT_EQ(settled.monitors[0].point, first.monitors()[0].position);
   EXPECT_LT(settled.monitors[0].point.z(), 1.5);  // the stack has settled
-  Simulation again(settled, settings);
-  const double again_step = again.step().displacement_ratio;
-  EXPECT_LT(again_step, 1e-3 * first_step);
-  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
-  EXPECT_TRUE(restart.reached);
-  EXPECT_LE(restart.steps, equilibrium.settle_steps);
+  expectRestartAtRest(settled, settings, equilibrium, first_step);
 }
 
 TEST(SettledStart, SupportsCarryTheirReactionsIntoTheSettledModel) {
@@ -223,11 +229,7 @@ TEST(SettledStart, SupportsCarryTheirReactionsIntoTheSettledModel) {
     EXPECT_EQ(*settled.fixed_points[k].current, first.fixedPointPositions()[k]);
     EXPECT_LT(settled.fixed_points[k].current->z(), 0.0);  // carried down by the weight
   }
-  Simulation again(settled, settings);
-  EXPECT_LT(again.step().displacement_ratio, 1e-3 * first_step);
-  const EquilibriumResult restart = runToEquilibrium(again, equilibrium);
-  EXPECT_TRUE(restart.reached);
-  EXPECT_LE(restart.steps, equilibrium.settle_steps);
+  expectRestartAtRest(settled, settings, equilibrium, first_step);
 }
 
 TEST(SettledStart, BoltsCarryTheirPointsAndForceIntoTheSettledModel) {
