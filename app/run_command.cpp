@@ -47,6 +47,8 @@ constexpr int kQuickBallDirections = 200;
 constexpr int kQuickGridDirections = 20;
 /// Steps per run to equilibrium of a quick overload / strength-reduction run (at most).
 constexpr int kQuickEquilibriumSteps = 40;
+/// ... and the settled start's (analysis.equilibrium.start_steps), which runs once.
+constexpr int kQuickStartSteps = 2 * kQuickEquilibriumSteps;
 /// Factors of each quick overload / strength-reduction list (at most; evenly picked).
 constexpr std::size_t kQuickFactors = 4;
 /// Bisection tolerance of a quick overload / strength-reduction search (at least).
@@ -170,6 +172,9 @@ std::vector<std::string> makeQuick(io::Scene& scene) {
     if (!a.equilibrium) a.equilibrium.emplace();
     a.equilibrium->max_steps =
         std::min(a.equilibrium->max_steps.value_or(a.dda->steps), kQuickEquilibriumSteps);
+    if (a.equilibrium->start_steps) {
+      a.equilibrium->start_steps = std::min(*a.equilibrium->start_steps, kQuickStartSteps);
+    }
   }
   if (a.overload) {
     a.overload->factors = quickFactors(a.overload->factors);

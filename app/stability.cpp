@@ -110,8 +110,9 @@ StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& mod
     return {model, settings, {}, std::nullopt};
   }
   dda3d::Simulation sim(model, settings);
-  const dda3d::EquilibriumResult settled =
-      dda3d::runToEquilibrium(sim, scene_model::equilibriumSettings(scene));
+  dda3d::EquilibriumSettings rest = scene_model::equilibriumSettings(scene);
+  rest.max_steps = scene.analysis.equilibrium->start_steps.value_or(rest.max_steps);
+  const dda3d::EquilibriumResult settled = dda3d::runToEquilibrium(sim, rest);
   std::fprintf(stderr,
                "stability: start state %s after %d steps (unbalanced ratio %.3g); every factor "
                "runs from it\n",

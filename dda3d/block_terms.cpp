@@ -136,6 +136,20 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
   return integratePressure(block, wetPolygon(piece, face, pressure), normal, p);
 }
 
+double wettedArea(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
+  const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
+  double area = 0.0;
+  for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
+    area += 0.5 * (wet[k] - wet[0]).cross(wet[k + 1] - wet[0]).norm();
+  }
+  return area;
+}
+
+double pressureAt(const DdaPressure& pressure, const Vec3& x) {
+  return std::max(0.0,
+                  pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z()));
+}
+
 Vec3 pressureResultant(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
   const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
   Vec3 force = Vec3::Zero();

@@ -78,6 +78,14 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
                          double level, double unit_weight);
 
+/// Area of face `face` of `piece` that `pressure` wets (m2): below its water line and inside
+/// its half-spaces.
+double wettedArea(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure);
+
+/// The pressure's field at x (Pa): unit_weight * (h(x) - z), 0 above the water line; its
+/// half-spaces are not applied (the field continued through the block).
+double pressureAt(const DdaPressure& pressure, const geometry::Vec3& x);
+
 /// The force of the pressure on the face as the piece stands (N): integral of -p n dA.
 geometry::Vec3 pressureResultant(const geometry::Polyhedron& piece, int face,
                                  const DdaPressure& pressure);

@@ -23,6 +23,9 @@ void checkSettings(const DdaSettings& settings) {
   if (!(settings.min_time_step > 0.0 && settings.min_time_step <= settings.time_step)) {
     throw std::invalid_argument("min_time_step must be > 0 s and at most time_step");
   }
+  if (!(settings.biot_coefficient >= 0.0 && settings.biot_coefficient <= 1.0)) {
+    throw std::invalid_argument("biot_coefficient must be in [0, 1]");
+  }
   if (!(settings.dynamic_ratio >= 0.0 && settings.dynamic_ratio <= 1.0)) {
     throw std::invalid_argument("dynamic_ratio must be in [0, 1]");
   }

@@ -159,6 +159,9 @@ class Simulation {
   /// staticMassScale with a deformable block's strain inertia held to its stiffness.
   BlockMatrix inertiaMatrix(const BlockState& block) const;
   void assembleBlockTerms(double dt);
+  /// Adds the pore pressure the deformable rock blocks carry (DdaSettings::biot_coefficient)
+  /// to their loads; true when some block carries one.
+  bool addBlockPorePressure();
   /// After an accepted step (before the blocks move): marks the closed contacts as having
   /// been closed and adds the slip of the sliding ones (Contact::was_closed, slipped).
   void recordContactHistory(const Eigen::VectorXd& solution);

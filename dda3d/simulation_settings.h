@@ -60,6 +60,13 @@ struct DdaSettings {
   /// down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
   /// new state for the next step; one that closed always takes another iteration.
   double open_close_tolerance = 1e-4;
+  /// Deformable rock blocks in water (docs/dda3d.md, "Water in deformable blocks"): the share
+  /// of the water pressure around a block that its pores carry (Biot's coefficient). 0: the
+  /// block is impermeable, and the water on its faces compresses it as any surface load does;
+  /// 1: it is saturated by that water (drained), and only the effective stress strains it. The
+  /// pore pressure in the block is the water's field at its centroid (the mean of the fields
+  /// on its wetted faces, weighed by their wetted area). Structures and rigid blocks: no effect.
+  double biot_coefficient = 0.0;
   /// dt multiplier when the iteration fails. At 0.3 a step that failed three times in a row
   /// fell from 2e-3 s below 1e-4 s: landing piles of cubes took such steps (docs/dda3d.md,
   /// "Open-close iteration").

@@ -20,6 +20,7 @@ std::vector<std::string> ActiveTerms::names() const {
                                               {body_force, "body_force"},
                                               {point_loads, "point_loads"},
                                               {surface_pressure, "surface_pressure"},
+                                              {block_pore_pressure, "block_pore_pressure"},
                                               {fixed_points, "fixed_points"},
                                               {rollers, "rollers"},
                                               {fixed_blocks, "fixed_blocks"},
@@ -40,6 +41,7 @@ ActiveTerms& ActiveTerms::operator|=(const ActiveTerms& o) {
   body_force |= o.body_force;
   point_loads |= o.point_loads;
   surface_pressure |= o.surface_pressure;
+  block_pore_pressure |= o.block_pore_pressure;
   fixed_points |= o.fixed_points;
   rollers |= o.rollers;
   fixed_blocks |= o.fixed_blocks;

@@ -18,6 +18,7 @@ struct ActiveTerms {
   bool body_force = false;
   bool point_loads = false;
   bool surface_pressure = false;
+  bool block_pore_pressure = false;  ///< water carried by deformable blocks' pores (Biot)
   bool fixed_points = false;
   bool rollers = false;  ///< fixed points held along one direction only
   bool fixed_blocks = false;

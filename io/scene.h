@@ -259,6 +259,9 @@ struct EquilibriumAnalysis {
   /// and every factor's run starts from that state (dda3d::settledModel); unloaded (the
   /// default): every run starts from the cut geometry with unloaded contact springs.
   bool settled_start = false;
+  /// start_steps: the settled start's own step limit (it runs once, before every factor);
+  /// none: the runs' max_steps.
+  std::optional<int> start_steps;
   double failure_ratio = 1.0;  ///< static runs: early stop at this unbalanced ratio (0: none)
   int failure_steps = 10;      ///< ... held this many steps in a row
   /// watch: all | monitors. monitors: only the blocks that carry a monitor decide whether a

@@ -353,10 +353,10 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
-  const Cursor m =
-      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
-             "time_integration", "min_block_volume", "open_close_tolerance", "region",
-             "min_time_step", "contact_point_spacing", "damage_map", "settle", "dynamic_ratio"});
+  const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
+                          "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
+                          "region", "min_time_step", "contact_point_spacing", "damage_map",
+                          "settle", "dynamic_ratio", "biot_coefficient"});
   DdaAnalysis dda;
   dda3d::DdaSettings& e = dda.engine;
   e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
@@ -410,6 +410,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
     dda.region = read;
   }
   e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio, {.low = 0, .high = 1});
+  e.biot_coefficient = m.numberOr("biot_coefficient", e.biot_coefficient, {.low = 0, .high = 1});
   if (const auto damage = m.get("damage_map")) {
     const Cursor d = damage->map({"every"});
     dda.damage_every = d.integerOr("every", std::max(1, dda.steps / 10), closed(1, 1e7));
@@ -463,8 +464,9 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 
 /// analysis.equilibrium
 EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) {
-  const Cursor m = c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps",
-                          "dynamic_ratio", "start", "failure_ratio", "failure_steps", "watch"});
+  const Cursor m =
+      c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps", "dynamic_ratio",
+             "start", "start_steps", "failure_ratio", "failure_steps", "watch"});
   EquilibriumAnalysis e;
   if (const auto watch = m.get("watch")) {
     e.watch_monitors = watch->choice("watch", {"all", "monitors"}) == 1;
@@ -477,6 +479,7 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) 
     return v.choice("start", {"unloaded", "settled"}) == 1;
   });
   if (const auto steps = m.get("max_steps")) e.max_steps = steps->integer(above(0));
+  if (const auto steps = m.get("start_steps")) e.start_steps = steps->integer(above(0));
   e.unbalanced_ratio = m.numberOr("unbalanced_ratio", e.unbalanced_ratio, kPositive);
   e.kinetic_ratio = m.numberOr("kinetic_ratio", e.kinetic_ratio, kPositive);
   e.failure_ratio = m.numberOr("failure_ratio", e.failure_ratio, kNonNegative);

@@ -418,15 +418,18 @@ TEST(RunCli, XiangjiabaQuickDeformableComesToRest) {
   const Json& run = s["overload"]["runs"][0];
   EXPECT_EQ(run["factor"].get<double>(), 1.0);
   EXPECT_TRUE(run["at_rest"].get<bool>()) << run.dump(2);
-  // At rest by the rule: an unbalanced ratio below 1e-3 for 5 steps in a row (measured: 26
-  // steps from the settled start, 1.3e-4; 178 when the restart re-anchored the supports).
+  // At rest by the rule: an unbalanced ratio below 1e-3 for 5 steps in a row (measured: 22
+  // steps from the settled start, 2.9e-4, the start itself at rest after 56 of its 80; 178
+  // when the restart re-anchored the supports; with the blocks impermeable to the joint
+  // water, biot_coefficient 0: 26 steps, the start 38).
   EXPECT_LE(run["steps"].get<int>(), 40);
   EXPECT_LT(run["unbalanced_ratio"].get<double>(), 1e-3);
   EXPECT_TRUE(s["coarse_strain"].is_array());
   // The DDA stage's 10 static steps: each open-close iteration closes a few contacts by
   // 1e-6..1e-4 m as the blocks strain, and a static step may leave those (no deeper than 1 %
   // of the allowed penetration) to the next step (docs/dda3d.md, "Open-close allowance"):
-  // 11.5 iterations a step on average (13.7 with OpenBLAS); requiring no closing at all, 18.9.
+  // 16.8 iterations a step on average; requiring no closing at all, 20.3 (with the blocks
+  // impermeable, biot_coefficient 0: 11.5 and 18.9).
   std::ifstream steps(dir.path() / "out" / "steps.csv");
   std::string line;
   ASSERT_TRUE(std::getline(steps, line));  // header: step,time,time_step,contacts,...
@@ -441,7 +444,7 @@ TEST(RunCli, XiangjiabaQuickDeformableComesToRest) {
     ++count;
   }
   ASSERT_EQ(count, 10);
-  EXPECT_LT(iterations / count, 16.0);
+  EXPECT_LT(iterations / count, 18.5);
 }
 
 }  // namespace

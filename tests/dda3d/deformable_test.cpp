@@ -74,6 +74,71 @@ INSTANTIATE_TEST_SUITE_P(Modes, DeformableOnASlope,
                            return info.param == AnalysisMode::Static ? "Static" : "Dynamic";
                          });
 
+TEST(DeformableInWater, ASaturatedBlockIsStrainedByTheEffectiveStressOnly) {
+  // A 1 m cube of the water's density floats in still water (level z = 11 m, the cube at
+  // z 0..1; water on its six faces, gravity): buoyancy and weight cancel, and the water's
+  // pressure loads its strain by -V p(x_c) I (p_c = 9810 x 10.5 Pa, exact for a linear
+  // field). An impermeable block (biot_coefficient 0) takes the hydrostatic stress -p_c I; a
+  // saturated one carries alpha p_c in its pores and only sigma' = sigma + alpha p I strains
+  // it (Terzaghi's effective stress; Biot's coefficient alpha): -(1 - alpha) p_c I, and none
+  // at alpha = 1. Static steps, 60 of them (each relieves at least half of what is left).
+  constexpr double kLevel = 11.0;
+  constexpr double kGammaW = 9810.0;
+  const double p_c = kGammaW * (kLevel - 0.5);
+  for (const double biot : {0.0, 0.5, 1.0}) {
+    DdaModel model;
+    scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
+    model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
+    model.gravity = Vec3(0, 0, -kG);
+    for (int f = 0; f < 6; ++f)
+      model.pressures.push_back(hydrostaticPressure(0, 0, f, kLevel, kGammaW));
+    DdaSettings settings;
+    settings.mode = AnalysisMode::Static;
+    settings.kinematics = Kinematics::Deformable;
+    settings.biot_coefficient = biot;
+    Simulation sim(model, settings);
+    for (int k = 0; k < 60; ++k) sim.step();
+    const VoigtVector stress = sim.blocks()[0].stress;
+    const double expected = -(1.0 - biot) * p_c;
+    SCOPED_TRACE(biot);
+    // Normal stresses within 1e-6 of p_c (round-off of the converged static steps); no
+    // shear (1e-9 of p_c).
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(stress[k], expected, 1e-6 * p_c);
+    for (int k = 3; k < 6; ++k) EXPECT_NEAR(stress[k], 0.0, 1e-9 * p_c);
+    // Saturated, it keeps its volume and floats where it is (1e-9 m). Compressed, it displaces
+    // less water than it weighs (by 3 (1 - alpha) p_c (1 - 2 nu) / E of its volume) and sinks:
+    // 1.4e-7 m in the 60 steps at alpha = 0, as the buoyancy on its faces says it should.
+    if (biot == 1.0) {
+      EXPECT_LT(sim.centroidDisplacement(0).norm(), 1e-9);
+    }
+    EXPECT_EQ(sim.activeTerms().block_pore_pressure, biot > 0.0);
+    if (biot == 1.0) {
+      test::recordVerification(
+          {.group = "Deformable blocks",
+           .name = "1 m cube floating in still water 10.5 m deep, saturated (biot_coefficient 1): "
+                   "its effective normal stress",
+           .source = "Terzaghi's effective stress principle, sigma' = sigma + p I (Biot alpha = 1)",
+           .expected = 0.0,
+           .measured = stress.head<3>().cwiseAbs().maxCoeff(),
+           .tolerance = 1e-6 * p_c,
+           .unit = "Pa"});
+    }
+  }
+  // Rigid blocks have no strain for the water to load: the term stays off.
+  DdaModel model;
+  scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
+  model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
+  model.gravity = Vec3(0, 0, -kG);
+  for (int f = 0; f < 6; ++f)
+    model.pressures.push_back(hydrostaticPressure(0, 0, f, kLevel, kGammaW));
+  DdaSettings rigid;
+  rigid.kinematics = Kinematics::Rigid;
+  rigid.biot_coefficient = 1.0;
+  Simulation sim(model, rigid);
+  sim.step();
+  EXPECT_FALSE(sim.activeTerms().block_pore_pressure);
+}
+
 TEST(DeformableColumn, SurfaceLoadGivesTheUniaxialStrainsAndSettlement) {
   // A 1 x 1 x 4 m column on a fixed slab, frictionless interface (its base free to widen),
   // no gravity; 1 MPa on its top, as four corner loads of p A / 4 (consistent for a linear

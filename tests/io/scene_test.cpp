@@ -415,8 +415,8 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
                                      "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01}\n"
                                      "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
                                      "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9, "
-                                     "start: settled, failure_ratio: 2, failure_steps: 7, "
-                                     "watch: monitors}\n",
+                                     "start: settled, start_steps: 90, failure_ratio: 2, "
+                                     "failure_steps: 7, watch: monitors}\n",
                                  "ok.yaml");
   EXPECT_EQ(scene.monitors.at(0).line, 4);  // the monitor's line, for messages
   EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
@@ -429,6 +429,7 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(scene.analysis.equilibrium->settle_steps, 3);
   EXPECT_EQ(scene.analysis.equilibrium->dynamic_ratio, 0.9);
   EXPECT_TRUE(scene.analysis.equilibrium->settled_start);
+  EXPECT_EQ(scene.analysis.equilibrium->start_steps, 90);
   EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
   EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
   EXPECT_TRUE(scene.analysis.equilibrium->watch_monitors);
@@ -1058,6 +1059,17 @@ TEST(SceneDdaServiceRun, SettleDamageMapAndDynamicRatio) {
             "got 0");
   EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    dynamic_ratio: 1.5\n"),
             "bad.yaml:5:20: analysis.dda.dynamic_ratio: expected a number in [0, 1], got 1.5");
+}
+
+TEST(SceneDdaWater, BiotCoefficientOfDeformableBlocks) {
+  const Scene scene =
+      parseScene(valid_head + "analysis:\n  dda:\n    biot_coefficient: 1\n", "biot.yaml");
+  EXPECT_EQ(scene.analysis.dda->engine.biot_coefficient, 1.0);
+  // Absent: impermeable blocks, the water on their faces a surface load (3DEC's joint water).
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_EQ(plain.analysis.dda->engine.biot_coefficient, 0.0);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    biot_coefficient: -0.5\n"),
+            "bad.yaml:5:23: analysis.dda.biot_coefficient: expected a number in [0, 1], got -0.5");
 }
 
 }  // namespace
