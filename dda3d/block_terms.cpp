@@ -150,6 +150,13 @@ double pressureAt(const DdaPressure& pressure, const Vec3& x) {
                   pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z()));
 }
 
+bool pressureApplies(const DdaPressure& pressure, const Vec3& x) {
+  for (const HalfSpace& h : pressure.within) {
+    if (h.normal.dot(x) > h.offset) return false;
+  }
+  return true;
+}
+
 Vec3 pressureResultant(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
   const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
   Vec3 force = Vec3::Zero();

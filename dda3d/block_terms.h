@@ -86,6 +86,9 @@ double wettedArea(const geometry::Polyhedron& piece, int face, const DdaPressure
 /// half-spaces are not applied (the field continued through the block).
 double pressureAt(const DdaPressure& pressure, const geometry::Vec3& x);
 
+/// True when x lies inside every half-space of the pressure (where its field applies).
+bool pressureApplies(const DdaPressure& pressure, const geometry::Vec3& x);
+
 /// The force of the pressure on the face as the piece stands (N): integral of -p n dA.
 geometry::Vec3 pressureResultant(const geometry::Polyhedron& piece, int face,
                                  const DdaPressure& pressure);

@@ -45,7 +45,9 @@ struct DdaBlock {
   std::vector<geometry::Polyhedron> pieces;  ///< convex pieces sharing one displacement field
   int material = 0;                          ///< index into DdaModel::materials
   bool fixed = false;                        ///< held in place (a fixed block)
-  int structure = -1;  ///< the scene's structure it is (-1: rock), for the reports
+  /// The scene's structure it is (-1: rock): for the reports, and a structure's blocks carry
+  /// no pore pressure (DdaSettings::biot_coefficient).
+  int structure = -1;
   /// Joint of each face of each piece (index into DdaModel::joints), -1 where the face is no
   /// discontinuity (an internal face between pieces, the domain boundary). Empty: every face
   /// -1. A contact takes the joint of the faces it lies on (dda3d/contact_joint.h).

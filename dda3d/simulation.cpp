@@ -507,26 +507,41 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
 
 bool Simulation::addBlockPorePressure() {
   // The water on a block's faces loads its strain by -integral of p n (x - x_c)^T dA, which is
-  // -V p(x_c) I for a linear field (divergence theorem: the field's gradient loads only the
-  // translation and rotation, the buoyancy and seepage force). A block saturated by that water
-  // carries it in its pores, +alpha V p I in its strain rows (the effective stress: sigma' =
-  // sigma + alpha p I, tension positive), so that with alpha = 1 the water strains it no more.
-  // Without it, the joint water of the Xiangjiaba foundation (1-2 MPa at 20-30 m) shrank its
-  // blocks by p / K (0.1-0.2 % in the soft layer) and opened the joints between them.
-  std::vector<double> weighed(blocks_.size(), 0.0);
-  std::vector<double> wetted(blocks_.size(), 0.0);
+  // -V p(x_c) I for a block wetted all round by a linear field (divergence theorem: the
+  // field's gradient loads only the translation and rotation, the buoyancy and seepage
+  // force). A block saturated by that water carries it in its pores: the effective stress
+  // sigma' = sigma + alpha p I (tension positive) strains it, +alpha V p I in its strain rows,
+  // p the water's field at its centroid. That field is the one its wetted faces carry there:
+  // of a field given in pieces (the uplift diagram's, between heel, drains and toe), the
+  // pieces whose half-spaces hold the centroid; of several fields (the reservoir's on the
+  // river bed and the joints'), their mean weighed by the area each wets. A block with dry
+  // faces (a face on the region's roller side stands for the saturated rock beyond) carries
+  // the same field: its pores do not know where the region was cut. Without this, the joint
+  // water of the Xiangjiaba foundation (1-2 MPa at 20-30 m) shrank its blocks by p / K
+  // (0.08-0.16 % in the soft interlayer) and opened the joints between them.
+  std::vector<double> weighed(blocks_.size(), 0.0), wetted(blocks_.size(), 0.0);
+  std::vector<double> weighed_any(blocks_.size(), 0.0), wetted_any(blocks_.size(), 0.0);
   for (const DdaPressure& p : model_.pressures) {
     const auto b = static_cast<std::size_t>(p.block);
     const BlockState& block = blocks_[b];
     if (block.fixed || model_.blocks[b].structure >= 0) continue;
     const double area = wettedArea(block.pieces[static_cast<std::size_t>(p.piece)], p.face, p);
-    weighed[b] += area * pressureAt(p, block.centroid);
-    wetted[b] += area;
+    const double field = pressureAt(p, block.centroid);
+    weighed_any[b] += area * field;
+    wetted_any[b] += area;
+    if (pressureApplies(p, block.centroid)) {
+      weighed[b] += area * field;
+      wetted[b] += area;
+    }
   }
   bool any = false;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    if (!(wetted[b] > 0.0) || !(weighed[b] > 0.0)) continue;
-    const double pore = weighed[b] / wetted[b];
+    // The pieces that hold the centroid; if none of its faces' pieces does (a block wholly on
+    // one side of a knot, its centroid just across), the mean of those it has.
+    const double pore = wetted[b] > 0.0       ? weighed[b] / wetted[b]
+                        : wetted_any[b] > 0.0 ? weighed_any[b] / wetted_any[b]
+                                              : 0.0;
+    if (!(pore > 0.0)) continue;
     load_f_[static_cast<std::size_t>(blocks_[b].dof_offset)].tail<kVoigtSize>().head<3>().array() +=
         settings_.biot_coefficient * blocks_[b].volume * pore;
     any = true;

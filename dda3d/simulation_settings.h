@@ -64,8 +64,9 @@ struct DdaSettings {
   /// of the water pressure around a block that its pores carry (Biot's coefficient). 0: the
   /// block is impermeable, and the water on its faces compresses it as any surface load does;
   /// 1: it is saturated by that water (drained), and only the effective stress strains it. The
-  /// pore pressure in the block is the water's field at its centroid (the mean of the fields
-  /// on its wetted faces, weighed by their wetted area). Structures and rigid blocks: no effect.
+  /// pore pressure in a block is the water's field at its centroid (of its wetted faces' fields,
+  /// those that apply there, weighed by the area they wet). Structures and rigid blocks: no
+  /// effect.
   double biot_coefficient = 0.0;
   /// dt multiplier when the iteration fails. At 0.3 a step that failed three times in a row
   /// fell from 2e-3 s below 1e-4 s: landing piles of cubes took such steps (docs/dda3d.md,
@@ -105,8 +106,7 @@ struct DdaSettings {
     /// block beside such a face can take it as its face (a spring across the block's inside;
     /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not yet the default:
     /// with it the deformable Xiangjiaba quick box does not come to rest at K = 1 within its
-    /// 40 steps (its unbalanced ratio wanders between 1e-3 and 1e-2; docs/dda3d.md,
-    /// "Deformable blocks at scale").
+    /// 40 steps (watched ratio 8e-3; docs/dda3d.md, "Deformable blocks at scale").
     bool surface_only = false;
     /// The broad phase's pairs are kept between steps (CandidatePairs): the same contacts.
     bool keep_pairs = true;

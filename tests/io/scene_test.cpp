@@ -430,6 +430,8 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(scene.analysis.equilibrium->dynamic_ratio, 0.9);
   EXPECT_TRUE(scene.analysis.equilibrium->settled_start);
   EXPECT_EQ(scene.analysis.equilibrium->start_steps, 90);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start: settled, start_steps: 0}\n"),
+            "bad.yaml:4:46: analysis.equilibrium.start_steps: expected an integer > 0, got 0");
   EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
   EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
   EXPECT_TRUE(scene.analysis.equilibrium->watch_monitors);
