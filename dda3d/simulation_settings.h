@@ -104,9 +104,9 @@ struct DdaSettings {
     /// and a corner's copies in a glued block's pieces are one point. Off (the default), the
     /// faces between the pieces of a glued block are searched too: a point pressed into the
     /// block beside such a face can take it as its face (a spring across the block's inside;
-    /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not yet the default:
-    /// with it the deformable Xiangjiaba quick box does not come to rest at K = 1 within its
-    /// 40 steps (watched ratio 8e-3; docs/dda3d.md, "Deformable blocks at scale").
+    /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not yet the default: the
+    /// Xiangjiaba stability answers are not measured with it, and the deformable quick box's
+    /// settled start is then not at rest within 80 static steps (docs/dda3d.md).
     bool surface_only = false;
     /// The broad phase's pairs are kept between steps (CandidatePairs): the same contacts.
     bool keep_pairs = true;
