@@ -128,21 +128,19 @@ static std::vector<Vec3> wetPolygon(const geometry::Polyhedron& piece, int face,
 }
 
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
-                         const DdaPressure& pressure) {
+                         const DdaPressure& pressure, double* wetted_area) {
   const Vec3 normal = geometry::faceNormal(piece, face);
   const auto p = [&](const Vec3& x) {
     return pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z());
   };
-  return integratePressure(block, wetPolygon(piece, face, pressure), normal, p);
-}
-
-double wettedArea(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
   const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
-  double area = 0.0;
-  for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
-    area += 0.5 * (wet[k] - wet[0]).cross(wet[k + 1] - wet[0]).norm();
+  if (wetted_area != nullptr) {
+    *wetted_area = 0.0;
+    for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
+      *wetted_area += 0.5 * (wet[k] - wet[0]).cross(wet[k + 1] - wet[0]).norm();
+    }
   }
-  return area;
+  return integratePressure(block, wet, normal, p);
 }
 
 double pressureAt(const DdaPressure& pressure, const Vec3& x) {

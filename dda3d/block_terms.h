@@ -70,17 +70,14 @@ BlockVector pointLoad(const BlockState& block, const geometry::Vec3& point,
 /// of `piece`: F_i += integral over the face of T(x)^T (-p(x) n) dA. The face is clipped at
 /// the water line (h(x) = z) and by the pressure's half-spaces, fanned into triangles, and
 /// each triangle integrated with the edge-midpoint rule, exact for the quadratic integrand.
+/// With `wetted_area`, it gets the area of that clipped part (m2).
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
-                         const DdaPressure& pressure);
+                         const DdaPressure& pressure, double* wetted_area = nullptr);
 
 /// The hydrostatic case of the above (no head gradient, the whole face): `level` m,
 /// `unit_weight` N/m3.
 BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
                          double level, double unit_weight);
-
-/// Area of face `face` of `piece` that `pressure` wets (m2): below its water line and inside
-/// its half-spaces.
-double wettedArea(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure);
 
 /// The pressure's field at x (Pa): unit_weight * (h(x) - z), 0 above the water line; its
 /// half-spaces are not applied (the field continued through the block).

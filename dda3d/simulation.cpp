@@ -345,16 +345,20 @@ void Simulation::assembleBlockTerms(double dt) {
         pointLoad(block, load_points_[l].current, model_.point_loads[l].force);
     step.point_loads = true;
   }
-  for (const DdaPressure& p : model_.pressures) {
+  // With pores in the blocks, the area each entry wets (from the same clipped face).
+  const bool pores =
+      settings_.biot_coefficient > 0.0 && settings_.kinematics == Kinematics::Deformable;
+  std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
+  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+    const DdaPressure& p = model_.pressures[e];
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
     if (block.fixed) continue;
     load_f_[static_cast<std::size_t>(block.dof_offset)] +=
-        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p);
+        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
+                     pores ? &wetted[e] : nullptr);
     step.surface_pressure = true;
   }
-  if (settings_.biot_coefficient > 0.0 && settings_.kinematics == Kinematics::Deformable) {
-    step.block_pore_pressure |= addBlockPorePressure();
-  }
+  if (pores) step.block_pore_pressure |= addBlockPorePressure(wetted);
   for (const DdaHydrodynamicPressure& p : model_.hydrodynamic) {
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
     if (block.fixed) continue;
@@ -505,7 +509,7 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
   return settings_.max_open_close_iterations;
 }
 
-bool Simulation::addBlockPorePressure() {
+bool Simulation::addBlockPorePressure(const std::vector<double>& wetted_area) {
   // The water on a block's faces loads its strain by -integral of p n (x - x_c)^T dA, which is
   // -V p(x_c) I for a block wetted all round by a linear field (divergence theorem: the
   // field's gradient loads only the translation and rotation, the buoyancy and seepage
@@ -521,11 +525,12 @@ bool Simulation::addBlockPorePressure() {
   // (0.08-0.16 % in the soft interlayer) and opened the joints between them.
   std::vector<double> weighed(blocks_.size(), 0.0), wetted(blocks_.size(), 0.0);
   std::vector<double> weighed_any(blocks_.size(), 0.0), wetted_any(blocks_.size(), 0.0);
-  for (const DdaPressure& p : model_.pressures) {
+  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+    const DdaPressure& p = model_.pressures[e];
     const auto b = static_cast<std::size_t>(p.block);
     const BlockState& block = blocks_[b];
     if (block.fixed || model_.blocks[b].structure >= 0) continue;
-    const double area = wettedArea(block.pieces[static_cast<std::size_t>(p.piece)], p.face, p);
+    const double area = wetted_area[e];
     const double field = pressureAt(p, block.centroid);
     weighed_any[b] += area * field;
     wetted_any[b] += area;

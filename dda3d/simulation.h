@@ -160,8 +160,9 @@ class Simulation {
   BlockMatrix inertiaMatrix(const BlockState& block) const;
   void assembleBlockTerms(double dt);
   /// Adds the pore pressure the deformable rock blocks carry (DdaSettings::biot_coefficient)
-  /// to their loads; true when some block carries one.
-  bool addBlockPorePressure();
+  /// to their loads, given the area each pressure entry wets (assembleBlockTerms); true when
+  /// some block carries one.
+  bool addBlockPorePressure(const std::vector<double>& wetted_area);
   /// After an accepted step (before the blocks move): marks the closed contacts as having
   /// been closed and adds the slip of the sliding ones (Contact::was_closed, slipped).
   void recordContactHistory(const Eigen::VectorXd& solution);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "dda3d/equilibrium.h"
@@ -74,6 +75,33 @@ INSTANTIATE_TEST_SUITE_P(Modes, DeformableOnASlope,
                            return info.param == AnalysisMode::Static ? "Static" : "Dynamic";
                          });
 
+constexpr double kGammaW = 9810.0;
+
+/// A 1 m cube (z 0..1) of the water's density (E 1 GPa, nu 0.3) under gravity, with still
+/// water at z = `level` on its six faces; `structure`: flagged as the scene's structure 0.
+DdaModel floatingCube(double level, bool structure = false) {
+  DdaModel model;
+  scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
+  model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
+  if (structure) model.blocks[0].structure = 0;
+  model.gravity = Vec3(0, 0, -kG);
+  for (int f = 0; f < 6; ++f) {
+    model.pressures.push_back(hydrostaticPressure(0, 0, f, level, kGammaW));
+  }
+  return model;
+}
+
+/// `floatingCube` after 60 static steps of deformable blocks with `biot` (Biot's coefficient).
+std::unique_ptr<Simulation> floatingCubeSettled(double level, double biot, bool structure = false) {
+  DdaSettings settings;
+  settings.mode = AnalysisMode::Static;
+  settings.kinematics = Kinematics::Deformable;
+  settings.biot_coefficient = biot;
+  auto sim = std::make_unique<Simulation>(floatingCube(level, structure), settings);
+  for (int k = 0; k < 60; ++k) sim->step();
+  return sim;
+}
+
 TEST(DeformableInWater, ASaturatedBlockIsStrainedByTheEffectiveStressOnly) {
   // A 1 m cube of the water's density floats in still water (level z = 11 m, the cube at
   // z 0..1; water on its six faces, gravity): buoyancy and weight cancel, and the water's
@@ -83,21 +111,10 @@ TEST(DeformableInWater, ASaturatedBlockIsStrainedByTheEffectiveStressOnly) {
   // it (Terzaghi's effective stress; Biot's coefficient alpha): -(1 - alpha) p_c I, and none
   // at alpha = 1. Static steps, 60 of them (each relieves at least half of what is left).
   constexpr double kLevel = 11.0;
-  constexpr double kGammaW = 9810.0;
   const double p_c = kGammaW * (kLevel - 0.5);
   for (const double biot : {0.0, 0.5, 1.0}) {
-    DdaModel model;
-    scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
-    model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
-    model.gravity = Vec3(0, 0, -kG);
-    for (int f = 0; f < 6; ++f)
-      model.pressures.push_back(hydrostaticPressure(0, 0, f, kLevel, kGammaW));
-    DdaSettings settings;
-    settings.mode = AnalysisMode::Static;
-    settings.kinematics = Kinematics::Deformable;
-    settings.biot_coefficient = biot;
-    Simulation sim(model, settings);
-    for (int k = 0; k < 60; ++k) sim.step();
+    const std::unique_ptr<Simulation> settled = floatingCubeSettled(kLevel, biot);
+    const Simulation& sim = *settled;
     const VoigtVector stress = sim.blocks()[0].stress;
     const double expected = -(1.0 - biot) * p_c;
     SCOPED_TRACE(biot);
@@ -129,34 +146,15 @@ TEST(DeformableInWater, ASaturatedBlockIsStrainedByTheEffectiveStressOnly) {
   // A structure's concrete is not saturated by the water on its faces: at alpha = 1 the same
   // cube flagged as a structure still takes -p_c I.
   {
-    DdaModel model;
-    scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
-    model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
-    model.blocks[0].structure = 0;
-    model.gravity = Vec3(0, 0, -kG);
-    for (int f = 0; f < 6; ++f) {
-      model.pressures.push_back(hydrostaticPressure(0, 0, f, kLevel, kGammaW));
-    }
-    DdaSettings settings;
-    settings.mode = AnalysisMode::Static;
-    settings.kinematics = Kinematics::Deformable;
-    settings.biot_coefficient = 1.0;
-    Simulation sim(model, settings);
-    for (int k = 0; k < 60; ++k) sim.step();
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(sim.blocks()[0].stress[k], -p_c, 1e-6 * p_c);
-    EXPECT_FALSE(sim.activeTerms().block_pore_pressure);
+    const std::unique_ptr<Simulation> sim = floatingCubeSettled(kLevel, 1.0, /*structure=*/true);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(sim->blocks()[0].stress[k], -p_c, 1e-6 * p_c);
+    EXPECT_FALSE(sim->activeTerms().block_pore_pressure);
   }
   // Rigid blocks have no strain for the water to load: the term stays off.
-  DdaModel model;
-  scenes::setRock(model, 30.0, 1e9, 0.3, kGammaW / kG);
-  model.blocks.push_back(scenes::boxBlock({0, 0, 0}, {1, 1, 1}, 0, false));
-  model.gravity = Vec3(0, 0, -kG);
-  for (int f = 0; f < 6; ++f)
-    model.pressures.push_back(hydrostaticPressure(0, 0, f, kLevel, kGammaW));
   DdaSettings rigid;
   rigid.kinematics = Kinematics::Rigid;
   rigid.biot_coefficient = 1.0;
-  Simulation sim(model, rigid);
+  Simulation sim(floatingCube(kLevel), rigid);
   sim.step();
   EXPECT_FALSE(sim.activeTerms().block_pore_pressure);
 }
