@@ -114,7 +114,7 @@ void rebuildModel(BlockModel& model, const Groups& g) {
 
 }  // namespace
 
-MergeReport mergeSmallBlocks(BlockModel& model, double min_volume) {
+MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_materials) {
   MergeReport report;
   report.min_volume = min_volume;
   const int n = static_cast<int>(model.blocks.size());
@@ -132,6 +132,9 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume) {
   const auto material = [&](int group) {
     return model.blocks[static_cast<std::size_t>(group)].material;
   };
+  const auto rock = [&](int group) {
+    return model.blocks[static_cast<std::size_t>(group)].structure < 0;
+  };
   while (!small.empty()) {
     const int from = small.begin()->second;
     small.erase(small.begin());
@@ -144,11 +147,26 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume) {
       target = other;
       best = area;
     }
+    bool across = false;
+    if (target < 0 && across_materials && rock(from)) {
+      // No neighbour of its own material: the rock neighbour of any material with the most
+      // shared area (same tie rule).
+      for (const auto& [other, area] : g.shared[static_cast<std::size_t>(from)]) {
+        if (!rock(other) || !(area > best)) continue;
+        target = other;
+        best = area;
+      }
+      across = target >= 0;
+    }
     if (target < 0) {
       ++report.left_small;
       continue;
     }
     ++report.merged;
+    if (across) {
+      ++report.merged_across;
+      report.merged_across_volume += g.volume[static_cast<std::size_t>(from)];
+    }
     report.merged_volume += g.volume[static_cast<std::size_t>(from)];
     small.erase({g.volume[static_cast<std::size_t>(target)], target});
     absorb(g, from, target);

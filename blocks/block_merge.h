@@ -19,8 +19,11 @@ struct MergeReport {
   int merged = 0;              ///< blocks glued to a neighbour
   double merged_volume = 0.0;  ///< m3, their volume
   /// Blocks still below min_volume: no neighbour of the same material (an isolated block,
-  /// or one touching only other materials).
+  /// or one touching only other materials) and, with across_materials, no rock neighbour.
   int left_small = 0;
+  /// Of `merged`, the blocks glued to a neighbour of another material (across_materials).
+  int merged_across = 0;
+  double merged_across_volume = 0.0;  ///< m3, their volume
 };
 
 /// Glues every block of `model` smaller than `min_volume` (m3) to the neighbour of the same
@@ -31,6 +34,12 @@ struct MergeReport {
 /// with the pieces of the blocks glued into it, the summed mass properties and the union of
 /// the bounds; adjacency areas between glued groups are summed, adjacency inside a group
 /// dropped. Volumes are conserved exactly (the pieces are kept as they are).
-MergeReport mergeSmallBlocks(BlockModel& model, double min_volume);
+///
+/// With `across_materials`, a small rock block with no neighbour of its own material (a
+/// sliver of an interlayer slab between two joints, a rock chip wedged in a slab) is glued
+/// to the rock neighbour of any material it shares the most face area with, and takes that
+/// neighbour's material; structures are still never glued, nor glued to. Its faces keep
+/// their joints; its mass changes by (density difference) x its volume.
+MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_materials = false);
 
 }  // namespace rockmass::blocks

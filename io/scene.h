@@ -211,6 +211,9 @@ struct DdaAnalysis {
   /// m3: blocks smaller than this are glued to the same-material neighbour they share the
   /// most face area with before the DDA (blocks::mergeSmallBlocks); 0 glues none.
   double min_block_volume = 0.0;
+  /// true: a block below min_block_volume with no neighbour of its own material is glued to
+  /// its rock neighbour of any material (blocks::mergeSmallBlocks' across_materials).
+  bool glue_across_materials = false;
   int contact_point_spacing_line = 0;  ///< line of `contact_point_spacing` (messages; 0: none)
   /// region {min, max}: the box the DDA (and the overload and strength reduction) runs on,
   /// inside the domain box. Its blocks are cut from the same network and structures with the

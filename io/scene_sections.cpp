@@ -356,7 +356,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   const Cursor m = c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio",
                           "penalty", "time_integration", "min_block_volume", "open_close_tolerance",
                           "region", "min_time_step", "contact_point_spacing", "damage_map",
-                          "settle", "dynamic_ratio", "biot_coefficient"});
+                          "settle", "dynamic_ratio", "biot_coefficient", "glue_across_materials"});
   DdaAnalysis dda;
   dda3d::DdaSettings& e = dda.engine;
   e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
@@ -390,6 +390,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
     e.penalty = penalty->number(kPositive);
   }
   dda.min_block_volume = m.numberOr("min_block_volume", dda.min_block_volume, kNonNegative);
+  dda.glue_across_materials =
+      m.valueOr("glue_across_materials", dda.glue_across_materials, &Cursor::boolean);
   e.open_close_tolerance = m.numberOr("open_close_tolerance", e.open_close_tolerance,
                                       {.low = 0, .high = 1, .high_open = true});
   if (const auto spacing = m.get("contact_point_spacing")) {

@@ -113,9 +113,14 @@ SummaryJson upliftJson(const std::vector<StructureUplift>& uplift) {
 }
 
 SummaryJson gluedBlocksJson(const blocks::MergeReport& glued) {
-  return {{"min_volume", glued.min_volume},       {"blocks_before", glued.blocks_before},
-          {"blocks_after", glued.blocks_after},   {"merged", glued.merged},
-          {"merged_volume", glued.merged_volume}, {"left_small", glued.left_small}};
+  return {{"min_volume", glued.min_volume},
+          {"blocks_before", glued.blocks_before},
+          {"blocks_after", glued.blocks_after},
+          {"merged", glued.merged},
+          {"merged_volume", glued.merged_volume},
+          {"left_small", glued.left_small},
+          {"merged_across_materials", glued.merged_across},
+          {"merged_across_materials_volume", glued.merged_across_volume}};
 }
 
 }  // namespace rockmass::io

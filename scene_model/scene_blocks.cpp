@@ -147,14 +147,21 @@ blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& m
                              std::optional<blocks::MergeReport>& glued) {
   const double min_volume = scene.analysis.dda ? scene.analysis.dda->min_block_volume : 0.0;
   blocks::BlockModel out = model;
-  const blocks::MergeReport merge = blocks::mergeSmallBlocks(out, min_volume);
+  const bool across = scene.analysis.dda && scene.analysis.dda->glue_across_materials;
+  const blocks::MergeReport merge = blocks::mergeSmallBlocks(out, min_volume, across);
   glued.reset();
   if (merge.merged > 0) {
     std::fprintf(stderr,
                  "dda: %d blocks below %.3g m3 (%.3g m3 in all) glued to a neighbour: %d blocks, "
-                 "%d still below (no neighbour of their material)\n",
+                 "%d still below (no neighbour of their material%s)\n",
                  merge.merged, min_volume, merge.merged_volume, merge.blocks_after,
-                 merge.left_small);
+                 merge.left_small, across ? " nor rock neighbour" : "");
+    if (across) {
+      std::fprintf(stderr,
+                   "dda: %d of them (%.3g m3) had no neighbour of their material and were glued "
+                   "across materials\n",
+                   merge.merged_across, merge.merged_across_volume);
+    }
     glued = merge;
   }
   const blocks::CoarseningReport coarse = blocks::coarsenPieces(out);

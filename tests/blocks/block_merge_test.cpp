@@ -92,6 +92,54 @@ TEST(MergeSmallBlocks, NeverGluesAcrossMaterials) {
   EXPECT_EQ(model.blocks.size(), 3u);
 }
 
+TEST(MergeSmallBlocks, AcrossMaterialsGluesABlockWithNoNeighbourOfItsMaterial) {
+  // The 0.5 m3 block of material 1 between two material-0 blocks (a slab sliver between two
+  // joints): with across_materials it joins the one it shares the most area with (a tie of
+  // 1 m2: the lower index), takes its material, and the volume is kept.
+  BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 0});
+  const MergeReport r = mergeSmallBlocks(model, 1.0, true);
+  EXPECT_EQ(r.merged, 1);
+  EXPECT_EQ(r.merged_across, 1);
+  EXPECT_NEAR(r.merged_across_volume, 0.5, 1e-12);
+  EXPECT_EQ(r.left_small, 0);
+  ASSERT_EQ(model.blocks.size(), 2u);
+  EXPECT_EQ(model.blocks[0].material, 0);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 2.5, 1e-12);
+  EXPECT_EQ(model.blocks[0].pieces.size(), 2u);
+}
+
+TEST(MergeSmallBlocks, AcrossMaterialsStillPrefersItsOwnMaterial) {
+  // The 0.5 m3 block of material 1 shares 4 m2 with the material-0 block and 1 m2 with the
+  // material-1 block: a neighbour of its own material wins over a larger face.
+  BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 1});
+  model.adjacency[0].area = 4.0;
+  const MergeReport r = mergeSmallBlocks(model, 1.0, true);
+  EXPECT_EQ(r.merged, 1);
+  EXPECT_EQ(r.merged_across, 0);
+  ASSERT_EQ(model.blocks.size(), 2u);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 2.0, 1e-12);
+  EXPECT_NEAR(model.blocks[1].mass.volume, 3.5, 1e-12);
+  EXPECT_EQ(model.blocks[1].material, 1);
+}
+
+TEST(MergeSmallBlocks, AcrossMaterialsNeverTouchesAStructure) {
+  // A rock block between two structures (a dam and a plug) stays small; a small structure
+  // block is never glued into rock.
+  BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 2});
+  model.blocks[0].structure = 0;
+  model.blocks[2].structure = 1;
+  MergeReport r = mergeSmallBlocks(model, 1.0, true);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(r.left_small, 1);
+  EXPECT_EQ(model.blocks.size(), 3u);
+
+  BlockModel small_structure = row({2.0, 0.5, 3.0}, {0, 1, 0});
+  small_structure.blocks[1].structure = 0;
+  r = mergeSmallBlocks(small_structure, 1.0, true);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(r.left_small, 1);
+}
+
 TEST(MergeSmallBlocks, ChainsUntilTheGroupIsLargeEnough) {
   // Four 0.3 m3 blocks: the smallest-first rule glues them into one block of 1.2 m3.
   BlockModel model = row({0.3, 0.3, 0.3, 0.3}, {0, 0, 0, 0});

@@ -1074,5 +1074,17 @@ TEST(SceneDdaWater, BiotCoefficientOfDeformableBlocks) {
             "bad.yaml:5:23: analysis.dda.biot_coefficient: expected a number in [0, 1], got -0.5");
 }
 
+TEST(SceneDdaBlocks, GlueAcrossMaterials) {
+  const Scene scene = parseScene(
+      valid_head + "analysis:\n  dda:\n    min_block_volume: 2\n    glue_across_materials: true\n",
+      "glue.yaml");
+  EXPECT_TRUE(scene.analysis.dda->glue_across_materials);
+  // Absent: a block is glued only to a neighbour of its own material.
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_FALSE(plain.analysis.dda->glue_across_materials);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    glue_across_materials: 1\n"),
+            "bad.yaml:5:28: analysis.dda.glue_across_materials: expected true or false, got '1'");
+}
+
 }  // namespace
 }  // namespace rockmass::io
