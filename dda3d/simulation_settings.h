@@ -104,9 +104,11 @@ struct DdaSettings {
     /// and a corner's copies in a glued block's pieces are one point. Off (the default), the
     /// faces between the pieces of a glued block are searched too: a point pressed into the
     /// block beside such a face can take it as its face (a spring across the block's inside;
-    /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not yet the default: the
-    /// Xiangjiaba stability answers are not measured with it, and the deformable quick box's
-    /// settled start is then not at rest within 80 static steps (docs/dda3d.md).
+    /// docs/dda3d.md, "Contact detection on models cut from a DFN"). Not the default: its
+    /// static relaxation settles worse (the Xiangjiaba scene's critical SRF 1.30 against
+    /// 1.55, its runs near the answer jittering below the unbalanced-ratio rule without 5
+    /// calm steps; the deformable quick box's settled start not at rest within 80 static
+    /// steps; docs/dda3d.md). The scene's analysis.dda.surface_only.
     bool surface_only = false;
     /// The broad phase's pairs are kept between steps (CandidatePairs): the same contacts.
     bool keep_pairs = true;

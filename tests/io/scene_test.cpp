@@ -1086,5 +1086,16 @@ TEST(SceneDdaBlocks, GlueAcrossMaterials) {
             "bad.yaml:5:28: analysis.dda.glue_across_materials: expected true or false, got '1'");
 }
 
+TEST(SceneDdaBlocks, SurfaceOnlyDetection) {
+  const Scene scene =
+      parseScene(valid_head + "analysis:\n  dda:\n    surface_only: true\n", "surface.yaml");
+  EXPECT_TRUE(scene.analysis.dda->engine.detection.surface_only);
+  // Absent: every face of every piece is searched (the engine's default).
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_FALSE(plain.analysis.dda->engine.detection.surface_only);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    surface_only: yes\n"),
+            "bad.yaml:5:19: analysis.dda.surface_only: expected true or false, got 'yes'");
+}
+
 }  // namespace
 }  // namespace rockmass::io
