@@ -1,6 +1,6 @@
 // The DDA on the model users run: the Xiangjiaba foundation region (examples/xiangjiaba/
-// scene.yaml, analysis.dda: the dam and the rock of x 40..200, z -30..0, 1 097 glued blocks of
-// 25 619 convex pieces), static and rigid as the scene runs it.
+// scene.yaml, analysis.dda: the dam and the rock of x 40..200, z -30..0, 1 081 glued blocks of
+// 25 608 convex pieces), static and rigid as the scene runs it.
 //
 // The model is built once from the scene (DFN, cut, glue: scene_model, as `rockmass dda`
 // builds it) and saved (dda3d::saveModel) to --region_model=PATH (default

@@ -81,7 +81,7 @@ void rebuildModel(BlockModel& model, const Groups& g) {
     Block block;
     block.id = static_cast<int>(merged.size()) + 1;
     block.material = model.blocks[static_cast<std::size_t>(group)].material;
-    block.structure = model.blocks[static_cast<std::size_t>(in_group.front())].structure;
+    block.structure = model.blocks[static_cast<std::size_t>(group)].structure;
     block.bounds = model.blocks[static_cast<std::size_t>(in_group.front())].bounds;
     for (int m : in_group) {
       Block& source = model.blocks[static_cast<std::size_t>(m)];
@@ -138,16 +138,19 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_m
   while (!small.empty()) {
     const int from = small.begin()->second;
     small.erase(small.begin());
-    // The same-material neighbour sharing the most area (ties: the lower index, as the map
-    // is ordered and only a strictly larger area replaces the choice).
+    // The same-material rock neighbour sharing the most area (ties: the lower index, as the
+    // map is ordered and only a strictly larger area replaces the choice). A structure is
+    // never glued nor glued to, even where it shares a material with the rock or another
+    // structure.
     int target = -1;
     double best = 0.0;
     for (const auto& [other, area] : g.shared[static_cast<std::size_t>(from)]) {
-      if (material(other) != material(from) || !(area > best)) continue;
+      if (!rock(from) || !rock(other) || material(other) != material(from) || !(area > best)) {
+        continue;
+      }
       target = other;
       best = area;
     }
-    bool across = false;
     if (target < 0 && across_materials && rock(from)) {
       // No neighbour of its own material: the rock neighbour of any material with the most
       // shared area (same tie rule).
@@ -156,18 +159,12 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_m
         target = other;
         best = area;
       }
-      across = target >= 0;
     }
     if (target < 0) {
       ++report.left_small;
       continue;
     }
     ++report.merged;
-    if (across) {
-      ++report.merged_across;
-      report.merged_across_volume += g.volume[static_cast<std::size_t>(from)];
-    }
-    report.merged_volume += g.volume[static_cast<std::size_t>(from)];
     small.erase({g.volume[static_cast<std::size_t>(target)], target});
     absorb(g, from, target);
     if (g.volume[static_cast<std::size_t>(target)] < min_volume) {
@@ -175,6 +172,18 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_m
     }
   }
   if (report.merged == 0) return report;
+  // The cut blocks glued into another (each counted once, whatever the glue steps it went
+  // through), and those of them whose glued block is of another material.
+  for (int i = 0; i < n; ++i) {
+    const int group = g.owner[static_cast<std::size_t>(i)];
+    if (group == i) continue;
+    const double volume = model.blocks[static_cast<std::size_t>(i)].mass.volume;
+    report.merged_volume += volume;
+    if (material(group) != material(i)) {
+      ++report.merged_across;
+      report.merged_across_volume += volume;
+    }
+  }
   rebuildModel(model, g);
   report.blocks_after = static_cast<int>(model.blocks.size());
   return report;

@@ -16,20 +16,22 @@ struct MergeReport {
   double min_volume = 0.0;  ///< m3, the threshold
   int blocks_before = 0;
   int blocks_after = 0;
-  int merged = 0;              ///< blocks glued to a neighbour
+  int merged = 0;              ///< cut blocks glued into another
   double merged_volume = 0.0;  ///< m3, their volume
-  /// Blocks still below min_volume: no neighbour of the same material (an isolated block,
-  /// or one touching only other materials) and, with across_materials, no rock neighbour.
+  /// Blocks (or glued groups) still below min_volume: structures, and rock blocks with no
+  /// rock neighbour of their material (with across_materials: no rock neighbour at all).
   int left_small = 0;
-  /// Of `merged`, the blocks glued to a neighbour of another material (across_materials).
+  /// Of `merged`, the cut blocks whose glued block is of another material (across_materials).
   int merged_across = 0;
   double merged_across_volume = 0.0;  ///< m3, their volume
 };
 
-/// Glues every block of `model` smaller than `min_volume` (m3) to the neighbour of the same
-/// material with which it shares the largest face area (ties: the lower id), smallest block
-/// first, and again while the glued block stays below the threshold. Blocks of different
-/// materials are never glued (a rock block is not glued to the dam, nor to a fault slab).
+/// Glues every rock block of `model` smaller than `min_volume` (m3) to the rock neighbour of
+/// the same material with which it shares the largest face area (ties: the lower id),
+/// smallest block first, and again while the glued block stays below the threshold. Without
+/// `across_materials`, blocks of different materials are never glued (a rock block is not
+/// glued to a fault slab); structures never are, nor is anything glued to them (a rock block
+/// is not glued to the dam, even of the same material).
 /// The result has the blocks renumbered 1..N in the order of their lowest original id, each
 /// with the pieces of the blocks glued into it, the summed mass properties and the union of
 /// the bounds; adjacency areas between glued groups are summed, adjacency inside a group

@@ -23,7 +23,8 @@ void appendTimings(SummaryJson& j, const Timings& timings);
 SummaryJson finiteOrNull(double value);
 
 /// The `glued_blocks` object of a DDA or stability summary: min_volume, blocks_before,
-/// blocks_after, merged, merged_volume, left_small (blocks::MergeReport).
+/// blocks_after, merged, merged_volume, left_small, merged_across_materials,
+/// merged_across_materials_volume (blocks::MergeReport).
 SummaryJson gluedBlocksJson(const blocks::MergeReport& glued);
 
 /// The `uplift` list of a DDA or stability summary: per structure {structure, force [3] (N),

@@ -153,13 +153,13 @@ blocks::BlockModel ddaBlocks(const io::Scene& scene, const blocks::BlockModel& m
   if (merge.merged > 0) {
     std::fprintf(stderr,
                  "dda: %d blocks below %.3g m3 (%.3g m3 in all) glued to a neighbour: %d blocks, "
-                 "%d still below (no neighbour of their material%s)\n",
+                 "%d still below (structures; rock with no neighbour of its material%s)\n",
                  merge.merged, min_volume, merge.merged_volume, merge.blocks_after,
-                 merge.left_small, across ? " nor rock neighbour" : "");
-    if (across) {
+                 merge.left_small, across ? " nor any rock neighbour" : "");
+    if (merge.merged_across > 0) {
       std::fprintf(stderr,
-                   "dda: %d of them (%.3g m3) had no neighbour of their material and were glued "
-                   "across materials\n",
+                   "dda: %d of them (%.3g m3) are in a glued block of another material (no "
+                   "neighbour of their own; glue_across_materials)\n",
                    merge.merged_across, merge.merged_across_volume);
     }
     glued = merge;

@@ -93,19 +93,44 @@ TEST(MergeSmallBlocks, NeverGluesAcrossMaterials) {
 }
 
 TEST(MergeSmallBlocks, AcrossMaterialsGluesABlockWithNoNeighbourOfItsMaterial) {
-  // The 0.5 m3 block of material 1 between two material-0 blocks (a slab sliver between two
-  // joints): with across_materials it joins the one it shares the most area with (a tie of
-  // 1 m2: the lower index), takes its material, and the volume is kept.
-  BlockModel model = row({2.0, 0.5, 3.0}, {0, 1, 0});
+  // The 0.5 m3 block of material 1 between two blocks of other materials (a slab sliver
+  // between two joints): with across_materials it joins the one it shares the most area with
+  // (2 m2 against 1: the later block, of material 0) and takes that block's material, not
+  // its own, though it is the glued block's lowest member; the volume is kept.
+  BlockModel model = row({2.0, 0.5, 3.0}, {2, 1, 0});
+  model.adjacency[1].area = 2.0;
   const MergeReport r = mergeSmallBlocks(model, 1.0, true);
   EXPECT_EQ(r.merged, 1);
   EXPECT_EQ(r.merged_across, 1);
   EXPECT_NEAR(r.merged_across_volume, 0.5, 1e-12);
   EXPECT_EQ(r.left_small, 0);
   ASSERT_EQ(model.blocks.size(), 2u);
+  EXPECT_EQ(model.blocks[0].material, 2);  // untouched
+  EXPECT_EQ(model.blocks[1].material, 0);
+  EXPECT_NEAR(model.blocks[1].mass.volume, 3.5, 1e-12);
+  EXPECT_EQ(model.blocks[1].pieces.size(), 2u);
+  // A tie of 1 m2 on both sides: the lower index.
+  BlockModel tie = row({2.0, 0.5, 3.0}, {2, 1, 0});
+  mergeSmallBlocks(tie, 1.0, true);
+  ASSERT_EQ(tie.blocks.size(), 2u);
+  EXPECT_EQ(tie.blocks[0].material, 2);
+  EXPECT_NEAR(tie.blocks[0].mass.volume, 2.5, 1e-12);
+}
+
+TEST(MergeSmallBlocks, AcrossMaterialsChainsAndCountsEachCutBlockOnce) {
+  // Two 0.3 m3 blocks of material 1 beside a 5 m3 block of material 0: the first joins the
+  // second (its own material; 0.6 m3, still small), which then has no neighbour of material 1
+  // and joins the material-0 block. Both cut blocks end in a block of material 0: merged 2,
+  // 0.6 m3, both across.
+  BlockModel model = row({0.3, 0.3, 5.0}, {1, 1, 0});
+  const MergeReport r = mergeSmallBlocks(model, 1.0, true);
+  EXPECT_EQ(r.merged, 2);
+  EXPECT_NEAR(r.merged_volume, 0.6, 1e-12);
+  EXPECT_EQ(r.merged_across, 2);
+  EXPECT_NEAR(r.merged_across_volume, 0.6, 1e-12);
+  ASSERT_EQ(model.blocks.size(), 1u);
   EXPECT_EQ(model.blocks[0].material, 0);
-  EXPECT_NEAR(model.blocks[0].mass.volume, 2.5, 1e-12);
-  EXPECT_EQ(model.blocks[0].pieces.size(), 2u);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 5.6, 1e-12);
 }
 
 TEST(MergeSmallBlocks, AcrossMaterialsStillPrefersItsOwnMaterial) {
@@ -133,6 +158,18 @@ TEST(MergeSmallBlocks, AcrossMaterialsNeverTouchesAStructure) {
   EXPECT_EQ(r.left_small, 1);
   EXPECT_EQ(model.blocks.size(), 3u);
 
+  // A structure sharing 4 m2 with the small block, a rock block of another material 1 m2:
+  // the rock block, though its face is smaller.
+  BlockModel beside = row({2.0, 0.5, 3.0}, {0, 1, 2});
+  beside.blocks[0].structure = 0;
+  beside.adjacency[0].area = 4.0;
+  r = mergeSmallBlocks(beside, 1.0, true);
+  EXPECT_EQ(r.merged, 1);
+  ASSERT_EQ(beside.blocks.size(), 2u);
+  EXPECT_EQ(beside.blocks[0].structure, 0);
+  EXPECT_NEAR(beside.blocks[0].mass.volume, 2.0, 1e-12);
+  EXPECT_NEAR(beside.blocks[1].mass.volume, 3.5, 1e-12);
+
   BlockModel small_structure = row({2.0, 0.5, 3.0}, {0, 1, 0});
   small_structure.blocks[1].structure = 0;
   r = mergeSmallBlocks(small_structure, 1.0, true);
@@ -146,9 +183,31 @@ TEST(MergeSmallBlocks, ChainsUntilTheGroupIsLargeEnough) {
   const MergeReport r = mergeSmallBlocks(model, 1.0);
   EXPECT_EQ(r.blocks_after, 1);
   EXPECT_EQ(r.merged, 3);
+  // Three cut blocks were glued into the fourth: 0.9 m3, each counted once.
+  EXPECT_NEAR(r.merged_volume, 0.9, 1e-12);
   ASSERT_EQ(model.blocks.size(), 1u);
   EXPECT_NEAR(model.blocks[0].mass.volume, 1.2, 1e-12);
   EXPECT_TRUE(model.adjacency.empty());
+}
+
+TEST(MergeSmallBlocks, NeverGluesAStructureEvenOfTheRocksMaterial) {
+  // A dam of the rock's material, and a small rock block beside it and beside a larger rock
+  // block of the same material with a smaller face: the rock block, never the dam. A small
+  // structure (a plug) of the rock's material stays as it is.
+  BlockModel model = row({50.0, 0.5, 3.0}, {0, 0, 0});
+  model.blocks[0].structure = 0;
+  model.adjacency[0].area = 4.0;
+  MergeReport r = mergeSmallBlocks(model, 1.0);
+  EXPECT_EQ(r.merged, 1);
+  ASSERT_EQ(model.blocks.size(), 2u);
+  EXPECT_NEAR(model.blocks[0].mass.volume, 50.0, 1e-12);
+  EXPECT_NEAR(model.blocks[1].mass.volume, 3.5, 1e-12);
+
+  BlockModel plug = row({3.0, 0.5}, {0, 0});
+  plug.blocks[1].structure = 0;
+  r = mergeSmallBlocks(plug, 1.0, true);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(r.left_small, 1);
 }
 
 TEST(MergeSmallBlocks, ZeroThresholdChangesNothing) {
