@@ -483,7 +483,15 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) 
     return v.choice("start", {"unloaded", "settled"}) == 1;
   });
   if (const auto steps = m.get("max_steps")) e.max_steps = steps->integer(above(0));
-  if (const auto steps = m.get("start_steps")) e.start_steps = steps->integer(above(0));
+  if (const auto steps = m.get("start_steps")) {
+    e.start_steps = steps->integer(above(0));
+    // A limit for a run that never happens would be silently ignored.
+    if (!e.settled_start) {
+      steps->fail(
+          "the step limit of the settled start: it needs `start: settled` (every run "
+          "starts unloaded here)");
+    }
+  }
   e.unbalanced_ratio = m.numberOr("unbalanced_ratio", e.unbalanced_ratio, kPositive);
   e.kinetic_ratio = m.numberOr("kinetic_ratio", e.kinetic_ratio, kPositive);
   e.failure_ratio = m.numberOr("failure_ratio", e.failure_ratio, kNonNegative);

@@ -432,6 +432,14 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(scene.analysis.equilibrium->start_steps, 90);
   EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start: settled, start_steps: 0}\n"),
             "bad.yaml:4:46: analysis.equilibrium.start_steps: expected an integer > 0, got 0");
+  // Without `start: settled` there is no settled start for the limit to apply to.
+  const std::string no_start =
+      ": analysis.equilibrium.start_steps: the step limit of the settled start: it needs "
+      "`start: settled` (every run starts unloaded here)";
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start_steps: 90}\n"),
+            "bad.yaml:4:30" + no_start);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {start: unloaded, start_steps: 90}\n"),
+            "bad.yaml:4:47" + no_start);
   EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
   EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
   EXPECT_TRUE(scene.analysis.equilibrium->watch_monitors);
