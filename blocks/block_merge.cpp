@@ -135,30 +135,29 @@ MergeReport mergeSmallBlocks(BlockModel& model, double min_volume, bool across_m
   const auto rock = [&](int group) {
     return model.blocks[static_cast<std::size_t>(group)].structure < 0;
   };
-  while (!small.empty()) {
-    const int from = small.begin()->second;
-    small.erase(small.begin());
-    // The same-material rock neighbour sharing the most area (ties: the lower index, as the
-    // map is ordered and only a strictly larger area replaces the choice). A structure is
-    // never glued nor glued to, even where it shares a material with the rock or another
-    // structure.
+  // The rock neighbour of group `from` that `takes` accepts and that shares the most face area
+  // with it (ties: the lower index, as the map is ordered and only a strictly larger area
+  // replaces the choice); -1 when there is none.
+  const auto largestNeighbour = [&](int from, const auto& takes) {
     int target = -1;
     double best = 0.0;
     for (const auto& [other, area] : g.shared[static_cast<std::size_t>(from)]) {
-      if (!rock(from) || !rock(other) || material(other) != material(from) || !(area > best)) {
-        continue;
-      }
+      if (!rock(other) || !takes(other) || !(area > best)) continue;
       target = other;
       best = area;
     }
-    if (target < 0 && across_materials && rock(from)) {
-      // No neighbour of its own material: the rock neighbour of any material with the most
-      // shared area (same tie rule).
-      for (const auto& [other, area] : g.shared[static_cast<std::size_t>(from)]) {
-        if (!rock(other) || !(area > best)) continue;
-        target = other;
-        best = area;
-      }
+    return target;
+  };
+  while (!small.empty()) {
+    const int from = small.begin()->second;
+    small.erase(small.begin());
+    // A structure is never glued nor glued to, even where it shares a material with the rock
+    // or another structure. A rock block goes to a rock neighbour of its own material, else
+    // (with across_materials) to one of any material.
+    int target = -1;
+    if (rock(from)) {
+      target = largestNeighbour(from, [&](int other) { return material(other) == material(from); });
+      if (target < 0 && across_materials) target = largestNeighbour(from, [](int) { return true; });
     }
     if (target < 0) {
       ++report.left_small;

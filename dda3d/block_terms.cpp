@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/disc.h"
+
 namespace rockmass::dda3d {
 
 using geometry::Vec3;
@@ -134,12 +136,7 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
     return pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z());
   };
   const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
-  if (wetted_area != nullptr) {
-    *wetted_area = 0.0;
-    for (std::size_t k = 1; k + 1 < wet.size(); ++k) {
-      *wetted_area += 0.5 * (wet[k] - wet[0]).cross(wet[k + 1] - wet[0]).norm();
-    }
-  }
+  if (wetted_area != nullptr) *wetted_area = geometry::polygonArea(wet);
   return integratePressure(block, wet, normal, p);
 }
 
