@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <tuple>
 #include <unordered_map>
 
 #include "dda3d/piece_view.h"
@@ -220,6 +222,52 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     }
     return nearest;
   };
+  // The nearest of the whole pair of blocks is searched outward from the sample along x,
+  // over the pair's entries sorted by x (a Xiangjiaba region step falls back for about
+  // 180 000 of its 420 000 samples, and the linear scan over the pair's entries read 3.4e7
+  // entries a step). The scan stops where the x distance alone exceeds the nearest found:
+  // the squared distance of any entry beyond is larger (a sum of non-negative terms rounds
+  // no lower than one of them). Ties go to the earlier entry in by_pair order, the scan's
+  // own choice, so the result is that of the linear scan.
+  struct ByX {
+    double x;
+    std::size_t position;  ///< in by_pair
+    bool operator<(const ByX& o) const { return std::tie(x, position) < std::tie(o.x, o.position); }
+  };
+  const auto nearestByX = [&](const AreaSample& sample, const std::vector<ByX>& sorted,
+                              double& nearest_distance) {
+    Contact* nearest = nullptr;
+    std::size_t nearest_position = 0;
+    nearest_distance = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const ByX& e) {
+      Contact& c = contacts[by_pair[e.position]];
+      const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
+      if (normal.dot(sample.normal) < kAreaCosine) return;
+      if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) return;
+      const double distance = (c.point - sample.point).squaredNorm();
+      if (distance < nearest_distance ||
+          (distance == nearest_distance && e.position < nearest_position)) {
+        nearest_distance = distance;
+        nearest_position = e.position;
+        nearest = &c;
+      }
+    };
+    const double x = sample.point.x();
+    const auto middle = std::lower_bound(sorted.begin(), sorted.end(), ByX{x, 0});
+    const auto beyond = [&](const ByX& e) {
+      const double dx = e.x - x;
+      return dx * dx > nearest_distance;
+    };
+    for (auto it = middle; it != sorted.end() && !beyond(*it); ++it) consider(*it);
+    for (auto it = middle; it != sorted.begin();) {
+      --it;
+      if (beyond(*it)) break;
+      consider(*it);
+    }
+    return nearest;
+  };
+  // Pairs of blocks with fewer entries than this are scanned linearly.
+  constexpr std::ptrdiff_t kSortedSearch = 32;
   const auto assignGroup = [&](std::size_t g) {
     const Key first = sampleKey(order[group_start[g]]);
     const Key low{first[0], first[1], std::numeric_limits<int>::min(),
@@ -231,6 +279,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     const Iterator end =
         std::upper_bound(begin, by_pair.end(), high,
                          [&](const Key& value, std::size_t k) { return value < contactKey(k); });
+    std::vector<ByX> sorted;  // the pair's entries by x, made at its first fallback
     for (std::size_t k = group_start[g]; k < group_start[g + 1]; ++k) {
       const AreaSample& sample = samples[order[k]];
       // The corner's entry is almost always one of the same two pieces (a vertex of either,
@@ -244,7 +293,19 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
       double distance = 0.0;
       Contact* nearest = nearestIn(sample, piece_begin, piece_end, distance);
       if (!nearest || distance > sample.distance * sample.distance) {
-        nearest = nearestIn(sample, begin, end, distance);
+        if (end - begin < kSortedSearch) {
+          nearest = nearestIn(sample, begin, end, distance);
+        } else {
+          if (sorted.empty()) {
+            for (Iterator it = begin; it != end; ++it) {
+              if (contacts[*it].kind == ContactKind::FacePoint) continue;  // own area
+              sorted.push_back(
+                  {contacts[*it].point.x(), static_cast<std::size_t>(it - by_pair.begin())});
+            }
+            std::sort(sorted.begin(), sorted.end());
+          }
+          nearest = nearestByX(sample, sorted, distance);
+        }
       }
       if (nearest) nearest->area += sample.weight;
     }
