@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <future>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -498,13 +500,26 @@ dda3d::DdaModel stabilityModel(RunContext& ctx, io::Scene& dda_scene,
   return model;
 }
 
-/// The DDA run of analysis.dda.
-void ddaStage(RunContext& ctx, const io::Scene& dda_scene, const blocks::BlockModel& dda_blocks,
-              const geometry::FractureNetwork& network, const DdaOverrides& overrides,
-              const std::optional<blocks::MergeReport>& glued) {
+/// The DDA run of analysis.dda as computed (its frames written as it went), and its wall time.
+struct DdaStageRun {
+  DdaStage stage;
+  double seconds = 0.0;
+};
+
+/// Runs analysis.dda. Reads only its arguments, so it may run beside the stability analyses.
+DdaStageRun computeDdaStage(const fs::path& out, const io::Scene& dda_scene,
+                            const blocks::BlockModel& dda_blocks,
+                            const geometry::FractureNetwork& network, const DdaOverrides& overrides,
+                            const std::optional<blocks::MergeReport>& glued) {
   const auto start = Clock::now();
-  const DdaStage stage = runDdaStage(dda_scene, dda_blocks, network, overrides, ctx.out, glued);
-  ctx.addStage("dda", secondsSince(start));
+  DdaStage stage = runDdaStage(dda_scene, dda_blocks, network, overrides, out, glued);
+  return {std::move(stage), secondsSince(start)};
+}
+
+/// Records the DDA run: its files, timing and summary part.
+void recordDdaStage(RunContext& ctx, const DdaStageRun& run) {
+  const DdaStage& stage = run.stage;
+  ctx.addStage("dda", run.seconds);
   ctx.run.effects = stage.effects;
   ctx.timedWrite([&] { writeDdaFiles(ctx.out, stage); });
   ctx.addFiles({"history.csv", "steps.csv", "dda.pvd"});
@@ -513,33 +528,79 @@ void ddaStage(RunContext& ctx, const io::Scene& dda_scene, const blocks::BlockMo
   ctx.parts.push_back({"dda", io::formatDdaSummary(stageRun(ctx.run, {}), stage.summary)});
 }
 
+/// A factor search and its wall time.
+struct TimedSearch {
+  dda3d::FactorSearchResult result;
+  double seconds = 0.0;
+};
+
+/// What the stability analyses computed, before it is recorded.
+struct StabilityRuns {
+  std::optional<StabilityStart> begin;
+  double start_seconds = 0.0;
+  std::optional<TimedSearch> overload;
+  std::optional<TimedSearch> strength;
+};
+
 /// Overload and strength reduction, from one start state: the one place where they are wired.
-void stabilityStage(RunContext& ctx, const io::Scene& dda_scene,
-                    const dda3d::DdaModel& stability_model,
-                    const std::optional<blocks::MergeReport>& glued) {
+/// Both start from that state and share nothing else, so with both the overload runs on a
+/// thread of its own beside the strength reduction: each run's steps are deterministic
+/// whatever the threads, so the answers are those of running them one after the other. An
+/// error of either is reported as it would be then (the overload's first).
+StabilityRuns computeStability(const StagePlan& plan, const io::Scene& dda_scene,
+                               const dda3d::DdaModel& stability_model) {
+  StabilityRuns runs;
   const auto start_state = Clock::now();
-  const StabilityStart begin = stabilityStart(dda_scene, stability_model);
-  const dda3d::DdaModel& model = begin.model;
-  if (begin.settling) ctx.run.timings.emplace_back("stability_start", secondsSince(start_state));
-  std::optional<dda3d::FactorSearchResult> overload;
-  std::optional<dda3d::FactorSearchResult> strength;
-  dda3d::ActiveTerms terms;
-  if (ctx.plan.overload) {
+  runs.begin = stabilityStart(dda_scene, stability_model);
+  runs.start_seconds = secondsSince(start_state);
+  const StabilityStart& begin = *runs.begin;
+  const auto overload = [&] {
     const auto start = Clock::now();
-    overload = runSceneOverload(dda_scene, begin);
-    ctx.addStage("overload", secondsSince(start));
-    addRunTerms(*overload, terms);
+    dda3d::FactorSearchResult result = runSceneOverload(dda_scene, begin);
+    return TimedSearch{std::move(result), secondsSince(start)};
+  };
+  const auto strength = [&] {
+    const auto start = Clock::now();
+    dda3d::FactorSearchResult result = runSceneStrengthReduction(dda_scene, begin);
+    return TimedSearch{std::move(result), secondsSince(start)};
+  };
+  if (plan.overload && plan.strength_reduction) {
+    std::future<TimedSearch> beside = std::async(std::launch::async, overload);
+    std::exception_ptr strength_error;
+    try {
+      runs.strength = strength();
+    } catch (...) {
+      strength_error = std::current_exception();
+    }
+    runs.overload = beside.get();  // rethrows the overload's error
+    if (strength_error) std::rethrow_exception(strength_error);
+  } else if (plan.overload) {
+    runs.overload = overload();
+  } else if (plan.strength_reduction) {
+    runs.strength = strength();
+  }
+  return runs;
+}
+
+/// Records the stability analyses: their timings, overload.csv and the summary part.
+void recordStability(RunContext& ctx, const StabilityRuns& runs,
+                     const std::optional<blocks::MergeReport>& glued, const io::Scene& dda_scene) {
+  const StabilityStart& begin = *runs.begin;
+  const dda3d::DdaModel& model = begin.model;
+  if (begin.settling) ctx.run.timings.emplace_back("stability_start", runs.start_seconds);
+  dda3d::ActiveTerms terms;
+  if (runs.overload) {
+    ctx.addStage("overload", runs.overload->seconds);
+    addRunTerms(runs.overload->result, terms);
     ctx.timedWrite([&] {
       io::writeFileAtomically(ctx.out / "overload.csv",
-                              io::formatOverloadCsv(monitorNames(model), *overload));
+                              io::formatOverloadCsv(monitorNames(model), runs.overload->result));
     });
     ctx.report.files.push_back("overload.csv");
   }
-  if (ctx.plan.strength_reduction) {
-    const auto start = Clock::now();
-    strength = runSceneStrengthReduction(dda_scene, begin);
-    ctx.addStage("strength_reduction", secondsSince(start));
-    addRunTerms(*strength, terms);
+  if (runs.strength) {
+    ctx.addStage("strength_reduction", runs.strength->seconds);
+    addRunTerms(runs.strength->result, terms);
   }
   for (const std::string& effect : terms.names()) {
     if (std::find(ctx.run.effects.begin(), ctx.run.effects.end(), effect) ==
@@ -547,8 +608,9 @@ void stabilityStage(RunContext& ctx, const io::Scene& dda_scene,
       ctx.run.effects.push_back(effect);
     }
   }
-  const io::StabilitySummary summary = stabilitySummary(
-      dda_scene, model, glued, overload ? &*overload : nullptr, strength ? &*strength : nullptr);
+  const io::StabilitySummary summary =
+      stabilitySummary(dda_scene, model, glued, runs.overload ? &runs.overload->result : nullptr,
+                       runs.strength ? &runs.strength->result : nullptr);
   ctx.parts.push_back({"stability", io::formatStabilitySummary(stageRun(ctx.run, {}), summary)});
 }
 
@@ -622,8 +684,25 @@ int runScene(const RunOptions& options, io::Scene scene_in) {
     const blocks::BlockModel dda_blocks = ddaStageBlocks(ctx, dda_scene, dfn.network, cut, glued);
     std::optional<dda3d::DdaModel> stability_model;
     if (stability) stability_model = stabilityModel(ctx, dda_scene, dda_blocks, dfn.network);
-    if (plan.dda) ddaStage(ctx, dda_scene, dda_blocks, dfn.network, dda_overrides, glued);
-    if (stability) stabilityStage(ctx, dda_scene, *stability_model, glued);
+    // The DDA stage and the stability analyses share nothing but their inputs: with both,
+    // the DDA stage runs on a thread of its own beside them (computeStability), and both are
+    // recorded in this order afterwards; an error of the DDA stage is reported first.
+    std::future<DdaStageRun> dda_run;
+    if (plan.dda) {
+      dda_run = std::async(std::launch::async, [&] {
+        return computeDdaStage(ctx.out, dda_scene, dda_blocks, dfn.network, dda_overrides, glued);
+      });
+    }
+    std::optional<StabilityRuns> stability_runs;
+    std::exception_ptr stability_error;
+    try {
+      if (stability) stability_runs = computeStability(plan, dda_scene, *stability_model);
+    } catch (...) {
+      stability_error = std::current_exception();
+    }
+    if (plan.dda) recordDdaStage(ctx, dda_run.get());
+    if (stability_error) std::rethrow_exception(stability_error);
+    if (stability) recordStability(ctx, *stability_runs, glued, dda_scene);
   }
   finishRun(ctx);
   return 0;

@@ -284,6 +284,36 @@ TEST_F(StabilityCli, MonitorOutsideEveryBlockIsAnErrorNamingIt) {
   EXPECT_NE(output.find("lost.yaml:" + std::to_string(line) + ":"), std::string::npos) << output;
 }
 
+TEST_F(StabilityCli, RunGivesTheAnswersOfEachAnalysisRunAlone) {
+  // `run` computes the DDA stage, the overload and the strength reduction side by side on
+  // threads of their own (app/run_command.cpp, computeStability); each run's steps are
+  // deterministic whatever the threads, so each analysis must give, run for run, what its own
+  // command gives alone: the same JSON (timings aside) and the same overload.csv bytes.
+  std::string output;
+  const std::string scene = damScene();
+  ASSERT_EQ(test::runRockmass("run " + test::writeFile(dir.path() / "run.yaml", scene).string() +
+                                  " -o " + (dir.path() / "run").string() + " --no-figures",
+                              &output),
+            0)
+      << output;
+  ASSERT_EQ(run("overload", scene, "overload", output), 0) << output;
+  ASSERT_EQ(run("strength", scene, "strength", output), 0) << output;
+  const auto summary = [&](const char* name) {
+    return nlohmann::json::parse(test::readFile(dir.path() / name / "summary.json"));
+  };
+  const nlohmann::json both = summary("run");
+  for (const char* search : {"overload", "strength_reduction"}) {
+    ASSERT_TRUE(both.contains(search)) << search;
+    const nlohmann::json alone =
+        summary(search == std::string("overload") ? "overload" : "strength");
+    EXPECT_EQ(both[search], alone[search]) << search;
+    EXPECT_GT(both[search]["runs"].size(), 2u) << search;  // a search, not a single run
+  }
+  EXPECT_EQ(test::readFile(dir.path() / "run" / "overload.csv"),
+            test::readFile(dir.path() / "overload" / "overload.csv"));
+  EXPECT_TRUE(both["timings"].contains("dda"));
+}
+
 TEST_F(StabilityCli, WaterLevelBelowTheDomainIsAnError) {
   std::string output;
   EXPECT_EQ(run("overload", damScene(kCrestMonitor, "-5"), "dry", output), 2);
