@@ -186,10 +186,13 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   const auto sameBlocks = [](const Key& x, const Key& y) { return x[0] == y[0] && x[1] == y[1]; };
   const auto sortedBy = [](const std::vector<Key>& keys) {
     std::vector<std::pair<Key, std::size_t>> sorted(keys.size());
-    for (std::size_t k = 0; k < keys.size(); ++k) sorted[k] = {keys[k], k};
+    tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t k) {
+      sorted[k] = {keys[k], k};
+    });
     tbb::parallel_sort(sorted.begin(), sorted.end());
     std::vector<std::size_t> order(keys.size());
-    for (std::size_t k = 0; k < keys.size(); ++k) order[k] = sorted[k].second;
+    tbb::parallel_for(std::size_t{0}, keys.size(),
+                      [&](std::size_t k) { order[k] = sorted[k].second; });
     return order;
   };
   std::vector<std::size_t> by_pair = sortedBy(contact_keys);

@@ -496,20 +496,22 @@ std::vector<Contact> withoutDuplicates(std::vector<std::vector<Contact>> chunks,
     }
   };
   // Entry k of the joined list is chunk_of[k]'s entry k - start[chunk_of[k]]: the chunks
-  // are read in place, and the kept entries moved once, into the result.
+  // are read in place (through a table of pointers), and the kept entries moved once, into
+  // the result.
   std::vector<std::size_t> start(chunks.size() + 1, 0);
   for (std::size_t ch = 0; ch < chunks.size(); ++ch) start[ch + 1] = start[ch] + chunks[ch].size();
   const std::size_t total = start.back();
-  const auto entry = [&](std::size_t k) -> Contact& {
-    const std::size_t ch =
-        static_cast<std::size_t>(std::upper_bound(start.begin(), start.end(), k) - start.begin()) -
-        1;
-    return chunks[ch][k - start[ch]];
-  };
+  std::vector<Contact*> at(total);
+  const auto entry = [&](std::size_t k) -> Contact& { return *at[k]; };
   std::vector<Key> keys(total);
+  // A NaN coordinate would break the sort's strict order (undefined behaviour): a step whose
+  // geometry went non-finite fails here, by name (the first such entry in the found order).
+  std::vector<std::size_t> first_bad(chunks.size(), total);
   tbb::parallel_for(std::size_t{0}, chunks.size(), [&](std::size_t ch) {
     for (std::size_t i = 0; i < chunks[ch].size(); ++i) {
-      const Contact& c = chunks[ch][i];
+      Contact& c = chunks[ch][i];
+      at[start[ch] + i] = &c;
+      if (first_bad[ch] == total && !c.point.allFinite()) first_bad[ch] = start[ch] + i;
       const PieceTopology& t =
           blocks[static_cast<std::size_t>(c.block_i)].topology[static_cast<std::size_t>(c.piece_i)];
       const bool corner = c.kind == ContactKind::VertexFace && !t.block_vertex.empty();
@@ -522,37 +524,43 @@ std::vector<Contact> withoutDuplicates(std::vector<std::vector<Contact>> chunks,
                              start[ch] + i};
     }
   });
-  // A NaN coordinate would break the sort's strict order (undefined behaviour): a step whose
-  // geometry went non-finite fails here, by name.
-  for (const std::vector<Contact>& chunk : chunks) {
-    for (const Contact& c : chunk) {
-      if (!c.point.allFinite()) {
-        throw std::runtime_error("contact detection: a contact point of blocks " +
-                                 std::to_string(c.block_i) + " and " + std::to_string(c.block_j) +
-                                 " is not finite");
-      }
-    }
+  for (const std::size_t bad : first_bad) {
+    if (bad == total) continue;
+    const Contact& c = entry(bad);
+    throw std::runtime_error("contact detection: a contact point of blocks " +
+                             std::to_string(c.block_i) + " and " + std::to_string(c.block_j) +
+                             " is not finite");
   }
   tbb::parallel_sort(keys.begin(), keys.end());
-  std::vector<std::size_t> order(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k) order[k] = keys[k].index;
-  std::vector<char> keep(total, 1);
-  for (std::size_t first = 0; first < order.size();) {
-    std::size_t end = first + 1;
-    while (end < order.size() && keys[end].tied() == keys[first].tied()) ++end;
-    // Within a group (found order), drop an entry whose normal matches a kept one's.
-    for (std::size_t k = first + 1; k < end; ++k) {
-      const Vec3& n = entry(order[k]).normal;
-      for (std::size_t m = first; m < k; ++m) {
-        if (keep[order[m]] && entry(order[m]).normal.dot(n) > 1.0 - kDuplicateNormalSlack) {
-          keep[order[k]] = 0;
-          break;
-        }
-      }
-    }
-    if (end - first > 1) dropDeeperEntries(order, first, end, keep, entry, blocks);
-    first = end;
+  // Groups of one point of block i against block j: their starts (in sorted order), then each
+  // group on its own (groups touch their own entries only, so in parallel).
+  std::vector<std::size_t> group_start;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (k == 0 || keys[k].tied() != keys[k - 1].tied()) group_start.push_back(k);
   }
+  group_start.push_back(keys.size());
+  std::vector<std::size_t> order(keys.size());
+  tbb::parallel_for(std::size_t{0}, keys.size(), [&](std::size_t k) { order[k] = keys[k].index; });
+  std::vector<char> keep(total, 1);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, group_start.size() - 1, 512),
+      [&](const tbb::blocked_range<std::size_t>& groups) {
+        for (std::size_t g = groups.begin(); g != groups.end(); ++g) {
+          const std::size_t first = group_start[g], end = group_start[g + 1];
+          if (end - first < 2) continue;
+          // Within a group (found order), drop an entry whose normal matches a kept one's.
+          for (std::size_t k = first + 1; k < end; ++k) {
+            const Vec3& n = entry(order[k]).normal;
+            for (std::size_t m = first; m < k; ++m) {
+              if (keep[order[m]] && entry(order[m]).normal.dot(n) > 1.0 - kDuplicateNormalSlack) {
+                keep[order[k]] = 0;
+                break;
+              }
+            }
+          }
+          dropDeeperEntries(order, first, end, keep, entry, blocks);
+        }
+      });
   std::vector<Contact> kept;
   kept.reserve(static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1)));
   for (std::size_t ch = 0; ch < chunks.size(); ++ch) {

@@ -238,10 +238,13 @@ int Simulation::detectContacts() {
   std::vector<Contact> detected =
       findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face,
                    settings_.detection.keep_pairs ? &candidates_ : nullptr);
-  std::vector<std::pair<int, int>> pairs;
-  int late = 0;
+  // Each entry carries its last step's state over on its own (in parallel); the late ones
+  // and the coupled pairs are gathered after, in entry order.
+  std::vector<char> is_late(detected.size(), 0);
+  std::vector<std::pair<int, int>> pair_of(detected.size(), {-1, -1});
   const double late_depth = settings_.allowed_penetration_ratio * half_domain_;
-  for (Contact& c : detected) {
+  tbb::parallel_for(std::size_t{0}, detected.size(), [&](std::size_t k) {
+    Contact& c = detected[k];
     const int found = previous.find(c);
     if (found >= 0) {
       const Contact& old = contacts_[static_cast<std::size_t>(found)];
@@ -263,7 +266,7 @@ int Simulation::detectContacts() {
       // a pile of nine boxes whose fall had released 8.6e4 J, and threw the pile apart. The
       // overlap is removed as the blocks part; `late_contacts` counts these.
       c.overlap = -c.gap0;
-      ++late;
+      is_late[k] = 1;
     }
     c.gap0 += c.overlap;
     if (found < 0) {
@@ -277,7 +280,13 @@ int Simulation::detectContacts() {
     c.toggles = 0;
     c.held = false;
     const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
-    if (i >= 0 && j >= 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
+    if (i >= 0 && j >= 0) pair_of[k] = {std::min(i, j), std::max(i, j)};
+  });
+  const int late = static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(detected.size());
+  for (const std::pair<int, int>& p : pair_of) {
+    if (p.first >= 0) pairs.push_back(p);
   }
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
     const int i = bolt_a_[k].block >= 0 ? movableIndex(bolt_a_[k].block) : -1;
