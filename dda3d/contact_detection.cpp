@@ -285,9 +285,18 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
   }
 }
 
+/// An edge of b within reach of a's box: its index, box, start, direction and length (the
+/// inner loop of edgeToEdge reads them for every edge of a).
+struct NearEdge {
+  std::size_t index;
+  Box box;
+  Vec3 start, direction;
+  double length;
+};
+
 /// Crossing edges of `a` and `b`.
 void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, double tolerance,
-                const VertexEntries& entries, std::vector<std::pair<std::size_t, Box>>& near_b,
+                const VertexEntries& entries, std::vector<NearEdge>& near_b,
                 std::vector<Contact>& out) {
   const Box reach_b = b.box.enlarged(range.larger());
   // The edges of b within reach of a's box, with their boxes: the only ones any edge of a
@@ -296,10 +305,13 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
   near_b.clear();
   for (std::size_t eb = 0; eb < b.topology->edges.size(); ++eb) {
     if (!b.topology->edgeExterior(eb)) continue;
-    const Box box =
-        segmentBox(b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])],
-                   b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])]);
-    if (overlaps(box, reach_a)) near_b.emplace_back(eb, box);
+    const Vec3& b0 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])];
+    const Vec3& b1 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])];
+    const Box box = segmentBox(b0, b1);
+    if (overlaps(box, reach_a)) {
+      const Vec3 w = b1 - b0;
+      near_b.push_back({eb, box, b0, w, w.norm()});
+    }
   }
   if (near_b.empty()) return;
   std::optional<double> overlap;  // faceOverlap(a, b)
@@ -311,14 +323,15 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
     if (!overlaps(edge_box, reach_b)) continue;
     const Box edge_reach = edge_box.enlarged(range.larger());
     const Vec3 u = a1 - a0;
-    for (const auto& [eb, box_b] : near_b) {
-      if (!overlaps(box_b, edge_reach)) continue;
-      const Vec3& b0 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][0])];
-      const Vec3& b1 = b.shape->vertices[static_cast<std::size_t>(b.topology->edges[eb][1])];
-      const Vec3 w = b1 - b0;
+    const double parallel_u = kParallelSine * u.norm();
+    for (const NearEdge& near : near_b) {
+      if (!overlaps(near.box, edge_reach)) continue;
+      const std::size_t eb = near.index;
+      const Vec3& b0 = near.start;
+      const Vec3& w = near.direction;
       const Vec3 cross = u.cross(w);
       const double cross_norm = cross.norm();
-      if (cross_norm <= kParallelSine * u.norm() * w.norm()) continue;
+      if (cross_norm <= parallel_u * near.length) continue;
       const Vec3 r = a0 - b0;
       const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w), ur = u.dot(r), wr = w.dot(r);
       const double den = cross_norm * cross_norm;
@@ -647,7 +660,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t chunk) {
     const std::size_t end = std::min(pairs.size(), (chunk + 1) * kChunk);
     VertexEntries entries;  // scratch, reused by the chunk's pairs
-    std::vector<std::pair<std::size_t, Box>> near_b;
+    std::vector<NearEdge> near_b;
     for (std::size_t k = chunk * kChunk; k < end; ++k) {
       const PiecePair& pair = pairs[k];
       const PieceView& a = views[indexOf(pair.block_a, pair.piece_a)];
