@@ -27,6 +27,17 @@ class BlockSystem {
 
   /// Adds the energy 1/2 k (d0 + a^T D_i + b^T D_j)^2; i or j = -1 is a fixed body.
   void addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k, double d0);
+  /// Which of a spring's terms addSpring(..., Parts) adds: K_ii and F_i, K_jj and F_j, the
+  /// coupling K_ij. Threads that own disjoint sets of blocks and pairs may then add the terms
+  /// of one spring each its own, in parallel, every sum in the serial order.
+  struct Parts {
+    bool i = true, j = true, pair = true;
+  };
+  /// addSpring's terms that `parts` names, each added exactly as addSpring adds it.
+  void addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k, double d0,
+                 const Parts& parts);
+  /// Index of the coupled pair (i, j) (movable indices, either order), or -1.
+  int pairIndex(int i, int j) const;
   /// K_ii += m.
   void addDiagonal(int i, const BlockMatrix& m) { diagonal_[static_cast<std::size_t>(i)] += m; }
   /// F_i += f (no-op for i = -1).

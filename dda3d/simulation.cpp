@@ -7,8 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "dda3d/block_terms.h"
 #include "dda3d/contact_detection.h"
@@ -316,6 +318,7 @@ int Simulation::detectContacts() {
     c.shear = stretch * c.slide_direction;
   }
   if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
+  splitAssembly();
   return late;
 }
 
@@ -398,31 +401,35 @@ void Simulation::assembleBlockTerms(double dt) {
   active_ |= step;
 }
 
-Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
+Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
+                                                        const BlockSystem::Parts& parts,
+                                                        ActiveTerms& active) {
   if (c.state == ContactState::Open) return {};
   const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
   const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
   const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
-  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0);
-  active_.contact_normal = true;
+  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0,
+                     parts);
+  active.contact_normal = true;
   if (c.state == ContactState::Locked) {
     const double ks = penalty_ / settings_.shear_penalty_ratio;
     Vec3 t[2];
     tangents(c.normal, t[0], t[1]);
     for (const Vec3& tk : t) {
-      system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk));
+      system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk),
+                         parts);
     }
-    active_.contact_shear = true;
+    active.contact_shear = true;
     return {};
   }
   // The shear strength resists the slip: f N, plus c A while a plastic joint's contact keeps
   // its cohesion (a brittle one lost it when it started to slide).
   const double friction = shearStrength(c, jointOf(c));
-  system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
-  system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
-  active_.friction = true;
+  if (parts.i) system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
+  if (parts.j) system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
+  active.friction = true;
   AppliedFriction applied;
   applied.force = -friction * c.slide_direction;
   if (friction > 0.0 && c.slip_length > 0.0 && c.slide_direction.squaredNorm() > 0.0) {
@@ -439,7 +446,7 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c) {
     ri.rightCols<kVoigtSize>().setZero();
     rj.rightCols<kVoigtSize>().setZero();
     system_->addSpring(i, ri.transpose() * applied.across, j, -rj.transpose() * applied.across,
-                       applied.transverse_stiffness, 0.0);
+                       applied.transverse_stiffness, 0.0, parts);
   }
   return applied;
 }
@@ -451,11 +458,69 @@ void Simulation::assembleSystem() {
     system_->addDiagonal(static_cast<int>(m), base_k_[m]);
     system_->addForce(static_cast<int>(m), base_f_[m]);
   }
+  // The contacts' terms in parallel, bit for bit the serial loop's sums: each thread goes
+  // through every contact in order and adds the terms of its own blocks (K_ii, F_i) and of the
+  // pairs whose lower block it owns (K_ij) (splitAssembly). Every sum then takes its terms in
+  // contact order whatever the threads; a contact between two threads' slabs is computed by
+  // both, and its friction recorded by the owner of its first movable block.
+  if (assembly_owner_.size() != base_k_.size()) splitAssembly();
   applied_friction_.resize(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    applied_friction_[k] = addContactTerms(contacts_[k]);
-  }
+  std::vector<ActiveTerms> active(static_cast<std::size_t>(assembly_parts_));
+  tbb::parallel_for(0, assembly_parts_, [&](int part) {
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      const Contact& c = contacts_[k];
+      const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+      BlockSystem::Parts mine;
+      mine.i = i >= 0 && assembly_owner_[static_cast<std::size_t>(i)] == part;
+      mine.j = j >= 0 && assembly_owner_[static_cast<std::size_t>(j)] == part;
+      mine.pair =
+          i >= 0 && j >= 0 && assembly_owner_[static_cast<std::size_t>(std::min(i, j))] == part;
+      const int first = i >= 0 ? i : j;  // both fixed: the first thread records it
+      const bool records =
+          first >= 0 ? assembly_owner_[static_cast<std::size_t>(first)] == part : part == 0;
+      if (!mine.i && !mine.j && !mine.pair && !records) continue;
+      const AppliedFriction applied =
+          addContactTerms(c, mine, active[static_cast<std::size_t>(part)]);
+      if (records) applied_friction_[k] = applied;
+    }
+  });
+  for (const ActiveTerms& terms : active) active_ |= terms;
   addBoltTerms();
+}
+
+void Simulation::splitAssembly() {
+  const std::size_t movable = base_k_.size();
+  assembly_owner_.assign(movable, 0);
+  assembly_parts_ = static_cast<int>(std::clamp<std::size_t>(
+      static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), 1, 64));
+  if (assembly_parts_ == 1 || movable < 2) {
+    assembly_parts_ = 1;
+    return;
+  }
+  // Each movable block weighs its contacts (the terms it adds) plus one; slabs along x hold
+  // about equal weights, so few contacts join two threads' blocks.
+  std::vector<double> weight(movable, 1.0);
+  std::vector<double> x(movable, 0.0);
+  for (const BlockState& block : blocks_) {
+    if (block.dof_offset >= 0) x[static_cast<std::size_t>(block.dof_offset)] = block.centroid.x();
+  }
+  for (const Contact& c : contacts_) {
+    for (const int b : {movableIndex(c.block_i), movableIndex(c.block_j)}) {
+      if (b >= 0) weight[static_cast<std::size_t>(b)] += 1.0;
+    }
+  }
+  std::vector<std::size_t> order(movable);
+  for (std::size_t m = 0; m < movable; ++m) order[m] = m;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return std::tie(x[a], a) < std::tie(x[b], b); });
+  double total = 0.0;
+  for (const double w : weight) total += w;
+  double before = 0.0;
+  for (const std::size_t m : order) {
+    const int part = static_cast<int>(before / total * assembly_parts_);
+    assembly_owner_[m] = std::min(part, assembly_parts_ - 1);
+    before += weight[m];
+  }
 }
 
 Eigen::VectorXd Simulation::solveSystem(double dt, int iteration, const Eigen::VectorXd& previous) {

@@ -193,8 +193,13 @@ class Simulation {
     double transverse_stiffness = 0.0;
     geometry::Vec3 across = geometry::Vec3::Zero();
   };
-  /// Adds c's springs or friction; returns the friction applied (zero unless sliding).
-  AppliedFriction addContactTerms(const Contact& c);
+  /// Adds the terms of c's springs or friction that `parts` names (BlockSystem::Parts),
+  /// marking those it adds in `active`; returns the friction applied (zero unless sliding).
+  AppliedFriction addContactTerms(const Contact& c, const BlockSystem::Parts& parts,
+                                  ActiveTerms& active);
+  /// Splits the movable blocks among the assembly's threads (assembly_owner_): slabs along x
+  /// of about equal numbers of contacts, from the current contacts.
+  void splitAssembly();
   /// The time integration's acceleration at t = 0: M a0 = loads + initial stress + bolt
   /// pretension (contacts and fixed points carry no force yet).
   void initialAccelerations();
@@ -261,6 +266,10 @@ class Simulation {
   NewmarkCoefficients scheme_;
   /// Friction on block i of each contact in the last assembly (aligned with contacts_).
   std::vector<AppliedFriction> applied_friction_;
+  /// The assembly thread that adds each movable block's terms and those of the pairs whose
+  /// lower block it is (splitAssembly), and how many threads there are.
+  std::vector<int> assembly_owner_;
+  int assembly_parts_ = 1;
   std::vector<BlockState> blocks_;
   std::vector<geometry::Vec3> initial_centroids_;
   std::vector<ElasticMatrix> elastic_;
