@@ -69,6 +69,20 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& s
          displacementMatrix(c.foot, bj.centroid) * dj;
 }
 
+Vec3 Simulation::relativeDisplacement(const Contact& c, const std::vector<BlockVector>& unknowns,
+                                      bool rigid_part) const {
+  const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
+  const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+  BlockVector di = unknowns[static_cast<std::size_t>(c.block_i)];
+  BlockVector dj = unknowns[static_cast<std::size_t>(c.block_j)];
+  if (rigid_part) {
+    di.tail<kVoigtSize>().setZero();
+    dj.tail<kVoigtSize>().setZero();
+  }
+  return displacementMatrix(c.point, bi.centroid) * di -
+         displacementMatrix(c.foot, bj.centroid) * dj;
+}
+
 namespace {
 
 /// The thresholds of the state changes in one update (Simulation::updateContactStates).
@@ -246,16 +260,21 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   rules.allowed = settings_.allowed_penetration_ratio * half_domain_;
   // Each contact's update reads the solution and changes that contact only: in parallel,
   // each recording how it changed (1 changed, 2 closed), then counted in order.
+  // Every block's unknowns, read once (not twice per contact).
+  std::vector<BlockVector> unknowns(blocks_.size());
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
+    unknowns[b] = unknownsOf(solution, static_cast<int>(b));
+  });
   std::vector<char> how(contacts_.size(), 0);
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
-    const Vec3 relative = relativeDisplacement(c, solution);
+    const Vec3 relative = relativeDisplacement(c, unknowns);
     const double d = c.gap0 + c.normal.dot(relative);
     const Vec3 slip = tangential(relative, c.normal);
     // The friction direction follows the rigid part of the motion: the strain part of a
     // deformable block's corner motion is elastic vibration, and letting it steer friction
     // tilts the friction forces sideways so that a block with phi > theta creeps.
-    const Vec3 rigid_slip = tangential(relativeDisplacement(c, solution, true), c.normal);
+    const Vec3 rigid_slip = tangential(relativeDisplacement(c, unknowns, true), c.normal);
     c.gap = d;
     const ContactState before = c.state;
     if (c.state == ContactState::Open) {

@@ -248,6 +248,9 @@ class Simulation {
   /// u_i(P) - u_j(P') for the solution; with `rigid_part`, of the first 6 unknowns only.
   geometry::Vec3 relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
                                       bool rigid_part = false) const;
+  /// The same with every block's unknowns taken from `unknowns` (unknownsOf of each block).
+  geometry::Vec3 relativeDisplacement(const Contact& c, const std::vector<BlockVector>& unknowns,
+                                      bool rigid_part = false) const;
 
   DdaModel model_;
   DdaSettings settings_;
