@@ -17,6 +17,7 @@ Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
 Prints `figure: NAME` for every PNG written; a script that fails is reported and the others
 still run (exit status 1 then).
 """
+import concurrent.futures
 import os
 import subprocess
 import sys
@@ -72,10 +73,19 @@ def main():
     failed = False
     # Every figure names the scene it is of (summary.json's name).
     scene = read_summary(os.path.join(out, "summary.json")).get("name", "")
-    for png, script, arguments in jobs(out):
+    todo = jobs(out)
+
+    def draw(job):
+        png, script, arguments = job
         command = [sys.executable, os.path.join(HERE, script), *arguments, "-o",
                    os.path.join(out, png)] + (["--scene", scene] if scene else [])
-        done = subprocess.run(command, capture_output=True, text=True)
+        return subprocess.run(command, capture_output=True, text=True)
+
+    # The figures are independent scripts, each writing its own PNG: drawn as many at a time
+    # as there are cores, reported in the list's order.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        results = list(pool.map(draw, todo))
+    for (png, script, _), done in zip(todo, results):
         if done.returncode == 0 and os.path.exists(os.path.join(out, png)):
             print(f"figure: {png}", flush=True)
         else:
