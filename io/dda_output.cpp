@@ -193,10 +193,24 @@ DdaFrameWriter::DdaFrameWriter(std::filesystem::path folder, int every)
   if (every < 1) throw std::invalid_argument("DdaFrameWriter: frame interval must be >= 1");
 }
 
-void DdaFrameWriter::write(const DdaFrame& frame) {
+DdaFrameWriter::~DdaFrameWriter() {
+  try {
+    finish();
+  } catch (...) {  // a destructor must not throw; finish() reports it
+  }
+}
+
+void DdaFrameWriter::write(DdaFrame frame) {
   if (frame.step <= last_step_) return;
-  series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
+  finish();
   last_step_ = frame.step;
+  pending_ = std::async(std::launch::async, [this, frame = std::move(frame)] {
+    series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
+  });
+}
+
+void DdaFrameWriter::finish() {
+  if (pending_.valid()) pending_.get();
 }
 
 std::string formatMatrixMarket(const dda3d::SparseMatrix& k) {

@@ -5,6 +5,7 @@
 /// state, so the writers do not depend on the engine's internals.
 #include <array>
 #include <filesystem>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -107,22 +108,36 @@ class PvdSeries {
 };
 
 /// Writes dda_<step>.vtu frames into a folder and keeps dda.pvd listing them (PvdSeries).
+/// A frame is formatted and written on a thread of its own while the caller goes on (a frame
+/// of the Xiangjiaba region, 25 608 pieces, takes 0.35 s to compress and write); one frame at
+/// a time, in order, so the files are those of writing each at once.
 class DdaFrameWriter {
  public:
   /// Frames go to `folder` (which must exist); a frame is due every `every` steps (>= 1).
   DdaFrameWriter(std::filesystem::path folder, int every);
+  /// Waits for the frame being written (an error of it is dropped: call finish() to see it).
+  ~DdaFrameWriter();
+  DdaFrameWriter(const DdaFrameWriter&) = delete;
+  DdaFrameWriter& operator=(const DdaFrameWriter&) = delete;
   /// True when `step` is a multiple of the frame interval.
   bool due(int step) const { return step % every_ == 0; }
-  /// Writes the frame and updates dda.pvd. A frame whose step was already written is
-  /// ignored, so the caller may always write the last step.
-  void write(const DdaFrame& frame);
-  /// The frames written so far.
-  const std::vector<PvdEntry>& entries() const { return series_.entries(); }
+  /// Writes the frame and updates dda.pvd, after the frame before it is written (whose error,
+  /// if any, is thrown here). A frame whose step was already written is ignored, so the
+  /// caller may always write the last step.
+  void write(DdaFrame frame);
+  /// Waits until every frame is written; throws the error of one that could not be.
+  void finish();
+  /// The frames written so far (finish() first).
+  const std::vector<PvdEntry>& entries() {
+    finish();
+    return series_.entries();
+  }
 
  private:
   PvdSeries series_;
   int every_ = 1;
   int last_step_ = -1;
+  std::future<void> pending_;  ///< the frame being written
 };
 
 // ---------------------------------------------------------------------------------------------

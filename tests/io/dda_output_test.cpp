@@ -215,6 +215,21 @@ TEST(DdaFrame, PrincipalStressesOfARotatedUniaxialStress) {
   EXPECT_NEAR(shear.z(), -2e6, 1e-6);
 }
 
+TEST(DdaFrameWriter, AFrameThatCannotBeWrittenIsAnErrorOfTheNextCall) {
+  // Frames are written on a thread of their own: a failure there (the folder gone) must reach
+  // the caller, at the next write or at finish(), not be lost.
+  test::TempDir dir("dda_frames_gone");
+  const std::filesystem::path folder = dir.path() / "frames";
+  std::filesystem::create_directories(folder);
+  DdaFrameWriter writer(folder, 1);
+  writer.write(smallFrame(0, 0.0));
+  writer.finish();
+  EXPECT_TRUE(std::filesystem::exists(folder / "dda_000000.vtu"));
+  std::filesystem::remove_all(folder);
+  writer.write(smallFrame(1, 0.002));
+  EXPECT_ANY_THROW(writer.finish());
+}
+
 TEST(DdaFrameWriter, CollectionListsOnlyWrittenFrames) {
   const test::TempDir dir("dda_frames");
   DdaFrameWriter writer(dir.path(), 10);
