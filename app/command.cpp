@@ -166,7 +166,11 @@ std::string shellQuote(const std::string& text) {
 
 ScriptRun runScript(const std::string& python, const fs::path& script, const fs::path& folder,
                     const std::string& prefix) {
-  const std::string command = shellQuote(python) + " " + shellQuote(script.string()) + " " +
+  // The script may keep as many processes busy as the run may threads (--threads).
+  const std::size_t threads =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const std::string command = "ROCKMASS_THREADS=" + std::to_string(threads) + " " +
+                              shellQuote(python) + " " + shellQuote(script.string()) + " " +
                               shellQuote(folder.string()) + " 2>&1";
   ScriptRun run;
   FILE* pipe = popen(command.c_str(), "r");

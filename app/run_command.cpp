@@ -14,10 +14,13 @@
 #include <string>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "app/command.h"
 #include "app/run.h"
 #include "app/stability.h"
 #include "app/stages.h"
+#include "geometry/interrupt.h"
 #include "geometry/plane_section.h"
 #include "io/atomic_file.h"
 #include "io/block_output.h"
@@ -500,6 +503,11 @@ dda3d::DdaModel stabilityModel(RunContext& ctx, io::Scene& dda_scene,
   return model;
 }
 
+/// How many threads the run may keep busy: --threads, else every core (TBB's limit).
+std::size_t allowedThreads() {
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+}
+
 /// The DDA run of analysis.dda as computed (its frames written as it went), and its wall time.
 struct DdaStageRun {
   DdaStage stage;
@@ -548,7 +556,7 @@ struct StabilityRuns {
 /// whatever the threads, so the answers are those of running them one after the other. An
 /// error of either is reported as it would be then (the overload's first).
 StabilityRuns computeStability(const StagePlan& plan, const io::Scene& dda_scene,
-                               const dda3d::DdaModel& stability_model) {
+                               const dda3d::DdaModel& stability_model, bool side_by_side) {
   StabilityRuns runs;
   const auto start_state = Clock::now();
   runs.begin = stabilityStart(dda_scene, stability_model);
@@ -564,7 +572,7 @@ StabilityRuns computeStability(const StagePlan& plan, const io::Scene& dda_scene
     dda3d::FactorSearchResult result = runSceneStrengthReduction(dda_scene, begin);
     return TimedSearch{std::move(result), secondsSince(start)};
   };
-  if (plan.overload && plan.strength_reduction) {
+  if (plan.overload && plan.strength_reduction && side_by_side) {
     std::future<TimedSearch> beside = std::async(std::launch::async, overload);
     std::exception_ptr strength_error;
     try {
@@ -574,10 +582,9 @@ StabilityRuns computeStability(const StagePlan& plan, const io::Scene& dda_scene
     }
     runs.overload = beside.get();  // rethrows the overload's error
     if (strength_error) std::rethrow_exception(strength_error);
-  } else if (plan.overload) {
-    runs.overload = overload();
-  } else if (plan.strength_reduction) {
-    runs.strength = strength();
+  } else {
+    if (plan.overload) runs.overload = overload();
+    if (plan.strength_reduction) runs.strength = strength();
   }
   return runs;
 }
@@ -686,21 +693,38 @@ int runScene(const RunOptions& options, io::Scene scene_in) {
     if (stability) stability_model = stabilityModel(ctx, dda_scene, dda_blocks, dfn.network);
     // The DDA stage and the stability analyses share nothing but their inputs: with both,
     // the DDA stage runs on a thread of its own beside them (computeStability), and both are
-    // recorded in this order afterwards; an error of the DDA stage is reported first.
+    // recorded in this order afterwards; an error of the DDA stage is reported first (and
+    // said at once: the analyses beside it run to their end before the run stops). With
+    // --threads 1 the stages run one after the other, on the one thread.
+    const bool side_by_side = allowedThreads() > 1;
     std::future<DdaStageRun> dda_run;
-    if (plan.dda) {
-      dda_run = std::async(std::launch::async, [&] {
+    const auto ddaRun = [&] {
+      try {
         return computeDdaStage(ctx.out, dda_scene, dda_blocks, dfn.network, dda_overrides, glued);
-      });
-    }
+      } catch (const Interrupted&) {
+        throw;
+      } catch (const std::exception& e) {
+        if (side_by_side && stability) {
+          std::fprintf(stderr,
+                       "run: the DDA stage failed (%s); the run stops once the stability "
+                       "analyses beside it end\n",
+                       e.what());
+        }
+        throw;
+      }
+    };
+    if (plan.dda && side_by_side) dda_run = std::async(std::launch::async, ddaRun);
+    if (plan.dda && !side_by_side) recordDdaStage(ctx, ddaRun());
     std::optional<StabilityRuns> stability_runs;
     std::exception_ptr stability_error;
     try {
-      if (stability) stability_runs = computeStability(plan, dda_scene, *stability_model);
+      if (stability) {
+        stability_runs = computeStability(plan, dda_scene, *stability_model, side_by_side);
+      }
     } catch (...) {
       stability_error = std::current_exception();
     }
-    if (plan.dda) recordDdaStage(ctx, dda_run.get());
+    if (plan.dda && side_by_side) recordDdaStage(ctx, dda_run.get());
     if (stability_error) std::rethrow_exception(stability_error);
     if (stability) recordStability(ctx, *stability_runs, glued, dda_scene);
   }

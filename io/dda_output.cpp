@@ -188,8 +188,8 @@ void PvdSeries::add(double time, const std::string& file, const std::string& tex
   writeFileAtomically(folder_ / pvd_name_, formatPvd(entries_));
 }
 
-DdaFrameWriter::DdaFrameWriter(std::filesystem::path folder, int every)
-    : series_(std::move(folder), "dda.pvd"), every_(every) {
+DdaFrameWriter::DdaFrameWriter(std::filesystem::path folder, int every, bool in_background)
+    : series_(std::move(folder), "dda.pvd"), every_(every), in_background_(in_background) {
   if (every < 1) throw std::invalid_argument("DdaFrameWriter: frame interval must be >= 1");
 }
 
@@ -204,6 +204,10 @@ void DdaFrameWriter::write(DdaFrame frame) {
   if (frame.step <= last_step_) return;
   finish();
   last_step_ = frame.step;
+  if (!in_background_) {
+    series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
+    return;
+  }
   pending_ = std::async(std::launch::async, [this, frame = std::move(frame)] {
     series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
   });

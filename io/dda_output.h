@@ -108,13 +108,13 @@ class PvdSeries {
 };
 
 /// Writes dda_<step>.vtu frames into a folder and keeps dda.pvd listing them (PvdSeries).
-/// A frame is formatted and written on a thread of its own while the caller goes on (a frame
-/// of the Xiangjiaba region, 25 608 pieces, takes 0.35 s to compress and write); one frame at
-/// a time, in order, so the files are those of writing each at once.
+/// With `in_background`, a frame is formatted and written on a thread of its own while the
+/// caller goes on (a frame of the Xiangjiaba region, 25 608 pieces, takes 0.35 s to compress
+/// and write); one frame at a time, in order, so the files are those of writing each at once.
 class DdaFrameWriter {
  public:
   /// Frames go to `folder` (which must exist); a frame is due every `every` steps (>= 1).
-  DdaFrameWriter(std::filesystem::path folder, int every);
+  DdaFrameWriter(std::filesystem::path folder, int every, bool in_background = true);
   /// Waits for the frame being written (an error of it is dropped: call finish() to see it).
   ~DdaFrameWriter();
   DdaFrameWriter(const DdaFrameWriter&) = delete;
@@ -137,6 +137,7 @@ class DdaFrameWriter {
   PvdSeries series_;
   int every_ = 1;
   int last_step_ = -1;
+  bool in_background_ = true;
   std::future<void> pending_;  ///< the frame being written
 };
 

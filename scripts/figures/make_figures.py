@@ -82,8 +82,12 @@ def main():
         return subprocess.run(command, capture_output=True, text=True)
 
     # The figures are independent scripts, each writing its own PNG: drawn as many at a time
-    # as there are cores, reported in the list's order.
-    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+    # as the run may keep threads busy (ROCKMASS_THREADS, from `rockmass run --threads`; else
+    # the cores this process may use), reported in the list's order.
+    workers = int(os.environ.get("ROCKMASS_THREADS", "0") or 0)
+    if workers < 1:
+        workers = len(os.sched_getaffinity(0))
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, workers)) as pool:
         results = list(pool.map(draw, todo))
     for (png, script, _), done in zip(todo, results):
         if done.returncode == 0 and os.path.exists(os.path.join(out, png)):
