@@ -164,12 +164,14 @@ std::string shellQuote(const std::string& text) {
   return out + "'";
 }
 
+std::size_t allowedThreads() {
+  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+}
+
 ScriptRun runScript(const std::string& python, const fs::path& script, const fs::path& folder,
                     const std::string& prefix) {
   // The script may keep as many processes busy as the run may threads (--threads).
-  const std::size_t threads =
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  const std::string command = "ROCKMASS_THREADS=" + std::to_string(threads) + " " +
+  const std::string command = "ROCKMASS_THREADS=" + std::to_string(allowedThreads()) + " " +
                               shellQuote(python) + " " + shellQuote(script.string()) + " " +
                               shellQuote(folder.string()) + " 2>&1";
   ScriptRun run;

@@ -53,6 +53,9 @@ io::Scene loadScene(const CommonOptions& options, bool mesh_domain_supported = f
 void applyCommonOptions(io::Scene& scene, const CommonOptions& options,
                         bool mesh_domain_supported = false);
 
+/// How many threads the run may keep busy: --threads, else every core (TBB's limit).
+std::size_t allowedThreads();
+
 /// Creates the output folder (an error naming it when that is impossible) and removes a
 /// stale interruption marker from it.
 std::filesystem::path prepareOutput(const std::string& output);

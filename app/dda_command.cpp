@@ -10,8 +10,6 @@
 #include <tuple>
 #include <vector>
 
-#include <tbb/global_control.h>
-
 #include "app/command.h"
 #include "app/stages.h"
 #include "dda3d/simulation.h"
@@ -368,9 +366,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
 
   const int frame_every = options.frame_every > 0 ? options.frame_every : std::max(1, steps / 50);
   // Frames are written beside the steps unless the run may keep only one thread busy.
-  io::DdaFrameWriter frames(
-      out, frame_every,
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1);
+  io::DdaFrameWriter frames(out, frame_every, allowedThreads() > 1);
   // The histories go to disk as the run goes: a run of 10^7 steps would not fit in memory.
   stage.history = std::make_shared<io::StreamedFile>(out / "history.csv");
   stage.history->write(io::historyCsvHeader());

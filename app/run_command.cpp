@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/global_control.h>
-
 #include "app/command.h"
 #include "app/run.h"
 #include "app/stability.h"
@@ -503,11 +501,6 @@ dda3d::DdaModel stabilityModel(RunContext& ctx, io::Scene& dda_scene,
   return model;
 }
 
-/// How many threads the run may keep busy: --threads, else every core (TBB's limit).
-std::size_t allowedThreads() {
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-}
-
 /// The DDA run of analysis.dda as computed (its frames written as it went), and its wall time.
 struct DdaStageRun {
   DdaStage stage;
@@ -562,16 +555,15 @@ StabilityRuns computeStability(const StagePlan& plan, const io::Scene& dda_scene
   runs.begin = stabilityStart(dda_scene, stability_model);
   runs.start_seconds = secondsSince(start_state);
   const StabilityStart& begin = *runs.begin;
-  const auto overload = [&] {
-    const auto start = Clock::now();
-    dda3d::FactorSearchResult result = runSceneOverload(dda_scene, begin);
-    return TimedSearch{std::move(result), secondsSince(start)};
+  const auto timed = [&](auto search) {
+    return [&, search] {
+      const auto start = Clock::now();
+      dda3d::FactorSearchResult result = search(dda_scene, begin);
+      return TimedSearch{std::move(result), secondsSince(start)};
+    };
   };
-  const auto strength = [&] {
-    const auto start = Clock::now();
-    dda3d::FactorSearchResult result = runSceneStrengthReduction(dda_scene, begin);
-    return TimedSearch{std::move(result), secondsSince(start)};
-  };
+  const auto overload = timed(runSceneOverload);
+  const auto strength = timed(runSceneStrengthReduction);
   if (plan.overload && plan.strength_reduction && side_by_side) {
     std::future<TimedSearch> beside = std::async(std::launch::async, overload);
     std::exception_ptr strength_error;

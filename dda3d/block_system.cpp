@@ -95,29 +95,9 @@ void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVecto
   addSpring(i, a, j, b, k, d0, Parts{});
 }
 
-int BlockSystem::pairIndex(int i, int j) const {
-  const auto found = pair_index_.find(i < j ? pairKey(i, j) : pairKey(j, i));
-  return found == pair_index_.end() ? -1 : found->second;
-}
-
 void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k,
                             double d0, const Parts& parts) {
-  if (i >= 0 && i == j) {
-    // Both ends on one block: its diagonal block only.
-    if (!parts.i) return;
-    addOuter(diagonal_[static_cast<std::size_t>(i)], k, a, a, dofs_);
-    rhs_[static_cast<std::size_t>(i)] -= k * d0 * a;
-    addOuter(diagonal_[static_cast<std::size_t>(j)], k, b, b, dofs_);
-    rhs_[static_cast<std::size_t>(j)] -= k * d0 * b;
-    BlockMatrix& m = diagonal_[static_cast<std::size_t>(i)];
-    if (dofs_ == 6) {
-      m.topLeftCorner<6, 6>().noalias() +=
-          k * (a.head<6>() * b.head<6>().transpose() + b.head<6>() * a.head<6>().transpose());
-    } else {
-      m.noalias() += k * (a * b.transpose() + b * a.transpose());
-    }
-    return;
-  }
+  // Both ends on one block (i == j): its owner's parts i and j are the same thread's.
   if (i >= 0 && parts.i) {
     addOuter(diagonal_[static_cast<std::size_t>(i)], k, a, a, dofs_);
     rhs_[static_cast<std::size_t>(i)] -= k * d0 * a;
@@ -126,13 +106,21 @@ void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVecto
     addOuter(diagonal_[static_cast<std::size_t>(j)], k, b, b, dofs_);
     rhs_[static_cast<std::size_t>(j)] -= k * d0 * b;
   }
-  if (i >= 0 && j >= 0 && parts.pair) {
+  if (i >= 0 && j >= 0 && i != j && parts.pair) {
     bool transposed = false;
     BlockMatrix& m = pairBlock(i, j, transposed);
     if (transposed) {
       addOuter(m, k, b, a, dofs_);  // stored K_ji
     } else {
       addOuter(m, k, a, b, dofs_);
+    }
+  } else if (i >= 0 && i == j && parts.i) {
+    BlockMatrix& m = diagonal_[static_cast<std::size_t>(i)];
+    if (dofs_ == 6) {
+      m.topLeftCorner<6, 6>().noalias() +=
+          k * (a.head<6>() * b.head<6>().transpose() + b.head<6>() * a.head<6>().transpose());
+    } else {
+      m.noalias() += k * (a * b.transpose() + b * a.transpose());
     }
   }
 }

@@ -36,8 +36,6 @@ class BlockSystem {
   /// addSpring's terms that `parts` names, each added exactly as addSpring adds it.
   void addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k, double d0,
                  const Parts& parts);
-  /// Index of the coupled pair (i, j) (movable indices, either order), or -1.
-  int pairIndex(int i, int j) const;
   /// K_ii += m.
   void addDiagonal(int i, const BlockMatrix& m) { diagonal_[static_cast<std::size_t>(i)] += m; }
   /// F_i += f (no-op for i = -1).

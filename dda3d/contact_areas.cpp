@@ -206,7 +206,16 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   }
   group_start.push_back(order.size());
   using Iterator = std::vector<std::size_t>::iterator;
-  // The nearest entry to `sample` among [begin, end) that faces its way and lies on its plane.
+  // Whether entry c may take `sample`: it faces the sample's way and lies on its plane (within
+  // its distance); the squared distance between them in `distance`.
+  const auto takes = [](const Contact& c, const AreaSample& sample, double& distance) {
+    const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
+    if (normal.dot(sample.normal) < kAreaCosine) return false;
+    if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) return false;
+    distance = (c.point - sample.point).squaredNorm();
+    return true;
+  };
+  // The nearest entry to `sample` among [begin, end) that may take it.
   const auto nearestIn = [&](const AreaSample& sample, Iterator begin, Iterator end,
                              double& nearest_distance) {
     Contact* nearest = nullptr;
@@ -214,10 +223,8 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     for (auto it = begin; it != end; ++it) {
       Contact& c = contacts[*it];
       if (c.kind == ContactKind::FacePoint) continue;  // carries its own area
-      const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
-      if (normal.dot(sample.normal) < kAreaCosine) continue;
-      if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) continue;
-      const double distance = (c.point - sample.point).squaredNorm();
+      double distance = 0.0;
+      if (!takes(c, sample, distance)) continue;
       if (distance < nearest_distance) {
         nearest_distance = distance;
         nearest = &c;
@@ -244,10 +251,8 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     nearest_distance = std::numeric_limits<double>::infinity();
     const auto consider = [&](const ByX& e) {
       Contact& c = contacts[by_pair[e.position]];
-      const Vec3 normal = c.block_j == sample.block_b ? c.normal : Vec3(-c.normal);
-      if (normal.dot(sample.normal) < kAreaCosine) return;
-      if (std::abs(sample.normal.dot(c.point - sample.point)) > sample.distance) return;
-      const double distance = (c.point - sample.point).squaredNorm();
+      double distance = 0.0;
+      if (!takes(c, sample, distance)) return;
       if (distance < nearest_distance ||
           (distance == nearest_distance && e.position < nearest_position)) {
         nearest_distance = distance;

@@ -57,24 +57,20 @@ BlockVector Simulation::unknownsOf(const Eigen::VectorXd& solution, int block) c
 
 Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
                                       bool rigid_part) const {
-  const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
-  const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
-  BlockVector di = unknownsOf(solution, c.block_i);
-  BlockVector dj = unknownsOf(solution, c.block_j);
-  if (rigid_part) {
-    di.tail<kVoigtSize>().setZero();
-    dj.tail<kVoigtSize>().setZero();
-  }
-  return displacementMatrix(c.point, bi.centroid) * di -
-         displacementMatrix(c.foot, bj.centroid) * dj;
+  return relativeDisplacement(c, unknownsOf(solution, c.block_i), unknownsOf(solution, c.block_j),
+                              rigid_part);
 }
 
 Vec3 Simulation::relativeDisplacement(const Contact& c, const std::vector<BlockVector>& unknowns,
                                       bool rigid_part) const {
+  return relativeDisplacement(c, unknowns[static_cast<std::size_t>(c.block_i)],
+                              unknowns[static_cast<std::size_t>(c.block_j)], rigid_part);
+}
+
+Vec3 Simulation::relativeDisplacement(const Contact& c, BlockVector di, BlockVector dj,
+                                      bool rigid_part) const {
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
-  BlockVector di = unknowns[static_cast<std::size_t>(c.block_i)];
-  BlockVector dj = unknowns[static_cast<std::size_t>(c.block_j)];
   if (rigid_part) {
     di.tail<kVoigtSize>().setZero();
     dj.tail<kVoigtSize>().setZero();

@@ -251,6 +251,9 @@ class Simulation {
   /// The same with every block's unknowns taken from `unknowns` (unknownsOf of each block).
   geometry::Vec3 relativeDisplacement(const Contact& c, const std::vector<BlockVector>& unknowns,
                                       bool rigid_part = false) const;
+  /// The same with block i's unknowns `di` and block j's `dj`.
+  geometry::Vec3 relativeDisplacement(const Contact& c, BlockVector di, BlockVector dj,
+                                      bool rigid_part) const;
 
   DdaModel model_;
   DdaSettings settings_;

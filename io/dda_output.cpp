@@ -204,13 +204,14 @@ void DdaFrameWriter::write(DdaFrame frame) {
   if (frame.step <= last_step_) return;
   finish();
   last_step_ = frame.step;
-  if (!in_background_) {
+  auto add = [this, frame = std::move(frame)] {
     series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
-    return;
+  };
+  if (in_background_) {
+    pending_ = std::async(std::launch::async, std::move(add));
+  } else {
+    add();
   }
-  pending_ = std::async(std::launch::async, [this, frame = std::move(frame)] {
-    series_.add(frame.time, ddaFrameFileName(frame.step), formatDdaFrameVtu(frame));
-  });
 }
 
 void DdaFrameWriter::finish() {
