@@ -402,6 +402,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     const dda3d::StepReport report = sim.step();
     ++step;
     summary.late_contacts += report.late_contacts;
+    summary.contact_searches += report.contacts_searched;
     last = stepRecord(step, report, sim, phaseSeconds(report.profile));
     stage.steps_csv->write(io::formatStepsRow(last));
     addPhaseSeconds(phase_totals, last.phase_seconds);

@@ -10,15 +10,16 @@
 // BM_Region/<variant>: --region_steps=N steps (default 6) timed after --region_warmup=W
 // untimed ones (default 2: the first steps close the contacts), each variant a fresh
 // Simulation of the same model:
-//   as_run        the engine as every run uses it (kept pairs, every piece face searched)
-//   fresh_pairs   the broad phase every step (DdaSettings::detection.keep_pairs off)
-//   surface_only  only the blocks' surface faces searched (detection.surface_only on)
-//   both          kept pairs and surface only
+//   as_run        the engine as every run uses it (contacts kept between searches while the
+//                 blocks move less than DdaSettings::detection.search_margin, kept pairs,
+//                 every piece face searched)
+//   every_step    contacts searched every step (detection.search_margin 0)
+//   fresh_pairs   every_step with the broad phase every step (detection.keep_pairs off)
+//   surface_only  every_step with only the blocks' surface faces (detection.surface_only on)
 //   deformable    as_run with 12-unknown blocks (--region_deformable=1 only)
 // Counters: block-steps per second (all blocks of the model), contacts, open-close
-// iterations per step, how many times the broad phase ran in all 8 steps (kept pairs: once
-// while the blocks stay within the margin), and seconds per step of each phase
-// (Simulation::timings). After the
+// iterations per step, how many times the broad phase ran and how many steps searched their
+// contacts in all 8 steps, and seconds per step of each phase (Simulation::timings). After the
 // run, a table of each phase's time per step and its ratio to as_run's.
 #include <benchmark/benchmark.h>
 
@@ -117,6 +118,7 @@ void regionRun(benchmark::State& state, dda3d::DdaSettings settings) {
     state.counters["contacts"] = static_cast<double>(sim.contacts().size());
     state.counters["iterations_per_step"] = static_cast<double>(iterations) / timed_steps;
     state.counters["broad_phase_runs"] = sim.broadPhaseRuns();
+    state.counters["contact_searches"] = sim.contactSearches();
     state.ResumeTiming();
   }
 }
@@ -138,12 +140,13 @@ int main(int argc, char** argv) {
   std::vector<std::pair<std::string, dda3d::DdaSettings>> variants;
   dda3d::DdaSettings s = loaded.settings;
   variants.emplace_back("as_run", s);
+  s.detection.search_margin = 0.0;
+  variants.emplace_back("every_step", s);
   s.detection.keep_pairs = false;
   variants.emplace_back("fresh_pairs", s);
+  s.detection.keep_pairs = true;
   s.detection.surface_only = true;
   variants.emplace_back("surface_only", s);
-  s.detection.keep_pairs = true;
-  variants.emplace_back("both", s);
   if (deformable) {
     s = loaded.settings;
     s.kinematics = dda3d::Kinematics::Deformable;
@@ -189,8 +192,8 @@ int main(int argc, char** argv) {
     }
     std::printf("\n");
   }
-  for (const char* counter :
-       {"block_steps_per_s", "contacts", "iterations_per_step", "broad_phase_runs"}) {
+  for (const char* counter : {"block_steps_per_s", "contacts", "iterations_per_step",
+                              "broad_phase_runs", "contact_searches"}) {
     std::printf("%-22s", counter);
     for (const auto& variant : variants) {
       const rockmass::bench::Record* r = reporter.find("BM_Region/" + variant.first);

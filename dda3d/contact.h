@@ -35,6 +35,9 @@ struct Contact {
   int face = -1;     ///< VertexFace: reference face of piece_j
   int edge_i = -1;   ///< EdgeEdge: edge of piece_i (index into PieceTopology::edges)
   int edge_j = -1;   ///< EdgeEdge: edge of piece_j
+  /// EdgeEdge: the face of piece_j whose normal the entry takes (a corner of two faces that
+  /// touch face to face), -1 when the normal is across the two edges.
+  int normal_face = -1;
 
   geometry::Vec3 point = geometry::Vec3::Zero();    ///< P at the start of the step (m)
   geometry::Vec3 foot = geometry::Vec3::Zero();     ///< P', projection of P on the plane (m)

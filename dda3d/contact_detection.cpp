@@ -15,6 +15,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 namespace rockmass::dda3d {
@@ -117,6 +118,7 @@ struct FaceCrossing {
   bool touching = false;       ///< the edges lie in faces with opposite normals, planes near pc
   bool carried = false;        ///< the crossing is within the end margin of an end of either edge
   Vec3 normal = Vec3::Zero();  ///< of b's face, out of b
+  int face = -1;               ///< that face of b
 };
 
 /// Looks for faces around edge `ea` of a and edge `eb` of b that touch face to face (opposite
@@ -149,6 +151,7 @@ FaceCrossing faceCrossing(const PieceView& a, const PieceView& b, std::size_t ea
           std::abs(pb.normal.dot(pc) - pb.offset) <= distance) {
         crossing.touching = true;
         crossing.normal = pb.normal;
+        crossing.face = fb;
         best = alignment;
       }
     }
@@ -369,6 +372,7 @@ void edgeToEdge(const PieceView& a, const PieceView& b, const Range& range, doub
       Contact c = pairContact(ContactKind::EdgeEdge, a, b);
       c.edge_i = static_cast<int>(ea);
       c.edge_j = static_cast<int>(eb);
+      c.normal_face = on_faces.touching ? on_faces.face : -1;
       c.point = pc;
       c.normal = n;
       c.gap0 = n.dot(pc - qc);
@@ -693,6 +697,68 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
   std::vector<Contact> contacts = withoutDuplicates(std::move(found), blocks);
   assignAreas(contacts, joined(std::move(areas)));
   return contacts;
+}
+
+double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contact>& contacts) {
+  const auto pieceOf = [&](int block, int piece) -> const Polyhedron& {
+    return blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)];
+  };
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, contacts.size(), 1024), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& range, double deepest) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          Contact& c = contacts[k];
+          const Polyhedron& a = pieceOf(c.block_i, c.piece_i);
+          const Polyhedron& b = pieceOf(c.block_j, c.piece_j);
+          if (c.kind == ContactKind::EdgeEdge) {
+            const PieceTopology& ta = blocks[static_cast<std::size_t>(c.block_i)]
+                                          .topology[static_cast<std::size_t>(c.piece_i)];
+            const PieceTopology& tb = blocks[static_cast<std::size_t>(c.block_j)]
+                                          .topology[static_cast<std::size_t>(c.piece_j)];
+            const std::array<int, 2>& ea = ta.edges[static_cast<std::size_t>(c.edge_i)];
+            const std::array<int, 2>& eb = tb.edges[static_cast<std::size_t>(c.edge_j)];
+            const Vec3& a0 = a.vertices[static_cast<std::size_t>(ea[0])];
+            const Vec3& b0 = b.vertices[static_cast<std::size_t>(eb[0])];
+            const Vec3 u = a.vertices[static_cast<std::size_t>(ea[1])] - a0;
+            const Vec3 w = b.vertices[static_cast<std::size_t>(eb[1])] - b0;
+            const Vec3 cross = u.cross(w);
+            const double cross_norm = cross.norm();
+            const double den = cross_norm * cross_norm;
+            if (!(den > 0.0)) {  // parallel edges: the entry keeps its geometry
+              deepest = std::max(deepest, -c.gap0);
+              continue;
+            }
+            // The closest points of the two lines, as edgeToEdge finds the crossing.
+            const Vec3 r = a0 - b0;
+            const double uu = u.dot(u), uw = u.dot(w), ww = w.dot(w), ur = u.dot(r), wr = w.dot(r);
+            const Vec3 pc = a0 + ((uw * wr - ww * ur) / den) * u;
+            const Vec3 qc = b0 + ((uu * wr - uw * ur) / den) * w;
+            Vec3 n = cross / cross_norm;
+            if (c.normal_face >= 0) {
+              n = facePlane(b, static_cast<std::size_t>(c.normal_face)).normal;
+            } else if (n.dot(c.normal) < 0.0) {
+              n = -n;
+            }
+            c.point = pc;
+            c.normal = n;
+            c.gap0 = n.dot(pc - qc);
+          } else {
+            const Plane plane = facePlane(b, static_cast<std::size_t>(c.face));
+            c.point = c.kind == ContactKind::VertexFace
+                          ? a.vertices[static_cast<std::size_t>(c.vertex)]
+                          : blocks[static_cast<std::size_t>(c.block_i)]
+                                .face_points[static_cast<std::size_t>(c.piece_i)]
+                                .points[static_cast<std::size_t>(c.vertex)]
+                                .position;
+            c.normal = plane.normal;
+            c.gap0 = plane.normal.dot(c.point) - plane.offset;
+          }
+          c.foot = c.point - c.gap0 * c.normal;
+          deepest = std::max(deepest, -c.gap0);
+        }
+        return deepest;
+      },
+      [](double x, double y) { return std::max(x, y); });
 }
 
 }  // namespace rockmass::dda3d

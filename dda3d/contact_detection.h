@@ -107,4 +107,12 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const PreviousFace& previous_face,
                                   CandidatePairs* candidates = nullptr);
 
+/// Sets the geometry of kept entries (point, foot, normal, gap0 without any overlap) from the
+/// blocks' current geometry, each as the narrow phase computes it for the same vertex and
+/// face, edges, or sub-contact point and face: the entries of an earlier detection moved with
+/// their blocks (Simulation, DdaSettings::detection.search_margin). An edge crossing keeps its
+/// normal's side; one without a face of b for its normal whose edges became parallel keeps
+/// its normal. Returns the deepest penetration among them (m, >= 0).
+double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contact>& contacts);
+
 }  // namespace rockmass::dda3d

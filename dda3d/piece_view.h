@@ -30,19 +30,22 @@ struct Plane {
   double area;
 };
 
+/// The plane of face f of `piece` (Newell's normal, through its first vertex).
+inline Plane facePlane(const Polyhedron& piece, std::size_t f) {
+  const std::vector<int>& face = piece.faces[f];
+  Vec3 newell = Vec3::Zero();
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    newell += piece.vertices[face[k]].cross(piece.vertices[face[(k + 1) % face.size()]]);
+  }
+  const double twice_area = newell.norm();
+  const Vec3 n = twice_area > 0.0 ? Vec3(newell / twice_area) : Vec3(Vec3::Zero());
+  return {n, n.dot(piece.vertices[face[0]]), 0.5 * twice_area};
+}
+
 inline std::vector<Plane> facePlanes(const Polyhedron& piece) {
   std::vector<Plane> planes;
   planes.reserve(piece.faces.size());
-  for (std::size_t f = 0; f < piece.faces.size(); ++f) {
-    const std::vector<int>& face = piece.faces[f];
-    Vec3 newell = Vec3::Zero();
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      newell += piece.vertices[face[k]].cross(piece.vertices[face[(k + 1) % face.size()]]);
-    }
-    const double twice_area = newell.norm();
-    const Vec3 n = twice_area > 0.0 ? Vec3(newell / twice_area) : Vec3(Vec3::Zero());
-    planes.push_back({n, n.dot(piece.vertices[face[0]]), 0.5 * twice_area});
-  }
+  for (std::size_t f = 0; f < piece.faces.size(); ++f) planes.push_back(facePlane(piece, f));
   return planes;
 }
 

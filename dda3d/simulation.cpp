@@ -222,11 +222,67 @@ const DdaJoint& Simulation::jointOf(const Contact& c) const {
   return model_.joints.at(static_cast<std::size_t>(c.joint >= 0 ? c.joint : model_.default_joint));
 }
 
+namespace {
+
+/// Carries the state of `old` (the same entry in the last step) over to `c`, whose geometry
+/// is this step's: shear spring and sliding direction turned into c's tangent plane, the
+/// late-found overlap no deeper than c's penetration.
+void carryOver(Contact& c, const Contact& old) {
+  c.state = old.state;
+  c.bonded = old.bonded;
+  c.shear = tangential(old.shear, c.normal);
+  const Vec3 slide = tangential(old.slide_direction, c.normal);
+  c.slide_direction = slide.norm() > 0.0 ? Vec3(slide.normalized()) : Vec3(Vec3::Zero());
+  c.normal_force = old.normal_force;
+  c.slip_length = old.slip_length;
+  c.was_closed = old.was_closed;
+  c.slipped = old.slipped;
+  c.overlap = std::min(old.overlap, std::max(0.0, -c.gap0));
+}
+
+/// Resets an entry's per-step counters at the start of a step; gap0 takes its overlap.
+void startStep(Contact& c) {
+  c.gap0 += c.overlap;
+  c.gap = c.gap0;
+  c.flips = 0;
+  c.toggles = 0;
+  c.held = false;
+}
+
+}  // namespace
+
+double Simulation::keptEntriesMargin() const {
+  return settings_.detection.search_margin * settings_.max_displacement_ratio * half_domain_;
+}
+
+bool Simulation::keepEntries() {
+  if (!(settings_.detection.search_margin > 0.0) || !entries_searched_) return false;
+  const double margin = keptEntriesMargin();
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) return false;
+  }
+  // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
+  // by at most how far they moved since: a step that moves no block farther than its reach
+  // then less that motion cannot close it (checkStep redoes a step that moves one farther).
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
+  }
+  return true;
+}
+
+bool Simulation::refreshEntries(double depth) {
+  std::vector<Contact> kept = contacts_;
+  if (refreshContacts(blocks_, kept) > depth) return false;
+  tbb::parallel_for(std::size_t{0}, kept.size(), [&](std::size_t k) {
+    Contact& c = kept[k];
+    carryOver(c, contacts_[k]);
+    startStep(c);
+  });
+  contacts_ = std::move(kept);
+  return true;
+}
+
 int Simulation::detectContacts() {
-  const PreviousContacts previous(blocks_, contacts_);
-  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
-    return previous.face(bi, pi, v, bj, pj);
-  };
   // Each block's reach: how far its vertices may move in this step, from its motion and
   // the step control's limit 1.5 g2 l0; step() redoes a step that moves a block farther, so
   // a gap wider than the two blocks' reaches cannot close within it.
@@ -237,9 +293,27 @@ int Simulation::detectContacts() {
   for (std::size_t b = 0; b < blocks_.size(); ++b)
     reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
   // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
+  const double depth = 2.0 * kAcceptedDisplacementRatio * g2_l0;
+  const std::vector<double> own_reach = reach_;
+  if (keepEntries()) {
+    if (refreshEntries(depth)) {
+      startFromCreep();
+      splitAssembly();
+      return 0;
+    }
+    reach_ = own_reach;
+  }
+  const PreviousContacts previous(blocks_, contacts_);
+  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
+    return previous.face(bi, pi, v, bj, pj);
+  };
   std::vector<Contact> detected =
-      findContacts(blocks_, reach_, 2.0 * kAcceptedDisplacementRatio * g2_l0, previous_face,
+      findContacts(blocks_, reach_, depth, previous_face,
                    settings_.detection.keep_pairs ? &candidates_ : nullptr);
+  ++searches_;
+  entries_searched_ = true;
+  searched_reach_ = reach_;
+  moved_since_search_.assign(blocks_.size(), 0.0);
   // Each entry carries its last step's state over on its own (in parallel); the late ones
   // and the coupled pairs are gathered after, in entry order.
   std::vector<char> is_late(detected.size(), 0);
@@ -249,17 +323,7 @@ int Simulation::detectContacts() {
     Contact& c = detected[k];
     const int found = previous.find(c);
     if (found >= 0) {
-      const Contact& old = contacts_[static_cast<std::size_t>(found)];
-      c.state = old.state;
-      c.bonded = old.bonded;
-      c.shear = tangential(old.shear, c.normal);
-      const Vec3 slide = tangential(old.slide_direction, c.normal);
-      c.slide_direction = slide.norm() > 0.0 ? Vec3(slide.normalized()) : Vec3(Vec3::Zero());
-      c.normal_force = old.normal_force;
-      c.slip_length = old.slip_length;
-      c.was_closed = old.was_closed;
-      c.slipped = old.slipped;
-      c.overlap = std::min(old.overlap, std::max(0.0, -c.gap0));
+      carryOver(c, contacts_[static_cast<std::size_t>(found)]);
     } else if (c.gap0 < -late_depth) {
       // First seen deeper than the allowed penetration: the detection missed it while it
       // closed (the step control keeps every contact it sees shallower). Its spring starts
@@ -270,17 +334,13 @@ int Simulation::detectContacts() {
       c.overlap = -c.gap0;
       is_late[k] = 1;
     }
-    c.gap0 += c.overlap;
+    startStep(c);
     if (found < 0) {
       // Touching within round-off counts as closed: an open contact only closes once it
       // penetrates past the hysteresis threshold.
       c.state = c.gap0 <= settings_.open_threshold_ratio * half_domain_ ? ContactState::Locked
                                                                         : ContactState::Open;
     }
-    c.gap = c.gap0;
-    c.flips = 0;
-    c.toggles = 0;
-    c.held = false;
     const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
     if (i >= 0 && j >= 0) pair_of[k] = {std::min(i, j), std::max(i, j)};
   });
@@ -299,6 +359,13 @@ int Simulation::detectContacts() {
     detected[k].joint = contactJoint(model_, blocks_, detected[k]);
   });
   contacts_ = std::move(detected);
+  startFromCreep();
+  if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
+  splitAssembly();
+  return late;
+}
+
+void Simulation::startFromCreep() {
   // A contact that crept in the last step (its slip no longer than the shear spring's stretch
   // at the shear strength) starts this one stuck, its spring carrying the shear strength along
   // the last slip (an elastic predictor). Where the loads still need more, the first iteration
@@ -317,9 +384,6 @@ int Simulation::detectContacts() {
     c.state = ContactState::Locked;
     c.shear = stretch * c.slide_direction;
   }
-  if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
-  splitAssembly();
-  return late;
 }
 
 void Simulation::assembleBlockTerms(double dt) {
@@ -789,6 +853,9 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
       }
     });
     for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
+    if (moved_since_search_.size() == blocks_.size()) {
+      for (std::size_t b = 0; b < blocks_.size(); ++b) moved_since_search_[b] += moved[b];
+    }
     springs_after_step_ = springEnergy();
     last_solution_ = solution;
     last_dt_ = dt;
@@ -819,7 +886,9 @@ StepReport Simulation::step() {
   solver_iterations_ = 0;
   {
     PhaseTimer timer(step_profile_, StepPhase::DetectContacts);
+    const int searches_before = searches_;
     report.late_contacts = detectContacts();
+    report.contacts_searched = searches_ > searches_before;
   }
   const std::vector<Contact> at_start = contacts_;
   double dt = dt_;

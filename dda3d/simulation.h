@@ -97,7 +97,10 @@ class Simulation {
   /// Starts from `contacts` (another run's, of a model with the same blocks and pieces): the
   /// next step's detection carries their states, shear springs and forces over to the entries
   /// it finds again, as between two steps of one run. Call before the first step.
-  void adoptContacts(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
+  void adoptContacts(std::vector<Contact> contacts) {
+    contacts_ = std::move(contacts);
+    entries_searched_ = false;
+  }
   /// Starts from rest: zero velocities and accelerations (a0). For a model brought to rest
   /// before (settledModel) and run dynamically: its a0 from the loads alone (gravity, the
   /// deformable blocks' initial stress) would ignore the contact forces that hold it, and the
@@ -118,6 +121,12 @@ class Simulation {
   }
   /// How many times the broad phase ran (its pairs are kept between steps, CandidatePairs).
   int broadPhaseRuns() const { return candidates_.builds(); }
+  /// How many steps searched their contacts (the others kept the last ones,
+  /// DdaSettings::detection.search_margin).
+  int contactSearches() const { return searches_; }
+  /// How far (m) every block may move after a contact search before a step searches again
+  /// (DdaSettings::detection.search_margin times g2 l0).
+  double keptEntriesMargin() const;
   ContactCounts contactCounts() const;
   std::vector<MonitorState> monitors() const;
   /// Sub-matrices assembled so far.
@@ -152,6 +161,14 @@ class Simulation {
   /// Finds the step's contacts, carrying states over; returns how many were found late
   /// (first seen deeper than the allowed penetration, Contact::overlap).
   int detectContacts();
+  /// True when this step may keep the last step's entries (DdaSettings::detection.search_margin);
+  /// then cuts reach_ by how far each block moved since the search.
+  bool keepEntries();
+  /// The kept entries moved to the blocks' geometry, their states carried on; false when one
+  /// is deeper than `depth` (m; the step searches instead).
+  bool refreshEntries(double depth);
+  /// Contacts that crept in the last step start this one stuck (an elastic predictor).
+  void startFromCreep();
   /// Static mode: the factor on a block's mass matrix in its inertia term (kStaticInertiaRatio,
   /// at the run's time step).
   double staticMassScale(const BlockState& block) const;
@@ -286,6 +303,11 @@ class Simulation {
   std::vector<double> reach_;  // per block, m (contactReach())
   /// The broad phase's pairs, kept between steps while the blocks move less than a margin.
   CandidatePairs candidates_;
+  /// Contact entries kept between steps (keepEntries()): whether contacts_ came from a search
+  /// of this run, each block's reach in that search and how far it moved since (m).
+  bool entries_searched_ = false;
+  std::vector<double> searched_reach_, moved_since_search_;
+  int searches_ = 0;
   std::unique_ptr<BlockSystem> system_;
   std::unique_ptr<LinearSolver> solver_;
   std::vector<BlockMatrix> base_k_;  // block terms per movable block

@@ -112,6 +112,15 @@ struct DdaSettings {
     bool surface_only = false;
     /// The broad phase's pairs are kept between steps (CandidatePairs): the same contacts.
     bool keep_pairs = true;
+    /// How far (in g2 l0: max_displacement_ratio times the half domain size) every block may
+    /// move after a contact search before a step searches again; 0: every step searches.
+    /// Between searches the entries are kept, their geometry following their blocks
+    /// (refreshContacts), and each step's reach is cut by how far its block has moved since
+    /// the search, so no contact the search would find can close unseen. Entries that would
+    /// appear or vanish within that motion (a corner crossing a face's boundary) wait for the
+    /// next search (docs/dda3d.md, "Contacts kept between steps"). The scene's
+    /// analysis.dda.contact_search_margin.
+    double search_margin = 1e-3;
   } detection;
 };
 

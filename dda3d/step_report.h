@@ -97,6 +97,9 @@ struct StepReport {
   /// Contacts the step's detection found first deeper than the allowed penetration: a miss
   /// of the detection, their depth then not pushed back (Contact::overlap).
   int late_contacts = 0;
+  /// The step searched its contacts (else it kept the last step's entries,
+  /// DdaSettings::detection.search_margin).
+  bool contacts_searched = false;
   double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
   int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
   /// m: the largest vertex displacement of a block times its inertia scale

@@ -69,6 +69,7 @@ struct DdaRunSummary {
   /// Contacts first found deeper than the allowed penetration over the run (a miss of the
   /// detection; their depth is not pushed back: dda3d::Contact::overlap).
   int late_contacts = 0;
+  int contact_searches = 0;  ///< steps that searched their contacts (the others kept theirs)
   /// Seconds per phase over every step (empty: summed from `steps`).
   std::vector<std::pair<std::string, double>> phase_totals;
   /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).

@@ -250,6 +250,59 @@ INSTANTIATE_TEST_SUITE_P(Solvers, TenBlockColumn,
                                                                               : "Deformable");
                          });
 
+// Contacts kept between searches (DdaSettings::detection.search_margin, docs/dda3d.md,
+// "Contacts kept between steps"). A column of ten cubes settling statically on a slab moves
+// its blocks by micrometres a step: with the default margin (1e-3 g2 l0, 5 um here) the steps
+// keep the first search's entries, and the column must settle as with a search every step
+// (the same entries: stacked flush faces, no corner at a face's boundary), its top cube's
+// settlement within 1e-6 of it (round-off of the refreshed geometry over 60 steps) and the
+// same contact count.
+TEST(KeptContacts, AColumnSettlesAsWithASearchEveryStep) {
+  DdaSettings every_step = hardSettings(Kinematics::Rigid);
+  every_step.mode = AnalysisMode::Static;
+  every_step.detection.search_margin = 0.0;
+  DdaSettings kept = every_step;
+  kept.detection.search_margin = DdaSettings{}.detection.search_margin;
+  Simulation a(tenBlockColumn(), every_step);
+  Simulation b(tenBlockColumn(), kept);
+  constexpr int kSteps = 60;
+  for (int k = 0; k < kSteps; ++k) {
+    const StepReport ra = a.step();
+    const StepReport rb = b.step();
+    ASSERT_EQ(ra.contacts.total, rb.contacts.total) << "step " << k;
+  }
+  EXPECT_EQ(a.contactSearches(), kSteps);
+  EXPECT_LE(b.contactSearches(), kSteps / 10);
+  const double settlement = a.centroidDisplacement(10).z();
+  EXPECT_LT(settlement, -1e-7);  // the column's contact springs took its weight
+  EXPECT_NEAR(b.centroidDisplacement(10).z(), settlement, 1e-6 * std::abs(settlement));
+}
+
+// A cube dropped 2 cm onto a slab (dynamic) moves farther than the margin every step while it
+// falls and bounces (to step ~120): each such step searches, and no contact is first found
+// deep (late); once it rests, its steps keep the contacts.
+TEST(KeptContacts, AFallingCubeIsSearchedEveryStepUntilItRests) {
+  DdaModel model;
+  scenes::setRock(model, 35.0);
+  model.blocks.push_back(scenes::boxBlock({-2, -2, -1}, {2, 2, 0}, 0, true));
+  model.blocks.push_back(scenes::boxBlock({-0.5, -0.5, 0.02}, {0.5, 0.5, 1.02}, 0, false));
+  model.gravity = Vec3(0, 0, -kG);
+  DdaSettings settings = hardSettings(Kinematics::Rigid);
+  Simulation sim(model, settings);
+  int late = 0, kept_while_falling = 0, kept_at_the_end = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double height = sim.blocks()[1].centroid.z();
+    const StepReport r = sim.step();
+    late += r.late_contacts;
+    if (height > 0.501 && !r.contacts_searched) ++kept_while_falling;
+    if (k >= 150 && !r.contacts_searched) ++kept_at_the_end;
+  }
+  EXPECT_EQ(late, 0);
+  EXPECT_EQ(kept_while_falling, 0);
+  EXPECT_EQ(kept_at_the_end, 50);  // at rest on the slab: the last 50 steps keep theirs
+  EXPECT_NEAR(sim.blocks()[1].centroid.z(), 0.5, 1e-3);
+}
+
 /// 200 cubes dropped from a loose lattice (0.2 m gaps, staggered rows) into a fixed box.
 DdaModel pile() {
   DdaModel model;

@@ -1105,5 +1105,18 @@ TEST(SceneDdaBlocks, SurfaceOnlyDetection) {
             "bad.yaml:5:19: analysis.dda.surface_only: expected true or false, got 'yes'");
 }
 
+TEST(SceneDdaBlocks, ContactSearchMargin) {
+  const Scene scene = parseScene(valid_head + "analysis:\n  dda:\n    contact_search_margin: 0\n",
+                                 "every_step.yaml");
+  EXPECT_EQ(scene.analysis.dda->engine.detection.search_margin, 0.0);
+  // Absent: the engine's default, 1e-3 g2 l0.
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_EQ(plain.analysis.dda->engine.detection.search_margin, 1e-3);
+  // Above the resting reach's half (0.05 g2 l0) a step's cut reach could reach zero.
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    contact_search_margin: 0.1\n"),
+            "bad.yaml:5:28: analysis.dda.contact_search_margin: expected a number in [0, 0.05], "
+            "got 0.1");
+}
+
 }  // namespace
 }  // namespace rockmass::io
