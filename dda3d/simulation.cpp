@@ -226,7 +226,8 @@ namespace {
 
 /// Carries the state of `old` (the same entry in the last step) over to `c`, whose geometry
 /// is this step's: shear spring and sliding direction turned into c's tangent plane, the
-/// late-found overlap no deeper than c's penetration.
+/// late-found overlap no deeper than c's penetration. `old` may be `c` itself (a kept entry):
+/// each field is read before it is written.
 void carryOver(Contact& c, const Contact& old) {
   c.state = old.state;
   c.bonded = old.bonded;
@@ -271,14 +272,14 @@ bool Simulation::keepEntries() {
 }
 
 bool Simulation::refreshEntries(double depth) {
-  std::vector<Contact> kept = contacts_;
-  if (refreshContacts(blocks_, kept) > depth) return false;
-  tbb::parallel_for(std::size_t{0}, kept.size(), [&](std::size_t k) {
-    Contact& c = kept[k];
-    carryOver(c, contacts_[k]);
+  // In place: a search that follows (an entry deeper than `depth`) only reads the entries'
+  // keys and states (PreviousContacts), which the refresh leaves as they were.
+  if (refreshContacts(blocks_, contacts_) > depth) return false;
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    Contact& c = contacts_[k];
+    carryOver(c, c);
     startStep(c);
   });
-  contacts_ = std::move(kept);
   return true;
 }
 
@@ -297,8 +298,7 @@ int Simulation::detectContacts() {
   const std::vector<double> own_reach = reach_;
   if (keepEntries()) {
     if (refreshEntries(depth)) {
-      startFromCreep();
-      splitAssembly();
+      startFromCreep();  // the same contacts: the search's split of the assembly holds
       return 0;
     }
     reach_ = own_reach;
