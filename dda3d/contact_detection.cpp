@@ -700,6 +700,7 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
 }
 
 double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contact>& contacts) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   const auto pieceOf = [&](int block, int piece) -> const Polyhedron& {
     return blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)];
   };
@@ -724,8 +725,11 @@ double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contac
             const Vec3 cross = u.cross(w);
             const double cross_norm = cross.norm();
             const double den = cross_norm * cross_norm;
-            if (!(den > 0.0)) {  // parallel edges: the entry keeps its geometry
-              deepest = std::max(deepest, -c.gap0);
+            if (!(den > 0.0)) {
+              // Parallel edges: the entry keeps its point and normal; gap0 (the last step's,
+              // its overlap added) goes back to the geometric gap. Non-finite: a search.
+              c.gap0 -= c.overlap;
+              deepest = std::isfinite(den) ? std::max(deepest, -c.gap0) : kInfinity;
               continue;
             }
             // The closest points of the two lines, as edgeToEdge finds the crossing.
@@ -754,7 +758,9 @@ double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contac
             c.gap0 = plane.normal.dot(c.point) - plane.offset;
           }
           c.foot = c.point - c.gap0 * c.normal;
-          deepest = std::max(deepest, -c.gap0);
+          // A non-finite gap reads as infinitely deep: the step searches, and the search
+          // reports the geometry (findContacts' non-finite check).
+          deepest = std::isfinite(c.gap0) ? std::max(deepest, -c.gap0) : kInfinity;
         }
         return deepest;
       },

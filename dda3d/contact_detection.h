@@ -112,7 +112,8 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
 /// face, edges, or sub-contact point and face: the entries of an earlier detection moved with
 /// their blocks (Simulation, DdaSettings::detection.search_margin). An edge crossing keeps its
 /// normal's side; one without a face of b for its normal whose edges became parallel keeps
-/// its normal. Returns the deepest penetration among them (m, >= 0).
+/// its normal. Returns the deepest penetration among them (m, >= 0; infinite when a gap is
+/// not finite).
 double refreshContacts(const std::vector<BlockState>& blocks, std::vector<Contact>& contacts);
 
 }  // namespace rockmass::dda3d

@@ -60,6 +60,11 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   const std::vector<int> watched =
       every_block ? std::vector<int>{} : watchedBlocks(sim, settings.watch);
   int calm = 0;
+  // Calm steps from the first of the current calm steps that searched its contacts on: the
+  // run is at rest only after settle_steps of them, so that rest is judged on contacts
+  // searched at the start of the calm steps, not on entries kept from an older search
+  // (DdaSettings::detection.search_margin; docs/stability.md, "Equilibrium criterion").
+  int calm_searched = 0;
   int pushed = 0;
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
                         settings.failure_ratio > 0.0 && settings.failure_steps > 0;
@@ -128,11 +133,15 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     const bool still = result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;
+    calm_searched =
+        still && (calm_searched > 0 || report.contacts_searched) ? calm_searched + 1 : 0;
     if (after_step) after_step(result);
-    if (calm >= settings.settle_steps) {
+    if (calm_searched >= settings.settle_steps) {
       result.reached = true;
       break;
     }
+    // Calm on kept contacts: the next step searches them, and the calm steps count from it.
+    if (calm > 0 && calm_searched == 0) sim.requestContactSearch();
     pushed = can_fail && result.unbalanced_ratio >= settings.failure_ratio ? pushed + 1 : 0;
     if (pushed >= settings.failure_steps) {
       result.failing = true;

@@ -257,7 +257,9 @@ double Simulation::keptEntriesMargin() const {
 }
 
 bool Simulation::keepEntries() {
-  if (!(settings_.detection.search_margin > 0.0) || !entries_searched_) return false;
+  if (!(settings_.detection.search_margin > 0.0) || !entries_searched_ || search_requested_) {
+    return false;
+  }
   const double margin = keptEntriesMargin();
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) return false;
@@ -312,6 +314,7 @@ int Simulation::detectContacts() {
                    settings_.detection.keep_pairs ? &candidates_ : nullptr);
   ++searches_;
   entries_searched_ = true;
+  search_requested_ = false;
   searched_reach_ = reach_;
   moved_since_search_.assign(blocks_.size(), 0.0);
   // Each entry carries its last step's state over on its own (in parallel); the late ones

@@ -124,6 +124,9 @@ class Simulation {
   /// How many steps searched their contacts (the others kept the last ones,
   /// DdaSettings::detection.search_margin).
   int contactSearches() const { return searches_; }
+  /// The next step searches its contacts whatever the blocks' motion (runToEquilibrium's
+  /// calm steps must start at a search).
+  void requestContactSearch() { search_requested_ = true; }
   /// How far (m) every block may move after a contact search before a step searches again
   /// (DdaSettings::detection.search_margin times g2 l0).
   double keptEntriesMargin() const;
@@ -306,6 +309,7 @@ class Simulation {
   /// Contact entries kept between steps (keepEntries()): whether contacts_ came from a search
   /// of this run, each block's reach in that search and how far it moved since (m).
   bool entries_searched_ = false;
+  bool search_requested_ = false;  ///< requestContactSearch()
   std::vector<double> searched_reach_, moved_since_search_;
   int searches_ = 0;
   std::unique_ptr<BlockSystem> system_;
