@@ -60,10 +60,12 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   const std::vector<int> watched =
       every_block ? std::vector<int>{} : watchedBlocks(sim, settings.watch);
   int calm = 0;
-  // Calm steps from the first of the current calm steps that searched its contacts on: the
-  // run is at rest only after settle_steps of them, so that rest is judged on contacts
-  // searched at the start of the calm steps, not on entries kept from an older search
-  // (DdaSettings::detection.search_margin; docs/stability.md, "Equilibrium criterion").
+  // Calm steps in a row that each searched their contacts: the run is at rest only after
+  // settle_steps of them, so that rest is judged as with a search every step, never on
+  // entries kept from an older search (DdaSettings::detection.search_margin;
+  // docs/stability.md, "Equilibrium criterion"). A search after many kept steps changes more
+  // entries at once than one a step; judged from it alone, runs at a ratio of 2e-5 never
+  // came to rest (each such search broke the calm steps it started).
   int calm_searched = 0;
   int pushed = 0;
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
@@ -133,15 +135,14 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     const bool still = result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
     calm = still ? calm + 1 : 0;
-    calm_searched =
-        still && (calm_searched > 0 || report.contacts_searched) ? calm_searched + 1 : 0;
+    calm_searched = still && report.contacts_searched ? calm_searched + 1 : 0;
     if (after_step) after_step(result);
     if (calm_searched >= settings.settle_steps) {
       result.reached = true;
       break;
     }
-    // Calm on kept contacts: the next step searches them, and the calm steps count from it.
-    if (calm > 0 && calm_searched == 0) sim.requestContactSearch();
+    // Calm: the next step searches its contacts, so that the calm steps that decide do.
+    if (still) sim.requestContactSearch();
     pushed = can_fail && result.unbalanced_ratio >= settings.failure_ratio ? pushed + 1 : 0;
     if (pushed >= settings.failure_steps) {
       result.failing = true;

@@ -16,7 +16,7 @@ using Json = SummaryJson;
 constexpr const char* kSearchRule =
     "a run is at rest when settle_steps steps in a row are accepted on every check with "
     "unbalanced ratio (step displacement / (g dt^2 / 2)) and kinetic ratio (kinetic energy / "
-    "work of the loads) at most their tolerances, the first of them searching its contacts "
+    "work of the loads) at most their tolerances, each of them searching its contacts "
     "(not keeping an earlier search's), within max_steps; the first factor "
     "(ascending) at which the run is not at rest marks the loss of stability; the critical "
     "factor is the middle of [last factor at rest, first factor not at rest], bisected to the "
