@@ -15,6 +15,11 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
+#if defined(__linux__)
+#include <pthread.h>
+#include <sched.h>
+#endif
+
 #include "dda3d/block_jacobi_preconditioner.h"
 #include "dda3d/solver_backends.h"
 #include "scenarios/dda_matrices.h"
@@ -190,6 +195,24 @@ TEST(LinearSolver, CholmodKeepsItsAnalysisWhileThePatternHolds) {
   EXPECT_TRUE(solver->stats().analyzed);
   EXPECT_LT(relativeError(solver->solve(coupled * expected), expected), 1e-10);
 }
+
+#if defined(__linux__)
+// CHOLMOD's factorization holds its thread on the CPU it runs on while it works
+// (cholmod_solver.cpp: a thread the scheduler moved between cores factorized 2x slower); the
+// thread's own CPU set must be given back afterwards, whole, on success and on failure.
+TEST(LinearSolver, CholmodGivesItsThreadsCpuSetBack) {
+  cpu_set_t before, after;
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof(before), &before), 0);
+  const std::unique_ptr<LinearSolver> solver = makeLinearSolver({.kind = SolverKind::Cholmod});
+  const SparseMatrix k = test::ddaSystemMatrix(test::DdaSystemSpec{});
+  ASSERT_TRUE(solver->factorize(k));
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof(after), &after), 0);
+  EXPECT_TRUE(CPU_EQUAL(&before, &after));
+  EXPECT_FALSE(solver->factorize(SparseMatrix(-1.0 * k)));  // not positive definite
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof(after), &after), 0);
+  EXPECT_TRUE(CPU_EQUAL(&before, &after));
+}
+#endif
 
 TEST(LinearSolver, NonPositiveDefiniteMatrixIsAFailureForEveryBackend) {
   // K - 2 lambda_min I has a negative eigenvalue: no Cholesky factor exists. The shift moves
