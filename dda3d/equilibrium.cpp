@@ -59,7 +59,6 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   const bool every_block = settings.watch == EquilibriumWatch::All;
   const std::vector<int> watched =
       every_block ? std::vector<int>{} : watchedBlocks(sim, settings.watch);
-  int calm = 0;
   // Calm steps in a row that each searched their contacts: the run is at rest only after
   // settle_steps of them, so that rest is judged as with a search every step, never on
   // entries kept from an older search (DdaSettings::detection.search_margin;
@@ -134,7 +133,6 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     result.kinetic_ratio = kinetic > 0.0 ? kinetic / std::max(of_loads, 1e-300) : 0.0;
     const bool still = result.unbalanced_ratio <= settings.unbalanced_ratio &&
                        result.kinetic_ratio <= settings.kinetic_ratio;
-    calm = still ? calm + 1 : 0;
     calm_searched = still && report.contacts_searched ? calm_searched + 1 : 0;
     if (after_step) after_step(result);
     if (calm_searched >= settings.settle_steps) {

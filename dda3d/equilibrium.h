@@ -18,7 +18,8 @@ enum class EquilibriumWatch {
 /// When a run counts as being at rest. A step is calm when its unbalanced ratio is at most
 /// `unbalanced_ratio` and its kinetic energy ratio at most `kinetic_ratio` (a step that fails
 /// the step control's checks throws StepFailure); equilibrium is `settle_steps` calm steps in
-/// a row.
+/// a row, each of which searched its contacts (runToEquilibrium makes the step after a calm
+/// one search; DdaSettings::detection.search_margin).
 struct EquilibriumSettings {
   int max_steps = 1000;  ///< step limit; a run that is not at rest by then is not in equilibrium
   /// Largest vertex displacement of a step d divided by 1/2 g dt^2, the distance a free body

@@ -1,6 +1,7 @@
 #include "dda3d/model_validation.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -29,10 +30,11 @@ void checkSettings(const DdaSettings& settings) {
   if (!(settings.dynamic_ratio >= 0.0 && settings.dynamic_ratio <= 1.0)) {
     throw std::invalid_argument("dynamic_ratio must be in [0, 1]");
   }
-  // Below half the resting reach (0.1 g2 l0): a kept step's reach, cut by the motion since
-  // the search, stays positive.
-  if (!(settings.detection.search_margin >= 0.0 && settings.detection.search_margin <= 0.05)) {
-    throw std::invalid_argument("detection.search_margin must be in [0, 0.05] (of g2 l0)");
+  if (!(settings.detection.search_margin >= 0.0 &&
+        settings.detection.search_margin <= kMaxSearchMargin)) {
+    std::ostringstream what;
+    what << "detection.search_margin must be in [0, " << kMaxSearchMargin << "] (of g2 l0)";
+    throw std::invalid_argument(what.str());
   }
   if (!(settings.max_displacement_ratio > 0.0)) {
     throw std::invalid_argument("max_displacement_ratio must be > 0");

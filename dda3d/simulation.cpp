@@ -256,19 +256,15 @@ double Simulation::keptEntriesMargin() const {
   return settings_.detection.search_margin * settings_.max_displacement_ratio * half_domain_;
 }
 
-bool Simulation::keepEntries() {
-  if (!(settings_.detection.search_margin > 0.0) || !entries_searched_ || search_requested_) {
+bool Simulation::canKeepEntries() const {
+  // moved_since_search_ is empty until this run's first search (and after adoptContacts).
+  if (!(settings_.detection.search_margin > 0.0) || moved_since_search_.empty() ||
+      search_requested_) {
     return false;
   }
   const double margin = keptEntriesMargin();
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) return false;
-  }
-  // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
-  // by at most how far they moved since: a step that moves no block farther than its reach
-  // then less that motion cannot close it (checkStep redoes a step that moves one farther).
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
   }
   return true;
 }
@@ -297,13 +293,15 @@ int Simulation::detectContacts() {
     reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
   // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
   const double depth = 2.0 * kAcceptedDisplacementRatio * g2_l0;
-  const std::vector<double> own_reach = reach_;
-  if (keepEntries()) {
-    if (refreshEntries(depth)) {
-      startFromCreep();  // the same contacts: the search's split of the assembly holds
-      return 0;
+  if (canKeepEntries() && refreshEntries(depth)) {
+    // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
+    // by at most how far they moved since: a step that moves no block farther than its reach
+    // then less that motion cannot close it (checkStep redoes a step that moves one farther).
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
     }
-    reach_ = own_reach;
+    startFromCreep();  // the same contacts: the search's split of the assembly holds
+    return 0;
   }
   const PreviousContacts previous(blocks_, contacts_);
   const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
@@ -313,7 +311,6 @@ int Simulation::detectContacts() {
       findContacts(blocks_, reach_, depth, previous_face,
                    settings_.detection.keep_pairs ? &candidates_ : nullptr);
   ++searches_;
-  entries_searched_ = true;
   search_requested_ = false;
   searched_reach_ = reach_;
   moved_since_search_.assign(blocks_.size(), 0.0);
@@ -856,8 +853,8 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
       }
     });
     for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
-    if (moved_since_search_.size() == blocks_.size()) {
-      for (std::size_t b = 0; b < blocks_.size(); ++b) moved_since_search_[b] += moved[b];
+    for (std::size_t b = 0; b < moved_since_search_.size(); ++b) {
+      moved_since_search_[b] += moved[b];
     }
     springs_after_step_ = springEnergy();
     last_solution_ = solution;

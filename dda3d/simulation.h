@@ -99,7 +99,7 @@ class Simulation {
   /// it finds again, as between two steps of one run. Call before the first step.
   void adoptContacts(std::vector<Contact> contacts) {
     contacts_ = std::move(contacts);
-    entries_searched_ = false;
+    moved_since_search_.clear();  // not this run's search: the next step searches
   }
   /// Starts from rest: zero velocities and accelerations (a0). For a model brought to rest
   /// before (settledModel) and run dynamically: its a0 from the loads alone (gravity, the
@@ -125,7 +125,7 @@ class Simulation {
   /// DdaSettings::detection.search_margin).
   int contactSearches() const { return searches_; }
   /// The next step searches its contacts whatever the blocks' motion (runToEquilibrium's
-  /// calm steps must start at a search).
+  /// calm steps that decide rest each search theirs).
   void requestContactSearch() { search_requested_ = true; }
   /// How far (m) every block may move after a contact search before a step searches again
   /// (DdaSettings::detection.search_margin times g2 l0).
@@ -164,9 +164,9 @@ class Simulation {
   /// Finds the step's contacts, carrying states over; returns how many were found late
   /// (first seen deeper than the allowed penetration, Contact::overlap).
   int detectContacts();
-  /// True when this step may keep the last step's entries (DdaSettings::detection.search_margin);
-  /// then cuts reach_ by how far each block moved since the search.
-  bool keepEntries();
+  /// True when this step may keep the last step's entries (DdaSettings::detection.search_margin):
+  /// no block has moved farther than keptEntriesMargin() since the search nor reaches farther.
+  bool canKeepEntries() const;
   /// The kept entries moved to the blocks' geometry, their states carried on; false when one
   /// is deeper than `depth` (m; the step searches instead).
   bool refreshEntries(double depth);
@@ -306,9 +306,8 @@ class Simulation {
   std::vector<double> reach_;  // per block, m (contactReach())
   /// The broad phase's pairs, kept between steps while the blocks move less than a margin.
   CandidatePairs candidates_;
-  /// Contact entries kept between steps (keepEntries()): whether contacts_ came from a search
-  /// of this run, each block's reach in that search and how far it moved since (m).
-  bool entries_searched_ = false;
+  /// Contact entries kept between steps (canKeepEntries()): each block's reach in this run's
+  /// last search and how far it moved since (m); both empty before the run's first search.
   bool search_requested_ = false;  ///< requestContactSearch()
   std::vector<double> searched_reach_, moved_since_search_;
   int searches_ = 0;

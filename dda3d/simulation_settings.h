@@ -20,6 +20,11 @@ enum class TimeIntegration {
   Shi,
 };
 
+/// The largest DdaSettings::detection.search_margin (in g2 l0): half the resting reach
+/// (0.1 g2 l0), so that a kept step's reach, cut by the motion since the search, stays
+/// positive.
+constexpr double kMaxSearchMargin = 0.05;
+
 /// Settings of a run (scene: analysis.dda). The defaults are the scene contract's: a scene
 /// that omits a key gets the value below (docs/scene-reference.md, "analysis.dda").
 struct DdaSettings {

@@ -415,8 +415,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio, {.low = 0, .high = 1});
   e.biot_coefficient = m.numberOr("biot_coefficient", e.biot_coefficient, {.low = 0, .high = 1});
   e.detection.surface_only = m.valueOr("surface_only", e.detection.surface_only, &Cursor::boolean);
-  e.detection.search_margin =
-      m.numberOr("contact_search_margin", e.detection.search_margin, {.low = 0, .high = 0.05});
+  e.detection.search_margin = m.numberOr("contact_search_margin", e.detection.search_margin,
+                                         {.low = 0, .high = dda3d::kMaxSearchMargin});
   if (const auto damage = m.get("damage_map")) {
     const Cursor d = damage->map({"every"});
     dda.damage_every = d.integerOr("every", std::max(1, dda.steps / 10), closed(1, 1e7));

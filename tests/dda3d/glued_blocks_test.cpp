@@ -174,36 +174,57 @@ TEST(NarrowPhase, APointIsNotHeldDeeperThanItsShallowestEntry) {
   EXPECT_EQ(at_corner, 1);
 }
 
+/// The unit cube cut by 6 random planes (`seed`): pairs of neighbouring pieces glued into
+/// blocks, the rest blocks of their own, each block pulled 1 % away from the cube's centre so
+/// that gaps open and close as they drift.
+std::vector<BlockState> gluedCutCubePulledApart(std::uint64_t seed) {
+  std::vector<std::vector<Polyhedron>> groups;
+  const std::vector<Polyhedron> pieces = cutCube(seed, 6);
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    if (p % 3 == 0 && p + 1 < pieces.size()) {
+      groups.push_back({pieces[p], pieces[p + 1]});
+      ++p;
+    } else {
+      groups.push_back({pieces[p]});
+    }
+  }
+  for (std::vector<Polyhedron>& group : groups) {
+    Vec3 centre = Vec3::Zero();
+    int n = 0;
+    for (const Polyhedron& p : group) {
+      for (const Vec3& v : p.vertices) centre += v, ++n;
+    }
+    centre /= n;
+    for (Polyhedron& p : group) {
+      for (Vec3& v : p.vertices) v += 0.01 * (centre - Vec3::Constant(0.5));
+    }
+  }
+  return blocksOf(groups);
+}
+
+/// Moves `block` rigidly by `shift` and a small turn `turn` (rad, first order) about its
+/// centroid; returns the farthest any vertex moved (m).
+double moveRigidly(BlockState& block, const Vec3& shift, const Vec3& turn) {
+  const Vec3 centre = block.centroid;
+  double farthest = 0.0;
+  for (Polyhedron& p : block.pieces) {
+    for (Vec3& v : p.vertices) {
+      const Vec3 next = centre + shift + (v - centre) + turn.cross(v - centre);
+      farthest = std::max(farthest, (next - v).norm());
+      v = next;
+    }
+  }
+  block.updateMassProperties();
+  return farthest;
+}
+
 // The broad-phase pairs kept between steps (CandidatePairs) give exactly the contacts of a
 // broad phase run every step, while the blocks drift by random steps of up to 3 mm and turn
 // by up to 2 mrad, over 40 steps: the pairs are found again only when a block has moved
 // farther than its margin, and a pair that comes into reach is never missed.
 TEST(CandidatePairs, KeptPairsGiveTheContactsOfAFreshBroadPhase) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    std::vector<std::vector<Polyhedron>> groups;
-    const std::vector<Polyhedron> pieces = cutCube(seed, 6);
-    // Pairs of neighbouring pieces glued into blocks, the rest blocks of their own.
-    for (std::size_t p = 0; p < pieces.size(); ++p) {
-      if (p % 3 == 0 && p + 1 < pieces.size()) {
-        groups.push_back({pieces[p], pieces[p + 1]});
-        ++p;
-      } else {
-        groups.push_back({pieces[p]});
-      }
-    }
-    // Pull the blocks apart a little so that gaps open and close as they drift.
-    for (std::vector<Polyhedron>& group : groups) {
-      Vec3 centre = Vec3::Zero();
-      int n = 0;
-      for (const Polyhedron& p : group) {
-        for (const Vec3& v : p.vertices) centre += v, ++n;
-      }
-      centre /= n;
-      for (Polyhedron& p : group) {
-        for (Vec3& v : p.vertices) v += 0.01 * (centre - Vec3::Constant(0.5));
-      }
-    }
-    std::vector<BlockState> blocks = blocksOf(groups);
+    std::vector<BlockState> blocks = gluedCutCubePulledApart(seed);
     const std::vector<double> reach(blocks.size(), 0.004);
     CandidatePairs kept(0.01);
     geometry::Rng rng = geometry::makeRng(seed, 7);
@@ -228,17 +249,7 @@ TEST(CandidatePairs, KeptPairsGiveTheContactsOfAFreshBroadPhase) {
       for (std::size_t b = 0; b < blocks.size(); ++b) {
         const Vec3 shift = 0.003 * Vec3(uniform(), uniform(), uniform());
         const Vec3 turn = 0.002 * Vec3(uniform(), uniform(), uniform());
-        const Vec3 centre = blocks[b].centroid;
-        double farthest = 0.0;
-        for (Polyhedron& p : blocks[b].pieces) {
-          for (Vec3& v : p.vertices) {
-            const Vec3 next = centre + shift + (v - centre) + turn.cross(v - centre);
-            farthest = std::max(farthest, (next - v).norm());
-            v = next;
-          }
-        }
-        blocks[b].updateMassProperties();
-        kept.moved(b, farthest);
+        kept.moved(b, moveRigidly(blocks[b], shift, turn));
       }
     }
     EXPECT_GT(compared, 500) << "seed " << seed;
@@ -264,28 +275,7 @@ std::tuple<int, int, int, int, int, int, int> entryKey(const Contact& c) {
 // step on the Xiangjiaba foundation): nearly every entry is found again by the detection.
 TEST(KeptContacts, FollowTheirBlocksAsTheDetectionPlacesThem) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    std::vector<std::vector<Polyhedron>> groups;
-    const std::vector<Polyhedron> pieces = cutCube(seed, 6);
-    for (std::size_t p = 0; p < pieces.size(); ++p) {
-      if (p % 3 == 0 && p + 1 < pieces.size()) {
-        groups.push_back({pieces[p], pieces[p + 1]});
-        ++p;
-      } else {
-        groups.push_back({pieces[p]});
-      }
-    }
-    for (std::vector<Polyhedron>& group : groups) {
-      Vec3 centre = Vec3::Zero();
-      int n = 0;
-      for (const Polyhedron& p : group) {
-        for (const Vec3& v : p.vertices) centre += v, ++n;
-      }
-      centre /= n;
-      for (Polyhedron& p : group) {
-        for (Vec3& v : p.vertices) v += 0.01 * (centre - Vec3::Constant(0.5));
-      }
-    }
-    std::vector<BlockState> blocks = blocksOf(groups);
+    std::vector<BlockState> blocks = gluedCutCubePulledApart(seed);
     const std::vector<double> reach(blocks.size(), 0.004);
     std::vector<Contact> kept = findContacts(blocks, reach, 0.02, kNoPrevious);
     ASSERT_GT(kept.size(), 100u) << "seed " << seed;
@@ -296,11 +286,7 @@ TEST(KeptContacts, FollowTheirBlocksAsTheDetectionPlacesThem) {
       for (BlockState& block : blocks) {
         const Vec3 shift = 2e-5 * Vec3(uniform(), uniform(), uniform());
         const Vec3 turn = 2e-5 * Vec3(uniform(), uniform(), uniform());
-        const Vec3 centre = block.centroid;
-        for (Polyhedron& p : block.pieces) {
-          for (Vec3& v : p.vertices) v = centre + shift + (v - centre) + turn.cross(v - centre);
-        }
-        block.updateMassProperties();
+        moveRigidly(block, shift, turn);
       }
       const double deepest = refreshContacts(blocks, kept);
       double expected_deepest = 0.0;
