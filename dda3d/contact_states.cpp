@@ -309,13 +309,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
 }
 
 void Simulation::recordContactHistory(const Eigen::VectorXd& solution) {
-  for (Contact& c : contacts_) {
-    if (c.state == ContactState::Open) continue;
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    Contact& c = contacts_[k];
+    if (c.state == ContactState::Open) return;
     c.was_closed = true;
     if (c.state == ContactState::Sliding && solution.size() > 0) {
       c.slipped += tangential(relativeDisplacement(c, solution), c.normal).norm();
     }
-  }
+  });
 }
 
 double Simulation::holdLimit(const Contact& c) const {

@@ -2,6 +2,10 @@
 // strain, springs) and dissipated (friction, the scheme's numerical damping, contact state
 // changes), for checking that nothing grows beyond the work of the loads (docs/dda3d.md,
 // "Energy account").
+#include <tbb/parallel_for.h>
+
+#include <array>
+
 #include "dda3d/block_terms.h"
 #include "dda3d/simulation.h"
 
@@ -9,21 +13,49 @@ namespace rockmass::dda3d {
 
 using geometry::Vec3;
 
+template <class Gap, class Shear>
+std::vector<std::array<double, 2>> Simulation::contactSprings(const Gap& gap,
+                                                              const Shear& shear) const {
+  // Each closed contact's normal spring 1/2 k d^2 and, locked, its shear spring
+  // 1/2 k_s |s|^2, in parallel (the caller sums them in contact order).
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  std::vector<std::array<double, 2>> springs(contacts_.size(), {0.0, 0.0});
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    const Contact& c = contacts_[k];
+    if (c.state == ContactState::Open) return;
+    const double d = gap(c);
+    springs[k][0] = 0.5 * penalty_ * d * d;
+    if (c.state == ContactState::Locked) springs[k][1] = 0.5 * ks * shear(c).squaredNorm();
+  });
+  return springs;
+}
+
 void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) {
   // Friction: the forces applied in the last solve, -f N s on i and +f N s on j, did the work
   // -f N s . (u_i - u_j); the blocks lost that much.
   // The transverse tangent springs of sliding contacts are friction too: the work against
   // them, k x^2 (x the rigid slip across the direction), is dissipated, not stored; the
   // numerical term below dots the whole matrix, so their 1/2 k x^2 is taken out of it.
-  double transverse = 0.0;
-  for (std::size_t k = 0; k < contacts_.size() && k < applied_friction_.size(); ++k) {
+  // Each contact's terms in parallel, summed in contact order as one loop would.
+  const std::size_t applied = std::min(contacts_.size(), applied_friction_.size());
+  std::vector<std::array<double, 2>> terms(applied, {0.0, 0.0});
+  tbb::parallel_for(std::size_t{0}, applied, [&](std::size_t k) {
     const AppliedFriction& f = applied_friction_[k];
-    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) continue;
-    friction_work_ -= f.force.dot(relativeDisplacement(contacts_[k], solution));
+    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) return;
+    terms[k][0] = f.force.dot(relativeDisplacement(contacts_[k], solution));
     if (f.transverse_stiffness > 0.0) {
       const double x = f.across.dot(relativeDisplacement(contacts_[k], solution, true));
-      friction_work_ += f.transverse_stiffness * x * x;
-      transverse += 0.5 * f.transverse_stiffness * x * x;
+      terms[k][1] = f.transverse_stiffness * x * x;
+    }
+  });
+  double transverse = 0.0;
+  for (std::size_t k = 0; k < applied; ++k) {
+    const AppliedFriction& f = applied_friction_[k];
+    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) continue;
+    friction_work_ -= terms[k][0];
+    if (f.transverse_stiffness > 0.0) {
+      friction_work_ += terms[k][1];
+      transverse += 0.5 * terms[k][1];
     }
   }
   // Springs at the start of the step, in the states the step ended with: the energy
@@ -36,13 +68,14 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // numerical dissipation instead of being counted as a change.
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
-  for (const Contact& c : contacts_) {
+  const std::vector<std::array<double, 2>> springs =
+      contactSprings([&](const Contact& c) { return c.gap0; },
+                     [&](const Contact& c) { return tangential(c.shear, c.normal); });
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
     if (c.state == ContactState::Open) continue;
-    (c.gap0 > 0.0 ? pulling : springs_start) += 0.5 * penalty_ * c.gap0 * c.gap0;
-    if (c.state == ContactState::Locked) {
-      springs_start += 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
-    }
+    (c.gap0 > 0.0 ? pulling : springs_start) += springs[k][0];
+    if (c.state == ContactState::Locked) springs_start += springs[k][1];
   }
   contact_changes_ += springs_start - springs_after_step_;
   numerical_dissipation_ -= pulling;
@@ -93,11 +126,14 @@ EnergyAccount Simulation::energy() const {
 
 double Simulation::springEnergy() const {
   double energy = pointSpringEnergy();
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
-  for (const Contact& c : contacts_) {
+  const std::vector<std::array<double, 2>> springs =
+      contactSprings([](const Contact& c) { return c.gap; },
+                     [](const Contact& c) -> const Vec3& { return c.shear; });
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
     if (c.state == ContactState::Open) continue;
-    energy += 0.5 * penalty_ * c.gap * c.gap;
-    if (c.state == ContactState::Locked) energy += 0.5 * ks * c.shear.squaredNorm();
+    energy += springs[k][0];
+    if (c.state == ContactState::Locked) energy += springs[k][1];
   }
   return energy;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -53,12 +54,16 @@ constexpr double kRestingReachRatio = 0.1;
 /// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
 double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
                   const Eigen::VectorXd& solution, const std::vector<double>& reach) {
+  std::vector<double> ratio(blocks.size(), 0.0);
+  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+    if (blocks[b].fixed) return;
+    ratio[b] =
+        largestVertexDisplacement(blocks[b], system.unknowns(solution, blocks[b].dof_offset)) /
+        reach[b];
+  });
   double largest = 0.0;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
-    if (blocks[b].fixed) continue;
-    const double moved =
-        largestVertexDisplacement(blocks[b], system.unknowns(solution, blocks[b].dof_offset));
-    largest = std::max(largest, moved / reach[b]);
+    if (!blocks[b].fixed) largest = std::max(largest, ratio[b]);
   }
   return largest;
 }
@@ -389,9 +394,13 @@ void Simulation::startFromCreep() {
 void Simulation::assembleBlockTerms(double dt) {
   ActiveTerms step;
   step.inertia = true;
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+  const bool deformable = settings_.kinematics == Kinematics::Deformable;
+  const bool body_force = !model_.gravity.isZero(0.0) || !model_.seismic.isZero(0.0);
+  // Each block's own terms in parallel (each writes only its own), the loads on a block then
+  // added in the order of their lists: the same sums as one loop.
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
     const BlockState& block = blocks_[b];
-    if (block.fixed) continue;
+    if (block.fixed) return;
     const std::size_t m = static_cast<std::size_t>(block.dof_offset);
     BlockMatrix& k = base_k_[m];
     BlockVector& f = base_f_[m];
@@ -399,20 +408,21 @@ void Simulation::assembleBlockTerms(double dt) {
     k.setZero();
     f.setZero();
     loads.setZero();
-    if (settings_.kinematics == Kinematics::Deformable) {
+    if (deformable) {
       k += elasticStiffness(block, elastic_[static_cast<std::size_t>(block.material)]);
-      step.elastic = true;
-      if (!block.stress.isZero(0.0)) {
-        f += initialStressLoad(block);
-        step.initial_stress = true;
-      }
+      if (!block.stress.isZero(0.0)) f += initialStressLoad(block);
     }
     inertiaTerms(inertiaMatrix(block), block.velocity, block.acceleration, dt, scheme_, k, f);
-    if (!model_.gravity.isZero(0.0) || !model_.seismic.isZero(0.0)) {
+    if (body_force) {
       loads += bodyForceLoad(
           block, model_.seismic.isZero(0.0) ? model_.gravity : model_.gravity + model_.seismic);
-      step.body_force = true;
     }
+  });
+  for (const BlockState& block : blocks_) {
+    if (block.fixed) continue;
+    step.elastic |= deformable;
+    step.initial_stress |= deformable && !block.stress.isZero(0.0);
+    step.body_force |= body_force;
   }
   for (std::size_t l = 0; l < load_points_.size(); ++l) {
     const BlockState& block = blocks_[static_cast<std::size_t>(load_points_[l].block)];
@@ -422,16 +432,22 @@ void Simulation::assembleBlockTerms(double dt) {
     step.point_loads = true;
   }
   // With pores in the blocks, the area each entry wets (from the same clipped face).
-  const bool pores =
-      settings_.biot_coefficient > 0.0 && settings_.kinematics == Kinematics::Deformable;
+  const bool pores = settings_.biot_coefficient > 0.0 && deformable;
   std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
-  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+  // Each face's water load in parallel (a clipped face integrated: the region has some 10 000),
+  // added to its block in the list's order.
+  std::vector<BlockVector> face_loads(model_.pressures.size());
+  tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
     const DdaPressure& p = model_.pressures[e];
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+    if (block.fixed) return;
+    face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
+                                 pores ? &wetted[e] : nullptr);
+  });
+  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
     if (block.fixed) continue;
-    load_f_[static_cast<std::size_t>(block.dof_offset)] +=
-        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
-                     pores ? &wetted[e] : nullptr);
+    load_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
     step.surface_pressure = true;
   }
   if (pores) step.block_pore_pressure |= addBlockPorePressure(wetted);
@@ -694,12 +710,11 @@ bool Simulation::addBlockPorePressure(const std::vector<double>& wetted_area) {
 
 double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest,
                                         double* weighed) const {
-  double largest = 0.0;
-  double largest_weighed = 0.0;
-  int largest_block = -1;
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+  // Each block's largest vertex displacement in parallel, then the largest in block order.
+  std::vector<double> moved(blocks_.size(), 0.0);
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
     const BlockState& block = blocks_[b];
-    if (block.fixed) continue;
+    if (block.fixed) return;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
     double block_largest = 0.0;
     for (const geometry::Polyhedron& piece : block.pieces) {
@@ -707,6 +722,15 @@ double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fa
         block_largest = std::max(block_largest, (movedPoint(v, block.centroid, d) - v).norm());
       }
     }
+    moved[b] = block_largest;
+  });
+  double largest = 0.0;
+  double largest_weighed = 0.0;
+  int largest_block = -1;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const BlockState& block = blocks_[b];
+    if (block.fixed) continue;
+    const double block_largest = moved[b];
     if (block_largest > largest) {
       largest = block_largest;
       largest_block = static_cast<int>(b);
@@ -874,6 +898,21 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
   report.penalty = penalty_;
 }
 
+namespace {
+
+/// `to` = `from`, in parallel, in `to`'s buffer when it is large enough.
+void copyContacts(const std::vector<Contact>& from, std::vector<Contact>& to) {
+  to.resize(from.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::copy(from.begin() + static_cast<std::ptrdiff_t>(range.begin()),
+                                from.begin() + static_cast<std::ptrdiff_t>(range.end()),
+                                to.begin() + static_cast<std::ptrdiff_t>(range.begin()));
+                    });
+}
+
+}  // namespace
+
 StepReport Simulation::step() {
   if (interruptRequested()) {
     std::ostringstream where;
@@ -890,12 +929,12 @@ StepReport Simulation::step() {
     report.late_contacts = detectContacts();
     report.contacts_searched = searches_ > searches_before;
   }
-  const std::vector<Contact> at_start = contacts_;
+  copyContacts(contacts_, step_start_);
   double dt = dt_;
   Eigen::VectorXd solution;
   for (int attempt = 1;; ++attempt) {
     report.attempts = attempt;
-    if (attempt > 1) contacts_ = at_start;
+    if (attempt > 1) copyContacts(step_start_, contacts_);
     {
       PhaseTimer timer(step_profile_, StepPhase::AssembleBlockTerms);
       assembleBlockTerms(dt);
