@@ -270,7 +270,9 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     // The friction direction follows the rigid part of the motion: the strain part of a
     // deformable block's corner motion is elastic vibration, and letting it steer friction
     // tilts the friction forces sideways so that a block with phi > theta creeps.
-    const Vec3 rigid_slip = tangential(relativeDisplacement(c, unknowns, true), c.normal);
+    // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
+    const Vec3 rigid_slip =
+        dofs_ == 6 ? slip : tangential(relativeDisplacement(c, unknowns, true), c.normal);
     c.gap = d;
     const ContactState before = c.state;
     if (c.state == ContactState::Open) {

@@ -42,9 +42,12 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   tbb::parallel_for(std::size_t{0}, applied, [&](std::size_t k) {
     const AppliedFriction& f = applied_friction_[k];
     if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) return;
-    terms[k][0] = f.force.dot(relativeDisplacement(contacts_[k], solution));
+    const Vec3 relative = relativeDisplacement(contacts_[k], solution);
+    terms[k][0] = f.force.dot(relative);
     if (f.transverse_stiffness > 0.0) {
-      const double x = f.across.dot(relativeDisplacement(contacts_[k], solution, true));
+      // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
+      const double x = f.across.dot(
+          dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], solution, true));
       terms[k][1] = f.transverse_stiffness * x * x;
     }
   });
