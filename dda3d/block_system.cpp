@@ -107,8 +107,8 @@ void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVecto
     rhs_[static_cast<std::size_t>(j)] -= k * d0 * b;
   }
   if (i >= 0 && j >= 0 && i != j && parts.pair) {
-    bool transposed = false;
-    BlockMatrix& m = pairBlock(i, j, transposed);
+    bool transposed = parts.transposed;
+    BlockMatrix& m = parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
     if (transposed) {
       addOuter(m, k, b, a, dofs_);  // stored K_ji
     } else {

@@ -32,7 +32,17 @@ class BlockSystem {
   /// of one spring each its own, in parallel, every sum in the serial order.
   struct Parts {
     bool i = true, j = true, pair = true;
+    /// K_ij's stored block when already found (withPair), else looked up per spring.
+    BlockMatrix* pair_block = nullptr;
+    bool transposed = false;  ///< pair_block stores K_ji
   };
+  /// `parts` with K_ij's block found once, for several springs between blocks i and j.
+  Parts withPair(int i, int j, Parts parts) {
+    if (parts.pair && i >= 0 && j >= 0 && i != j) {
+      parts.pair_block = &pairBlock(i, j, parts.transposed);
+    }
+    return parts;
+  }
   /// addSpring's terms that `parts` names, each added exactly as addSpring adds it.
   void addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k, double d0,
                  const Parts& parts);

@@ -4,7 +4,8 @@
 // "Energy account").
 #include <tbb/parallel_for.h>
 
-#include <array>
+#include <cstdint>
+#include <vector>
 
 #include "dda3d/block_terms.h"
 #include "dda3d/simulation.h"
@@ -13,22 +14,39 @@ namespace rockmass::dda3d {
 
 using geometry::Vec3;
 
+namespace {
+
+/// One contact's terms of a sum, and which of them the sum takes (the `counts` bits): they
+/// are computed in parallel, then summed in contact order reading only these.
+struct ContactTerms {
+  double first = 0.0;
+  double second = 0.0;
+  std::uint8_t counts = 0;
+};
+constexpr std::uint8_t kFirst = 1, kSecond = 2, kApart = 4;
+
+/// Each closed contact's normal spring 1/2 k d^2 (kFirst; kApart when d > 0) and, locked, its
+/// shear spring 1/2 k_s |s|^2 (kSecond), d = gap(c) and s = shear(c).
 template <class Gap, class Shear>
-std::vector<std::array<double, 2>> Simulation::contactSprings(const Gap& gap,
-                                                              const Shear& shear) const {
-  // Each closed contact's normal spring 1/2 k d^2 and, locked, its shear spring
-  // 1/2 k_s |s|^2, in parallel (the caller sums them in contact order).
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
-  std::vector<std::array<double, 2>> springs(contacts_.size(), {0.0, 0.0});
-  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
-    const Contact& c = contacts_[k];
+std::vector<ContactTerms> contactSprings(const std::vector<Contact>& contacts, double penalty,
+                                         double ks, const Gap& gap, const Shear& shear) {
+  std::vector<ContactTerms> springs(contacts.size());
+  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
+    const Contact& c = contacts[k];
     if (c.state == ContactState::Open) return;
+    ContactTerms& t = springs[k];
     const double d = gap(c);
-    springs[k][0] = 0.5 * penalty_ * d * d;
-    if (c.state == ContactState::Locked) springs[k][1] = 0.5 * ks * shear(c).squaredNorm();
+    t.first = 0.5 * penalty * d * d;
+    t.counts = d > 0.0 ? kFirst | kApart : kFirst;
+    if (c.state == ContactState::Locked) {
+      t.second = 0.5 * ks * shear(c).squaredNorm();
+      t.counts |= kSecond;
+    }
   });
   return springs;
 }
+
+}  // namespace
 
 void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) {
   // Friction: the forces applied in the last solve, -f N s on i and +f N s on j, did the work
@@ -38,27 +56,29 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // numerical term below dots the whole matrix, so their 1/2 k x^2 is taken out of it.
   // Each contact's terms in parallel, summed in contact order as one loop would.
   const std::size_t applied = std::min(contacts_.size(), applied_friction_.size());
-  std::vector<std::array<double, 2>> terms(applied, {0.0, 0.0});
+  std::vector<ContactTerms> terms(applied);
   tbb::parallel_for(std::size_t{0}, applied, [&](std::size_t k) {
     const AppliedFriction& f = applied_friction_[k];
     if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) return;
+    ContactTerms& t = terms[k];
     const Vec3 relative = relativeDisplacement(contacts_[k], solution);
-    terms[k][0] = f.force.dot(relative);
+    t.first = f.force.dot(relative);
+    t.counts = kFirst;
     if (f.transverse_stiffness > 0.0) {
       // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
-      const double x = f.across.dot(
-          dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], solution, true));
-      terms[k][1] = f.transverse_stiffness * x * x;
+      const double x =
+          f.across.dot(dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], solution, true));
+      t.second = f.transverse_stiffness * x * x;
+      t.counts |= kSecond;
     }
   });
   double transverse = 0.0;
-  for (std::size_t k = 0; k < applied; ++k) {
-    const AppliedFriction& f = applied_friction_[k];
-    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) continue;
-    friction_work_ -= terms[k][0];
-    if (f.transverse_stiffness > 0.0) {
-      friction_work_ += terms[k][1];
-      transverse += 0.5 * terms[k][1];
+  for (const ContactTerms& t : terms) {
+    if (!(t.counts & kFirst)) continue;
+    friction_work_ -= t.first;
+    if (t.counts & kSecond) {
+      friction_work_ += t.second;
+      transverse += 0.5 * t.second;
     }
   }
   // Springs at the start of the step, in the states the step ended with: the energy
@@ -71,14 +91,14 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // numerical dissipation instead of being counted as a change.
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
-  const std::vector<std::array<double, 2>> springs =
-      contactSprings([&](const Contact& c) { return c.gap0; },
-                     [&](const Contact& c) { return tangential(c.shear, c.normal); });
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
-    if (c.state == ContactState::Open) continue;
-    (c.gap0 > 0.0 ? pulling : springs_start) += springs[k][0];
-    if (c.state == ContactState::Locked) springs_start += springs[k][1];
+  const std::vector<ContactTerms> springs = contactSprings(
+      contacts_, penalty_, penalty_ / settings_.shear_penalty_ratio,
+      [](const Contact& c) { return c.gap0; },
+      [](const Contact& c) { return tangential(c.shear, c.normal); });
+  for (const ContactTerms& t : springs) {
+    if (!(t.counts & kFirst)) continue;
+    (t.counts & kApart ? pulling : springs_start) += t.first;
+    if (t.counts & kSecond) springs_start += t.second;
   }
   contact_changes_ += springs_start - springs_after_step_;
   numerical_dissipation_ -= pulling;
@@ -129,14 +149,13 @@ EnergyAccount Simulation::energy() const {
 
 double Simulation::springEnergy() const {
   double energy = pointSpringEnergy();
-  const std::vector<std::array<double, 2>> springs =
-      contactSprings([](const Contact& c) { return c.gap; },
-                     [](const Contact& c) -> const Vec3& { return c.shear; });
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
-    if (c.state == ContactState::Open) continue;
-    energy += springs[k][0];
-    if (c.state == ContactState::Locked) energy += springs[k][1];
+  const std::vector<ContactTerms> springs = contactSprings(
+      contacts_, penalty_, penalty_ / settings_.shear_penalty_ratio,
+      [](const Contact& c) { return c.gap; },
+      [](const Contact& c) -> const Vec3& { return c.shear; });
+  for (const ContactTerms& t : springs) {
+    if (t.counts & kFirst) energy += t.first;
+    if (t.counts & kSecond) energy += t.second;
   }
   return energy;
 }

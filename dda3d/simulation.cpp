@@ -561,7 +561,8 @@ void Simulation::assembleSystem() {
           first >= 0 ? assembly_owner_[static_cast<std::size_t>(first)] == part : part == 0;
       if (!mine.i && !mine.j && !mine.pair && !records) continue;
       const AppliedFriction applied =
-          addContactTerms(c, mine, active[static_cast<std::size_t>(part)]);
+          addContactTerms(c, c.state == ContactState::Open ? mine : system_->withPair(i, j, mine),
+                          active[static_cast<std::size_t>(part)]);
       if (records) applied_friction_[k] = applied;
     }
   });

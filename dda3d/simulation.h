@@ -8,7 +8,6 @@
 // StepReport::profile.
 #pragma once
 
-#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -228,10 +227,6 @@ class Simulation {
   void accountDissipation(const Eigen::VectorXd& solution, double dt);
   /// Energy of the contact, fixed-point and bolt springs now (J).
   double springEnergy() const;
-  /// Each contact's spring energies {1/2 k gap(c)^2, 1/2 k_s |shear(c)|^2} (zero where open
-  /// or not locked), computed in parallel.
-  template <class Gap, class Shear>
-  std::vector<std::array<double, 2>> contactSprings(const Gap& gap, const Shear& shear) const;
   /// Energy of the fixed-point and bolt springs now (J).
   double pointSpringEnergy() const;
   /// State changes of one open-close update.
