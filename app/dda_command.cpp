@@ -403,6 +403,7 @@ DdaStage runDdaStage(const io::Scene& scene, const blocks::BlockModel& blocks,
     ++step;
     summary.late_contacts += report.late_contacts;
     summary.contact_searches += report.contacts_searched;
+    summary.partial_contact_searches += report.contacts_searched_partly;
     last = stepRecord(step, report, sim, phaseSeconds(report.profile));
     stage.steps_csv->write(io::formatStepsRow(last));
     addPhaseSeconds(phase_totals, last.phase_seconds);

@@ -56,7 +56,7 @@ dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& 
     std::fprintf(stderr,
                  "%s: factor %.4g%s  %s after %d steps (unbalanced ratio %.3g, all blocks "
                  "%.3g; dt down to %.3g s, %d attempts redone, contacts searched in %d "
-                 "steps%s)\n",
+                 "steps (%d more in part)%s)\n",
                  label, run.factor, run.bisection ? " (bisection)" : "",
                  e.reached            ? "at rest"
                  : !e.stalled.empty() ? "NOT at rest (failing: cannot progress)"
@@ -64,7 +64,7 @@ dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& 
                                       : "NOT at rest",
                  e.steps, e.unbalanced_ratio, e.all_blocks_ratio, e.min_time_step,
                  e.redone_open_close + e.redone_displacement + e.redone_penetration,
-                 e.contact_searches, fastest.c_str());
+                 e.contact_searches, e.partial_contact_searches, fastest.c_str());
     runs->update(++*done);
   };
 }

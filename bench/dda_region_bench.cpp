@@ -126,6 +126,7 @@ void regionRun(benchmark::State& state, dda3d::DdaSettings settings) {
     state.counters["iterations_per_step"] = static_cast<double>(iterations) / timed_steps;
     state.counters["broad_phase_runs"] = sim.broadPhaseRuns();
     state.counters["contact_searches"] = sim.contactSearches();
+    state.counters["partial_searches"] = sim.partialSearches();
     state.ResumeTiming();
   }
 }

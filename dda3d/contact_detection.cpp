@@ -613,7 +613,8 @@ std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks) {
 
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
-                                  const PreviousFace& previous_face, CandidatePairs* candidates) {
+                                  const PreviousFace& previous_face, CandidatePairs* candidates,
+                                  const std::vector<char>* only) {
   // Per-piece data, built once for the pieces that take part in some pair.
   const std::vector<std::size_t> first_piece = firstPieces(blocks);
   std::vector<PiecePair> pairs;
@@ -642,6 +643,14 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
     for (std::size_t k = 0; k < kept.size(); ++k) {
       if (keep[k]) pairs.push_back(kept[k]);
     }
+  }
+  if (only != nullptr) {
+    const auto flagged = [&](int block) { return (*only)[static_cast<std::size_t>(block)] != 0; };
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [&](const PiecePair& pair) {
+                                 return !flagged(pair.block_a) && !flagged(pair.block_b);
+                               }),
+                pairs.end());
   }
   // Views of the pieces in some pair, built first so that the narrow phase only reads them.
   std::vector<PieceView> views(first_piece.back());

@@ -101,11 +101,13 @@ using PreviousFace =
 /// data (face planes, boxes) is computed once per call. Geometry fields are set, states are not;
 /// the order is that of the sorted pairs, so deterministic.
 /// With `candidates`, the broad phase's pairs come from it (the same pairs, kept between
-/// steps).
+/// steps). With `only`, a flag per block, only the pairs of blocks of which at least one is
+/// flagged are searched: every entry between those blocks, as a search of all would find it.
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face,
-                                  CandidatePairs* candidates = nullptr);
+                                  CandidatePairs* candidates = nullptr,
+                                  const std::vector<char>* only = nullptr);
 
 /// Sets the geometry of kept entries (point, foot, normal, gap0 without any overlap) from the
 /// blocks' current geometry, each as the narrow phase computes it for the same vertex and

@@ -87,6 +87,7 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     result.redone_displacement += report.redo_displacement;
     result.redone_penetration += report.redo_penetration;
     result.contact_searches += report.contacts_searched;
+    result.partial_contact_searches += report.contacts_searched_partly;
     const double free_fall = 0.5 * g * report.time_step * report.time_step;
     // The step's displacement of each block, at its vertices (the blocks have moved; the field
     // is affine, so its largest value is at a vertex), times its inertia scale: a block whose

@@ -71,6 +71,9 @@ struct EquilibriumResult {
   /// Steps that searched their contacts (the others kept the last step's entries,
   /// DdaSettings::detection.search_margin).
   int contact_searches = 0;
+  /// Steps that searched only the pairs of the blocks that moved beyond the search margin
+  /// (not counted in contact_searches: their other entries were kept).
+  int partial_contact_searches = 0;
   bool failing = false;  ///< stopped early by the failure rule (not at rest)
   /// Why the run could not go on (StepFailure's message), empty when it could: such a run is
   /// failing and not at rest (a step that fails its checks at the smallest time step).

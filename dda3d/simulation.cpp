@@ -309,6 +309,13 @@ int Simulation::detectContacts() {
     startFromCreep();  // the same contacts: the search's split of the assembly holds
     return 0;
   }
+  // Only some blocks moved beyond the margin (or reach farther): the pairs of those blocks
+  // are searched, the other entries kept.
+  const std::vector<char> only = blocksToSearch();
+  if (!only.empty()) {
+    int late = 0;
+    if (searchPartly(only, depth, late)) return late;
+  }
   const PreviousContacts previous(blocks_, contacts_);
   const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
     return previous.face(bi, pi, v, bj, pj);
@@ -320,16 +327,83 @@ int Simulation::detectContacts() {
   search_requested_ = false;
   searched_reach_ = reach_;
   moved_since_search_.assign(blocks_.size(), 0.0);
+  const int late = carryOverDetected(detected, previous, contacts_);
+  useContacts(std::move(detected));
+  return late;
+}
+
+std::vector<char> Simulation::blocksToSearch() const {
+  if (!(settings_.detection.search_margin > 0.0) || moved_since_search_.empty() ||
+      search_requested_) {
+    return {};
+  }
+  const double margin = keptEntriesMargin();
+  std::vector<char> only(blocks_.size(), 0);
+  std::size_t count = 0;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) {
+      only[b] = 1;
+      ++count;
+    }
+  }
+  // Most blocks to search: a search of all (which keeps nothing from older searches).
+  if (count == 0 || 2 * count > blocks_.size()) return {};
+  return only;
+}
+
+bool Simulation::searchPartly(const std::vector<char>& only, double depth, int& late) {
+  const auto searched = [&](const Contact& c) {
+    return only[static_cast<std::size_t>(c.block_i)] != 0 ||
+           only[static_cast<std::size_t>(c.block_j)] != 0;
+  };
+  std::vector<Contact> kept, before;
+  kept.reserve(contacts_.size());
+  for (const Contact& c : contacts_) (searched(c) ? before : kept).push_back(c);
+  // Nothing to keep (every entry has a searched block): a search of all. The kept entries as
+  // a kept step refreshes them; one deeper than a search keeps: a search of all.
+  if (kept.empty() || refreshContacts(blocks_, kept) > depth) return false;
+  // The kept blocks' reach cut as in a kept step (a gap left out by their last search cannot
+  // close); the searched blocks' pairs are searched with it, and their own reach.
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (only[b] == 0) reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
+  }
+  const PreviousContacts previous(blocks_, before);
+  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
+    return previous.face(bi, pi, v, bj, pj);
+  };
+  std::vector<Contact> detected =
+      findContacts(blocks_, reach_, depth, previous_face,
+                   settings_.detection.keep_pairs ? &candidates_ : nullptr, &only);
+  ++partial_searches_;
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (only[b] == 0) continue;
+    searched_reach_[b] = reach_[b];
+    moved_since_search_[b] = 0.0;
+  }
+  tbb::parallel_for(std::size_t{0}, kept.size(), [&](std::size_t k) {
+    Contact& c = kept[k];
+    carryOver(c, c);
+    startStep(c);
+  });
+  late = carryOverDetected(detected, previous, before);
+  // The kept entries first (in their order), then the searched ones (in the search's).
+  kept.insert(kept.end(), std::make_move_iterator(detected.begin()),
+              std::make_move_iterator(detected.end()));
+  useContacts(std::move(kept));
+  return true;
+}
+
+int Simulation::carryOverDetected(std::vector<Contact>& detected, const PreviousContacts& previous,
+                                  const std::vector<Contact>& before) const {
   // Each entry carries its last step's state over on its own (in parallel); the late ones
-  // and the coupled pairs are gathered after, in entry order.
+  // are counted after.
   std::vector<char> is_late(detected.size(), 0);
-  std::vector<std::pair<int, int>> pair_of(detected.size(), {-1, -1});
   const double late_depth = settings_.allowed_penetration_ratio * half_domain_;
   tbb::parallel_for(std::size_t{0}, detected.size(), [&](std::size_t k) {
     Contact& c = detected[k];
     const int found = previous.find(c);
     if (found >= 0) {
-      carryOver(c, contacts_[static_cast<std::size_t>(found)]);
+      carryOver(c, before[static_cast<std::size_t>(found)]);
     } else if (c.gap0 < -late_depth) {
       // First seen deeper than the allowed penetration: the detection missed it while it
       // closed (the step control keeps every contact it sees shallower). Its spring starts
@@ -347,28 +421,28 @@ int Simulation::detectContacts() {
       c.state = c.gap0 <= settings_.open_threshold_ratio * half_domain_ ? ContactState::Locked
                                                                         : ContactState::Open;
     }
-    const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
-    if (i >= 0 && j >= 0) pair_of[k] = {std::min(i, j), std::max(i, j)};
+    c.joint = contactJoint(model_, blocks_, c);
   });
-  const int late = static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
+  return static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
+}
+
+void Simulation::useContacts(std::vector<Contact> contacts) {
+  // The coupled pairs of movable blocks (and the bolts'), in entry order.
   std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(detected.size());
-  for (const std::pair<int, int>& p : pair_of) {
-    if (p.first >= 0) pairs.push_back(p);
+  pairs.reserve(contacts.size());
+  for (const Contact& c : contacts) {
+    const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+    if (i >= 0 && j >= 0) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
   for (std::size_t k = 0; k < bolt_a_.size(); ++k) {
     const int i = bolt_a_[k].block >= 0 ? movableIndex(bolt_a_[k].block) : -1;
     const int j = bolt_b_[k].block >= 0 ? movableIndex(bolt_b_[k].block) : -1;
     if (i >= 0 && j >= 0 && i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
   }
-  tbb::parallel_for(std::size_t{0}, detected.size(), [&](std::size_t k) {
-    detected[k].joint = contactJoint(model_, blocks_, detected[k]);
-  });
-  contacts_ = std::move(detected);
+  contacts_ = std::move(contacts);
   startFromCreep();
   if (system_->setPairs(std::move(pairs))) ++pattern_changes_;
   splitAssembly();
-  return late;
 }
 
 void Simulation::startFromCreep() {
@@ -383,13 +457,14 @@ void Simulation::startFromCreep() {
   // A contact that slid farther is sliding: stuck for a trial, a moving block would pivot on
   // its base springs.
   const double ks = penalty_ / settings_.shear_penalty_ratio;
-  for (Contact& c : contacts_) {
-    if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) continue;
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    Contact& c = contacts_[k];
+    if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) return;
     const double stretch = shearStrength(c, jointOf(c)) / ks;
-    if (!(c.slip_length <= stretch)) continue;
+    if (!(c.slip_length <= stretch)) return;
     c.state = ContactState::Locked;
     c.shear = stretch * c.slide_direction;
-  }
+  });
 }
 
 void Simulation::assembleBlockTerms(double dt) {
@@ -928,8 +1003,10 @@ StepReport Simulation::step() {
   {
     PhaseTimer timer(step_profile_, StepPhase::DetectContacts);
     const int searches_before = searches_;
+    const int partial_before = partial_searches_;
     report.late_contacts = detectContacts();
     report.contacts_searched = searches_ > searches_before;
+    report.contacts_searched_partly = partial_searches_ > partial_before;
   }
   copyContacts(contacts_, step_start_);
   double dt = dt_;

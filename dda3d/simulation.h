@@ -37,6 +37,8 @@ struct BoltState {
   double broken_at = -1.0;   ///< time of the rupture (s), -1 when intact
 };
 
+class PreviousContacts;
+
 class Simulation {
  public:
   /// Validates the model (throws std::invalid_argument with what is wrong) and sets up.
@@ -124,6 +126,9 @@ class Simulation {
   /// How many steps searched their contacts (the others kept the last ones,
   /// DdaSettings::detection.search_margin).
   int contactSearches() const { return searches_; }
+  /// Steps that searched only the pairs of the blocks that moved beyond the margin, keeping
+  /// the other entries (not counted in contactSearches()).
+  int partialSearches() const { return partial_searches_; }
   /// The next step searches its contacts whatever the blocks' motion (runToEquilibrium's
   /// calm steps that decide rest each search theirs).
   void requestContactSearch() { search_requested_ = true; }
@@ -172,6 +177,21 @@ class Simulation {
   bool refreshEntries(double depth);
   /// Contacts that crept in the last step start this one stuck (an elastic predictor).
   void startFromCreep();
+  /// The blocks whose pairs a step must search (a flag per block: moved beyond the margin
+  /// since their last search, or reaching farther than then) when the other blocks' entries
+  /// may be kept; empty when no entry may be kept or most blocks must be searched.
+  std::vector<char> blocksToSearch() const;
+  /// Searches the pairs of the blocks `only` flags and keeps (refreshed) the entries between
+  /// the others; false (nothing changed) when a kept entry is deeper than `depth`. `late`:
+  /// the entries first seen deeper than the allowed penetration.
+  bool searchPartly(const std::vector<char>& only, double depth, int& late);
+  /// Carries each detected entry's state over from its entry in `before` (found through
+  /// `previous`, built from `before`) or starts it; sets its joint. Returns the late entries.
+  int carryOverDetected(std::vector<Contact>& detected, const PreviousContacts& previous,
+                        const std::vector<Contact>& before) const;
+  /// Makes `contacts` the step's: the coupled pairs' pattern, the assembly's split, the
+  /// creeping contacts' start.
+  void useContacts(std::vector<Contact> contacts);
   /// Static mode: the factor on a block's mass matrix in its inertia term (kStaticInertiaRatio,
   /// at the run's time step).
   double staticMassScale(const BlockState& block) const;
@@ -315,6 +335,7 @@ class Simulation {
   bool search_requested_ = false;  ///< requestContactSearch()
   std::vector<double> searched_reach_, moved_since_search_;
   int searches_ = 0;
+  int partial_searches_ = 0;  ///< searchPartly's searches
   std::unique_ptr<BlockSystem> system_;
   std::unique_ptr<LinearSolver> solver_;
   std::vector<BlockMatrix> base_k_;  // block terms per movable block

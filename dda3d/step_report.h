@@ -100,6 +100,9 @@ struct StepReport {
   /// The step searched its contacts (else it kept the last step's entries,
   /// DdaSettings::detection.search_margin).
   bool contacts_searched = false;
+  /// The step searched only the pairs of the blocks that moved beyond the search margin and
+  /// kept the other entries (Simulation::partialSearches); contacts_searched is then false.
+  bool contacts_searched_partly = false;
   double displacement_ratio = 0.0;  ///< max vertex displacement / (g2 l0)
   int fastest_block = -1;           ///< the block of that vertex (-1: none moved)
   /// m: the largest vertex displacement of a block times its inertia scale

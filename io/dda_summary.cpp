@@ -122,6 +122,7 @@ std::string formatDdaSummary(const RunInfo& run, const DdaRunSummary& dda) {
       dda.steps_taken >= 0 ? static_cast<std::size_t>(dda.steps_taken) : dda.steps.size();
   j["late_contacts"] = dda.late_contacts;
   j["contact_searches"] = dda.contact_searches;
+  j["partial_contact_searches"] = dda.partial_contact_searches;
   j["time_step"] = dda.time_step;
   j["duration"] = dda.duration;
   j["penalty"] = dda.penalty;

@@ -70,6 +70,8 @@ struct DdaRunSummary {
   /// detection; their depth is not pushed back: dda3d::Contact::overlap).
   int late_contacts = 0;
   int contact_searches = 0;  ///< steps that searched their contacts (the others kept theirs)
+  /// Steps that searched only the pairs of the blocks that moved beyond the search margin.
+  int partial_contact_searches = 0;
   /// Seconds per phase over every step (empty: summed from `steps`).
   std::vector<std::pair<std::string, double>> phase_totals;
   /// The small blocks glued before the run (analysis.dda.min_block_volume > 0).

@@ -59,6 +59,7 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
            {"displacement", r.equilibrium.redone_displacement},
            {"penetration", r.equilibrium.redone_penetration}}},
          {"contact_searches", r.equilibrium.contact_searches},
+         {"partial_contact_searches", r.equilibrium.partial_contact_searches},
          {"fastest_block", movedBlockJson(r.equilibrium.fastest)},
          {"fastest_watched_block", movedBlockJson(r.equilibrium.watched)}});
     if (!r.bolts.empty()) {

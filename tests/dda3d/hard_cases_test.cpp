@@ -303,6 +303,52 @@ TEST(KeptContacts, AFallingCubeIsSearchedEveryStepUntilItRests) {
   EXPECT_NEAR(sim.blocks()[1].centroid.z(), 0.5, 1e-3);
 }
 
+// The ten-block column resting on its slab while a cube 1 mm above the slab beside it comes
+// down onto it (static: about 2e-5 m a step, g dt^2 / 2): every step the cube moves farther
+// than the margin, and a step searches only the cube's pairs, keeping the column's entries
+// (refreshed). The column must settle and the cube land as with a search of all every step.
+TEST(KeptContacts, ACubeComingDownBesideARestingColumnIsSearchedAlone) {
+  DdaModel model = tenBlockColumn();
+  model.blocks.push_back(scenes::boxBlock({1.0, -0.5, 0.001}, {1.8, 0.3, 0.801}, 0, false));
+  DdaSettings every_step = hardSettings(Kinematics::Rigid);
+  every_step.mode = AnalysisMode::Static;
+  every_step.detection.search_margin = 0.0;
+  DdaSettings kept = every_step;
+  kept.detection.search_margin = DdaSettings{}.detection.search_margin;
+  Simulation a(model, every_step);
+  Simulation b(model, kept);
+  constexpr int kSteps = 100;
+  int late = 0, partly_while_falling = 0, searched_while_falling = 0;
+  for (int k = 0; k < kSteps; ++k) {
+    const bool falling = b.blocks()[11].centroid.z() > 0.40001;
+    const StepReport ra = a.step();
+    const StepReport rb = b.step();
+    late += rb.late_contacts;
+    if (falling && k > 0) {
+      partly_while_falling += rb.contacts_searched_partly;
+      searched_while_falling += rb.contacts_searched;
+    }
+    // The same entries (the column's kept, the cube's found as a search finds them).
+    ASSERT_EQ(ra.contacts.total, rb.contacts.total) << "step " << k;
+  }
+  EXPECT_EQ(a.contactSearches(), kSteps);
+  EXPECT_EQ(a.partialSearches(), 0);
+  EXPECT_EQ(late, 0);
+  // 1 mm at 2e-5 m a step: some 50 steps coming down, each searching the cube's pairs alone
+  // (the first step searches all: nothing is kept yet),
+  EXPECT_GE(partly_while_falling, 40);
+  EXPECT_EQ(searched_while_falling, 0);
+  // and the step that lands it (it moved beyond the margin in it) searches its pairs too.
+  EXPECT_EQ(b.partialSearches(), partly_while_falling + 1);
+  // The column's top settled as with a search every step (its springs took its weight), to
+  // the round-off of kept against found entries; the cube landed on the slab as there.
+  const double settlement = a.centroidDisplacement(10).z();
+  EXPECT_LT(settlement, -1e-7);
+  EXPECT_NEAR(b.centroidDisplacement(10).z(), settlement, 1e-6 * std::abs(settlement));
+  EXPECT_NEAR(a.blocks()[11].centroid.z(), 0.4, 1e-5);
+  EXPECT_NEAR(b.blocks()[11].centroid.z(), a.blocks()[11].centroid.z(), 1e-9);
+}
+
 /// 200 cubes dropped from a loose lattice (0.2 m gaps, staggered rows) into a fixed box.
 DdaModel pile() {
   DdaModel model;
