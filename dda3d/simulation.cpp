@@ -262,28 +262,38 @@ double Simulation::keptEntriesMargin() const {
   return settings_.detection.search_margin * settings_.max_displacement_ratio * half_domain_;
 }
 
-bool Simulation::canKeepEntries() const {
+std::vector<char> Simulation::blocksToSearch() const {
   // moved_since_search_ is empty until this run's first search (and after adoptContacts).
   if (!(settings_.detection.search_margin > 0.0) || moved_since_search_.empty() ||
       search_requested_) {
-    return false;
+    return {};
   }
   const double margin = keptEntriesMargin();
+  std::vector<char> only(blocks_.size(), 0);
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) return false;
+    only[b] = moved_since_search_[b] > margin || reach_[b] > searched_reach_[b];
   }
-  return true;
+  return only;
 }
 
-bool Simulation::refreshEntries(double depth) {
+bool Simulation::keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched,
+                             double depth) {
   // In place: a search that follows (an entry deeper than `depth`) only reads the entries'
   // keys and states (PreviousContacts), which the refresh leaves as they were.
-  if (refreshContacts(blocks_, contacts_) > depth) return false;
-  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
-    Contact& c = contacts_[k];
+  if (refreshContacts(blocks_, entries) > depth) return false;
+  tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
+    Contact& c = entries[k];
     carryOver(c, c);
     startStep(c);
   });
+  // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
+  // by at most how far they moved since: a step that moves no block farther than its reach
+  // then less that motion cannot close it (checkStep redoes a step that moves one farther).
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    if (searched[b] == 0) {
+      reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
+    }
+  }
   return true;
 }
 
@@ -299,56 +309,26 @@ int Simulation::detectContacts() {
     reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
   // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
   const double depth = 2.0 * kAcceptedDisplacementRatio * g2_l0;
-  if (canKeepEntries() && refreshEntries(depth)) {
-    // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
-    // by at most how far they moved since: a step that moves no block farther than its reach
-    // then less that motion cannot close it (checkStep redoes a step that moves one farther).
-    for (std::size_t b = 0; b < blocks_.size(); ++b) {
-      reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
-    }
+  // Entries kept while no block moved beyond the margin; only the pairs of the blocks that
+  // did searched while they are at most half of them (a search of all beyond).
+  const std::vector<char> only = blocksToSearch();
+  const auto to_search = static_cast<std::size_t>(std::count(only.begin(), only.end(), 1));
+  if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth)) {
     startFromCreep();  // the same contacts: the search's split of the assembly holds
     return 0;
   }
-  // Only some blocks moved beyond the margin (or reach farther): the pairs of those blocks
-  // are searched, the other entries kept.
-  const std::vector<char> only = blocksToSearch();
-  if (!only.empty()) {
+  if (to_search > 0 && 2 * to_search <= blocks_.size()) {
     int late = 0;
     if (searchPartly(only, depth, late)) return late;
   }
-  const PreviousContacts previous(blocks_, contacts_);
-  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
-    return previous.face(bi, pi, v, bj, pj);
-  };
-  std::vector<Contact> detected =
-      findContacts(blocks_, reach_, depth, previous_face,
-                   settings_.detection.keep_pairs ? &candidates_ : nullptr);
+  int late = 0;
+  std::vector<Contact> detected = searchContacts(contacts_, nullptr, depth, late);
   ++searches_;
   search_requested_ = false;
   searched_reach_ = reach_;
   moved_since_search_.assign(blocks_.size(), 0.0);
-  const int late = carryOverDetected(detected, previous, contacts_);
   useContacts(std::move(detected));
   return late;
-}
-
-std::vector<char> Simulation::blocksToSearch() const {
-  if (!(settings_.detection.search_margin > 0.0) || moved_since_search_.empty() ||
-      search_requested_) {
-    return {};
-  }
-  const double margin = keptEntriesMargin();
-  std::vector<char> only(blocks_.size(), 0);
-  std::size_t count = 0;
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    if (moved_since_search_[b] > margin || reach_[b] > searched_reach_[b]) {
-      only[b] = 1;
-      ++count;
-    }
-  }
-  // Most blocks to search: a search of all (which keeps nothing from older searches).
-  if (count == 0 || 2 * count > blocks_.size()) return {};
-  return only;
 }
 
 bool Simulation::searchPartly(const std::vector<char>& only, double depth, int& late) {
@@ -359,33 +339,17 @@ bool Simulation::searchPartly(const std::vector<char>& only, double depth, int& 
   std::vector<Contact> kept, before;
   kept.reserve(contacts_.size());
   for (const Contact& c : contacts_) (searched(c) ? before : kept).push_back(c);
-  // Nothing to keep (every entry has a searched block): a search of all. The kept entries as
-  // a kept step refreshes them; one deeper than a search keeps: a search of all.
-  if (kept.empty() || refreshContacts(blocks_, kept) > depth) return false;
-  // The kept blocks' reach cut as in a kept step (a gap left out by their last search cannot
-  // close); the searched blocks' pairs are searched with it, and their own reach.
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    if (only[b] == 0) reach_[b] = std::min(reach_[b], searched_reach_[b] - moved_since_search_[b]);
-  }
-  const PreviousContacts previous(blocks_, before);
-  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
-    return previous.face(bi, pi, v, bj, pj);
-  };
-  std::vector<Contact> detected =
-      findContacts(blocks_, reach_, depth, previous_face,
-                   settings_.detection.keep_pairs ? &candidates_ : nullptr, &only);
+  // Nothing to keep (every entry has a searched block), or a kept entry deeper than a search
+  // keeps: a search of all. The searched blocks' pairs are searched with the kept blocks'
+  // reach cut as in a kept step, and their own reach.
+  if (kept.empty() || !keepEntries(kept, only, depth)) return false;
+  std::vector<Contact> detected = searchContacts(before, &only, depth, late);
   ++partial_searches_;
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (only[b] == 0) continue;
     searched_reach_[b] = reach_[b];
     moved_since_search_[b] = 0.0;
   }
-  tbb::parallel_for(std::size_t{0}, kept.size(), [&](std::size_t k) {
-    Contact& c = kept[k];
-    carryOver(c, c);
-    startStep(c);
-  });
-  late = carryOverDetected(detected, previous, before);
   // The kept entries first (in their order), then the searched ones (in the search's).
   kept.insert(kept.end(), std::make_move_iterator(detected.begin()),
               std::make_move_iterator(detected.end()));
@@ -393,8 +357,16 @@ bool Simulation::searchPartly(const std::vector<char>& only, double depth, int& 
   return true;
 }
 
-int Simulation::carryOverDetected(std::vector<Contact>& detected, const PreviousContacts& previous,
-                                  const std::vector<Contact>& before) const {
+std::vector<Contact> Simulation::searchContacts(const std::vector<Contact>& before,
+                                                const std::vector<char>* only, double depth,
+                                                int& late) {
+  const PreviousContacts previous(blocks_, before);
+  const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
+    return previous.face(bi, pi, v, bj, pj);
+  };
+  std::vector<Contact> detected =
+      findContacts(blocks_, reach_, depth, previous_face,
+                   settings_.detection.keep_pairs ? &candidates_ : nullptr, only);
   // Each entry carries its last step's state over on its own (in parallel); the late ones
   // are counted after.
   std::vector<char> is_late(detected.size(), 0);
@@ -423,7 +395,8 @@ int Simulation::carryOverDetected(std::vector<Contact>& detected, const Previous
     }
     c.joint = contactJoint(model_, blocks_, c);
   });
-  return static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
+  late = static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
+  return detected;
 }
 
 void Simulation::useContacts(std::vector<Contact> contacts) {

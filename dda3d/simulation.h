@@ -169,26 +169,26 @@ class Simulation {
   /// Finds the step's contacts, carrying states over; returns how many were found late
   /// (first seen deeper than the allowed penetration, Contact::overlap).
   int detectContacts();
-  /// True when this step may keep the last step's entries (DdaSettings::detection.search_margin):
-  /// no block has moved farther than keptEntriesMargin() since the search nor reaches farther.
-  bool canKeepEntries() const;
-  /// The kept entries moved to the blocks' geometry, their states carried on; false when one
-  /// is deeper than `depth` (m; the step searches instead).
-  bool refreshEntries(double depth);
+  /// The blocks whose pairs this step must search to keep the other entries
+  /// (DdaSettings::detection.search_margin), a flag per block: moved farther than
+  /// keptEntriesMargin() since their last search, or reaching farther than then. Empty when
+  /// no entry may be kept (no margin, no search yet in this run, a search requested).
+  std::vector<char> blocksToSearch() const;
+  /// `entries` moved to the blocks' geometry, their states carried on, and the reach of the
+  /// blocks `searched` does not flag cut by their motion since their search; false (nothing
+  /// else changed) when one is deeper than `depth` (m; the step searches instead).
+  bool keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched, double depth);
   /// Contacts that crept in the last step start this one stuck (an elastic predictor).
   void startFromCreep();
-  /// The blocks whose pairs a step must search (a flag per block: moved beyond the margin
-  /// since their last search, or reaching farther than then) when the other blocks' entries
-  /// may be kept; empty when no entry may be kept or most blocks must be searched.
-  std::vector<char> blocksToSearch() const;
   /// Searches the pairs of the blocks `only` flags and keeps (refreshed) the entries between
   /// the others; false (nothing changed) when a kept entry is deeper than `depth`. `late`:
   /// the entries first seen deeper than the allowed penetration.
   bool searchPartly(const std::vector<char>& only, double depth, int& late);
-  /// Carries each detected entry's state over from its entry in `before` (found through
-  /// `previous`, built from `before`) or starts it; sets its joint. Returns the late entries.
-  int carryOverDetected(std::vector<Contact>& detected, const PreviousContacts& previous,
-                        const std::vector<Contact>& before) const;
+  /// The entries found by a search (of the pairs of the blocks `only` flags; all without it),
+  /// each carrying its state over from its entry in `before` (the last step's) or started,
+  /// with its joint. `late`: those first seen deeper than the allowed penetration.
+  std::vector<Contact> searchContacts(const std::vector<Contact>& before,
+                                      const std::vector<char>* only, double depth, int& late);
   /// Makes `contacts` the step's: the coupled pairs' pattern, the assembly's split, the
   /// creeping contacts' start.
   void useContacts(std::vector<Contact> contacts);
@@ -330,7 +330,7 @@ class Simulation {
   std::vector<double> reach_;  // per block, m (contactReach())
   /// The broad phase's pairs, kept between steps while the blocks move less than a margin.
   CandidatePairs candidates_;
-  /// Contact entries kept between steps (canKeepEntries()): each block's reach in this run's
+  /// Contact entries kept between steps (blocksToSearch()): each block's reach in this run's
   /// last search and how far it moved since (m); both empty before the run's first search.
   bool search_requested_ = false;  ///< requestContactSearch()
   std::vector<double> searched_reach_, moved_since_search_;
