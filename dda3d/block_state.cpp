@@ -93,15 +93,17 @@ Eigen::Matrix3d rotationMatrix(const Vec3& rotation) {
   return Eigen::AngleAxisd(angle, rotation / angle).toRotationMatrix();
 }
 
-Vec3 movedPoint(const Vec3& x, const Vec3& centroid, const BlockVector& d) {
-  const Vec3 arm = x - centroid;
-  Eigen::Matrix3d strain;
+BlockMotion::BlockMotion(const Vec3& centroid, const BlockVector& d)
+    : centroid_(centroid), translation_(d.head<3>()), rotation_(rotationMatrix(d.segment<3>(3))) {
   // clang-format off
-  strain << d[6],       0.5 * d[11], 0.5 * d[10],
-            0.5 * d[11], d[7],       0.5 * d[9],
-            0.5 * d[10], 0.5 * d[9], d[8];
+  strain_ << d[6],       0.5 * d[11], 0.5 * d[10],
+             0.5 * d[11], d[7],       0.5 * d[9],
+             0.5 * d[10], 0.5 * d[9], d[8];
   // clang-format on
-  return centroid + d.head<3>() + rotationMatrix(d.segment<3>(3)) * arm + strain * arm;
+}
+
+Vec3 movedPoint(const Vec3& x, const Vec3& centroid, const BlockVector& d) {
+  return BlockMotion(centroid, d)(x);
 }
 
 }  // namespace rockmass::dda3d

@@ -115,6 +115,23 @@ BlockMatrix massMatrix(const BlockState& block);
 geometry::Vec3 movedPoint(const geometry::Vec3& x, const geometry::Vec3& centroid,
                           const BlockVector& d);
 
+/// movedPoint of one block's points, its rotation (a sine and a cosine) and strain tensor
+/// formed once for all of them: the same arithmetic per point, so the same bits.
+class BlockMotion {
+ public:
+  BlockMotion(const geometry::Vec3& centroid, const BlockVector& d);
+  geometry::Vec3 operator()(const geometry::Vec3& x) const {
+    const geometry::Vec3 arm = x - centroid_;
+    return centroid_ + translation_ + rotation_ * arm + strain_ * arm;
+  }
+
+ private:
+  geometry::Vec3 centroid_;
+  geometry::Vec3 translation_;
+  Eigen::Matrix3d rotation_;
+  Eigen::Matrix3d strain_;
+};
+
 /// The exact rotation matrix of the rotation vector (rx, ry, rz) (rad).
 Eigen::Matrix3d rotationMatrix(const geometry::Vec3& rotation);
 

@@ -27,6 +27,13 @@ using geometry::Vec3;
 
 namespace {
 
+// What an assembly thread adds of a contact (Simulation::listAssembly): K_ii and F_i, K_jj
+// and F_j, K_ij, and whether it records the contact's friction.
+constexpr std::uint8_t kAddsI = 1;
+constexpr std::uint8_t kAddsJ = 2;
+constexpr std::uint8_t kAddsPair = 4;
+constexpr std::uint8_t kRecords = 8;
+
 Eigen::Matrix3d voigtToTensor(const VoigtVector& v, double shear_scale) {
   Eigen::Matrix3d t;
   // clang-format off
@@ -588,30 +595,29 @@ void Simulation::assembleSystem() {
     system_->addForce(static_cast<int>(m), base_f_[m]);
   }
   // The contacts' terms in parallel, bit for bit the serial loop's sums: each thread goes
-  // through every contact in order and adds the terms of its own blocks (K_ii, F_i) and of the
-  // pairs whose lower block it owns (K_ij) (splitAssembly). Every sum then takes its terms in
-  // contact order whatever the threads; a contact between two threads' slabs is computed by
-  // both, and its friction recorded by the owner of its first movable block.
+  // through its contacts in order (listAssembly) and adds the terms of its own blocks (K_ii,
+  // F_i) and of the pairs whose lower block it owns (K_ij) (splitAssembly). Every sum then
+  // takes its terms in contact order whatever the threads; a contact between two threads'
+  // slabs is computed by both, and its friction recorded by the owner of its first movable
+  // block.
   if (assembly_owner_.size() != base_k_.size()) splitAssembly();
+  if (assembly_listed_ != contacts_.size()) listAssembly();
   applied_friction_.resize(contacts_.size());
   std::vector<ActiveTerms> active(static_cast<std::size_t>(assembly_parts_));
   tbb::parallel_for(0, assembly_parts_, [&](int part) {
-    for (std::size_t k = 0; k < contacts_.size(); ++k) {
-      const Contact& c = contacts_[k];
-      const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+    for (const AssemblyEntry& entry : assembly_lists_[static_cast<std::size_t>(part)]) {
+      const Contact& c = contacts_[entry.contact];
       BlockSystem::Parts mine;
-      mine.i = i >= 0 && assembly_owner_[static_cast<std::size_t>(i)] == part;
-      mine.j = j >= 0 && assembly_owner_[static_cast<std::size_t>(j)] == part;
-      mine.pair =
-          i >= 0 && j >= 0 && assembly_owner_[static_cast<std::size_t>(std::min(i, j))] == part;
-      const int first = i >= 0 ? i : j;  // both fixed: the first thread records it
-      const bool records =
-          first >= 0 ? assembly_owner_[static_cast<std::size_t>(first)] == part : part == 0;
-      if (!mine.i && !mine.j && !mine.pair && !records) continue;
-      const AppliedFriction applied =
-          addContactTerms(c, c.state == ContactState::Open ? mine : system_->withPair(i, j, mine),
-                          active[static_cast<std::size_t>(part)]);
-      if (records) applied_friction_[k] = applied;
+      mine.i = (entry.adds & kAddsI) != 0;
+      mine.j = (entry.adds & kAddsJ) != 0;
+      mine.pair = (entry.adds & kAddsPair) != 0;
+      const AppliedFriction applied = addContactTerms(
+          c,
+          c.state == ContactState::Open
+              ? mine
+              : system_->withPair(movableIndex(c.block_i), movableIndex(c.block_j), mine),
+          active[static_cast<std::size_t>(part)]);
+      if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
     }
   });
   for (const ActiveTerms& terms : active) active_ |= terms;
@@ -625,6 +631,7 @@ void Simulation::splitAssembly() {
       static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), 1, 64));
   if (assembly_parts_ == 1 || movable < 2) {
     assembly_parts_ = 1;
+    listAssembly();
     return;
   }
   // Each movable block weighs its contacts (the terms it adds) plus one; slabs along x hold
@@ -651,6 +658,31 @@ void Simulation::splitAssembly() {
     assembly_owner_[m] = std::min(part, assembly_parts_ - 1);
     before += weight[m];
   }
+  listAssembly();
+}
+
+void Simulation::listAssembly() {
+  assembly_lists_.assign(static_cast<std::size_t>(assembly_parts_), {});
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+    const int first = i >= 0 ? i : j;  // both fixed: the first thread records it
+    for (int part = 0; part < assembly_parts_; ++part) {
+      const auto owns = [&](int b) {
+        return b >= 0 && assembly_owner_[static_cast<std::size_t>(b)] == part;
+      };
+      std::uint8_t adds = 0;
+      if (owns(i)) adds |= kAddsI;
+      if (owns(j)) adds |= kAddsJ;
+      if (i >= 0 && j >= 0 && owns(std::min(i, j))) adds |= kAddsPair;
+      if (first >= 0 ? owns(first) : part == 0) adds |= kRecords;
+      if (adds != 0) {
+        assembly_lists_[static_cast<std::size_t>(part)].push_back(
+            {static_cast<std::uint32_t>(k), adds});
+      }
+    }
+  }
+  assembly_listed_ = contacts_.size();
 }
 
 Eigen::VectorXd Simulation::solveSystem(double dt, int iteration, const Eigen::VectorXd& previous) {
@@ -765,11 +797,11 @@ double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fa
   tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
     const BlockState& block = blocks_[b];
     if (block.fixed) return;
-    const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    const BlockMotion motion(block.centroid, system_->unknowns(solution, block.dof_offset));
     double block_largest = 0.0;
     for (const geometry::Polyhedron& piece : block.pieces) {
       for (const Vec3& v : piece.vertices) {
-        block_largest = std::max(block_largest, (movedPoint(v, block.centroid, d) - v).norm());
+        block_largest = std::max(block_largest, (motion(v) - v).norm());
       }
     }
     moved[b] = block_largest;
@@ -829,11 +861,12 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     if (block.fixed) return;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
     work[b] = load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
+    const BlockMotion motion(block.centroid, d);
     for (geometry::Polyhedron& piece : block.pieces) {
-      for (Vec3& v : piece.vertices) v = movedPoint(v, block.centroid, d);
+      for (Vec3& v : piece.vertices) v = motion(v);
     }
     for (FacePoints& points : block.face_points) {
-      for (FacePoint& p : points.points) p.position = movedPoint(p.position, block.centroid, d);
+      for (FacePoint& p : points.points) p.position = motion(p.position);
     }
     const Eigen::Matrix3d rotation = rotationMatrix(d.segment<3>(3));
     if (settings_.kinematics == Kinematics::Deformable) {

@@ -8,6 +8,7 @@
 // StepReport::profile.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -102,6 +103,7 @@ class Simulation {
   void adoptContacts(std::vector<Contact> contacts) {
     contacts_ = std::move(contacts);
     moved_since_search_.clear();  // not this run's search: the next step searches
+    assembly_listed_ = static_cast<std::size_t>(-1);
   }
   /// Starts from rest: zero velocities and accelerations (a0). For a model brought to rest
   /// before (settledModel) and run dynamically: its a0 from the loads alone (gravity, the
@@ -238,8 +240,11 @@ class Simulation {
   AppliedFriction addContactTerms(const Contact& c, const BlockSystem::Parts& parts,
                                   ActiveTerms& active);
   /// Splits the movable blocks among the assembly's threads (assembly_owner_): slabs along x
-  /// of about equal numbers of contacts, from the current contacts.
+  /// of about equal numbers of contacts, from the current contacts; then lists each
+  /// thread's contacts (listAssembly).
   void splitAssembly();
+  /// Each assembly thread's contacts, in contact order, with the terms it adds of each.
+  void listAssembly();
   /// The time integration's acceleration at t = 0: M a0 = loads + initial stress + bolt
   /// pretension (contacts and fixed points carry no force yet).
   void initialAccelerations();
@@ -316,6 +321,15 @@ class Simulation {
   /// lower block it is (splitAssembly), and how many threads there are.
   std::vector<int> assembly_owner_;
   int assembly_parts_ = 1;
+  /// A contact an assembly thread visits and what it adds of it (kAdds* bits).
+  struct AssemblyEntry {
+    std::uint32_t contact = 0;
+    std::uint8_t adds = 0;
+  };
+  /// Each thread's entries in contact order (listAssembly), for contacts_ of
+  /// assembly_listed_ entries (npos: to be listed).
+  std::vector<std::vector<AssemblyEntry>> assembly_lists_;
+  std::size_t assembly_listed_ = static_cast<std::size_t>(-1);
   std::vector<BlockState> blocks_;
   std::vector<geometry::Vec3> initial_centroids_;
   std::vector<ElasticMatrix> elastic_;
