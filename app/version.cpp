@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "dda3d/linear_solver.h"
 #include "io/summary.h"
 
 namespace rockmass::app {
@@ -55,6 +56,10 @@ std::string versionText() {
   for (const auto& [name, version] : libraries) {
     text += "  " + std::string(name) + ' ' + version + '\n';
   }
+  // The BLAS that CHOLMOD's supernodes run on: its round-off is the factorization's
+  // (docs/dda3d.md, "BLAS").
+  const std::string blas = dda3d::loadedBlas();
+  text += "  BLAS " + (blas.empty() ? std::string("(none loaded)") : blas) + '\n';
 #ifdef ROCKMASS_WITH_MPI
   // The MPI standard the headers declare (the ensemble command's ranks; docs/ensemble.md).
   text += "  MPI " + std::to_string(MPI_VERSION) + '.' + std::to_string(MPI_SUBVERSION) + '\n';

@@ -4,9 +4,13 @@
 #include <Eigen/CholmodSupport>
 
 #if defined(__linux__)
+#include <link.h>
 #include <pthread.h>
 #include <sched.h>
 #endif
+
+#include <filesystem>
+#include <string>
 
 #include "dda3d/solver_backends.h"
 #include "dda3d/sparsity_pattern.h"
@@ -121,6 +125,23 @@ double cholmodFactorFlops(const SparseMatrix& k) {
   double flops = 0.0;
   makeAnalyzedCholmodSolver(k, flops);
   return flops;
+}
+
+std::string loadedBlas() {
+  std::string found;
+#if defined(__linux__)
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* data) {
+        const std::string name = info->dlpi_name ? info->dlpi_name : "";
+        if (std::filesystem::path(name).filename() != "libblas.so.3") return 0;
+        std::error_code error;
+        const std::filesystem::path file = std::filesystem::canonical(name, error);
+        *static_cast<std::string*>(data) = error ? name : file.string();
+        return 1;
+      },
+      &found);
+#endif
+  return found;
 }
 
 }  // namespace rockmass::dda3d

@@ -85,4 +85,9 @@ class LinearSolver {
 /// factorization, with `options.tolerance` for PCG).
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options);
 
+/// The file of the BLAS this process has loaded (its libblas.so.3, the one CHOLMOD's
+/// supernodes run on, resolved through symbolic links), or "" when none is loaded. Its
+/// round-off is the factorization's (docs/dda3d.md, "BLAS").
+std::string loadedBlas();
+
 }  // namespace rockmass::dda3d

@@ -19,6 +19,7 @@ packages=(
   libassimp-dev          # blocks, io: mesh domains and block meshes
   libtinygltf-dev        # io: the blocks as glb
   libsuitesparse-dev     # dda3d: CHOLMOD sparse Cholesky
+  libatlas3-base         # dda3d: CHOLMOD's BLAS and LAPACK (ATLAS, base x86-64; CMakeLists.txt)
   libboost-dev           # ensemble: Boost.Math distributions (quantiles)
   libopenmpi-dev openmpi-bin   # ensemble: realizations over MPI ranks (optional at build time)
   pybind11-dev python3-dev python3-pytest   # python/: the rockmass module and its tests

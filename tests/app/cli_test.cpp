@@ -176,6 +176,25 @@ TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
   }
 }
 
+TEST(Cli, TheProgramRunsOnTheBlasItWasBuiltWith) {
+  // CHOLMOD's factorizations run on ATLAS's BLAS when the build found it (CMakeLists.txt):
+  // the program loads it whatever LD_LIBRARY_PATH says (here the reference BLAS's own
+  // directory, which alone would give CHOLMOD that BLAS and its round-off).
+  const Result plain = test::runCli("--version");
+  const std::size_t at = plain.output.find("\n  BLAS ");
+  ASSERT_NE(at, std::string::npos) << plain.output;
+  const std::string line = plain.output.substr(at + 8, plain.output.find('\n', at + 1) - at - 8);
+  EXPECT_NE(line.find("libblas.so"), std::string::npos) << line;
+#ifdef ROCKMASS_ATLAS_DIR
+  EXPECT_EQ(line.rfind(ROCKMASS_ATLAS_DIR, 0), 0u) << line;
+  std::string output;
+  ASSERT_EQ(
+      test::runRockmass("--version", &output, "LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/blas"), 0);
+  EXPECT_NE(output.find(std::string("\n  BLAS ") + ROCKMASS_ATLAS_DIR), std::string::npos)
+      << output;
+#endif
+}
+
 TEST(Cli, MistypedCommandsAndOptionsAreNamedWithTheClosestValidOne) {
   // CLI11 alone said "A subcommand is required" for `rockmass rn`.
   const Result command = test::runCli("rn scene.yaml -o out");

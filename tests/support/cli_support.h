@@ -12,9 +12,12 @@
 namespace rockmass::test {
 
 /// Runs `rockmass <arguments>`; returns its exit code (-1 when it did not exit normally) and,
-/// when `output` is given, stores its stdout and stderr there.
-inline int runRockmass(const std::string& arguments, std::string* output = nullptr) {
-  const std::string command = std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
+/// when `output` is given, stores its stdout and stderr there. `environment`: assignments
+/// (NAME=value ...) for this run only.
+inline int runRockmass(const std::string& arguments, std::string* output = nullptr,
+                       const std::string& environment = "") {
+  const std::string command = (environment.empty() ? "" : "env " + environment + " ") +
+                              std::string(ROCKMASS_BINARY) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return -1;
   char buffer[4096];
