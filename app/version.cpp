@@ -58,8 +58,12 @@ std::string versionText() {
   }
   // The BLAS that CHOLMOD's supernodes run on: its round-off is the factorization's
   // (docs/dda3d.md, "BLAS").
-  const std::string blas = dda3d::loadedBlas();
-  text += "  BLAS " + (blas.empty() ? std::string("(none loaded)") : blas) + '\n';
+  for (const auto& [name, soname] : {std::pair<const char*, const char*>{"BLAS", "libblas.so.3"},
+                                     {"LAPACK", "liblapack.so.3"}}) {
+    const std::string file = dda3d::loadedLibrary(soname);
+    text += std::string("  ") + name + ' ' + (file.empty() ? std::string("(none loaded)") : file) +
+            '\n';
+  }
 #ifdef ROCKMASS_WITH_MPI
   // The MPI standard the headers declare (the ensemble command's ranks; docs/ensemble.md).
   text += "  MPI " + std::to_string(MPI_VERSION) + '.' + std::to_string(MPI_SUBVERSION) + '\n';

@@ -124,6 +124,8 @@ class BlockMotion {
     const geometry::Vec3 arm = x - centroid_;
     return centroid_ + translation_ + rotation_ * arm + strain_ * arm;
   }
+  /// The exact rotation matrix of the motion (rotationMatrix of its rotation vector).
+  const Eigen::Matrix3d& rotation() const { return rotation_; }
 
  private:
   geometry::Vec3 centroid_;

@@ -127,21 +127,25 @@ double cholmodFactorFlops(const SparseMatrix& k) {
   return flops;
 }
 
-std::string loadedBlas() {
-  std::string found;
+std::string loadedLibrary(const std::string& soname) {
+  struct Search {
+    const std::string* soname;
+    std::string found;
+  } search{&soname, {}};
 #if defined(__linux__)
   dl_iterate_phdr(
       [](dl_phdr_info* info, std::size_t, void* data) {
+        Search& s = *static_cast<Search*>(data);
         const std::string name = info->dlpi_name ? info->dlpi_name : "";
-        if (std::filesystem::path(name).filename() != "libblas.so.3") return 0;
+        if (std::filesystem::path(name).filename() != *s.soname) return 0;
         std::error_code error;
         const std::filesystem::path file = std::filesystem::canonical(name, error);
-        *static_cast<std::string*>(data) = error ? name : file.string();
+        s.found = error ? name : file.string();
         return 1;
       },
-      &found);
+      &search);
 #endif
-  return found;
+  return search.found;
 }
 
 }  // namespace rockmass::dda3d

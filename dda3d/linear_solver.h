@@ -85,9 +85,14 @@ class LinearSolver {
 /// factorization, with `options.tolerance` for PCG).
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options);
 
-/// The file of the BLAS this process has loaded (its libblas.so.3, the one CHOLMOD's
-/// supernodes run on, resolved through symbolic links), or "" when none is loaded. Its
-/// round-off is the factorization's (docs/dda3d.md, "BLAS").
-std::string loadedBlas();
+/// The file this process loaded for the shared library `soname` (e.g. "libblas.so.3", the
+/// BLAS CHOLMOD's supernodes run on, or "liblapack.so.3"), resolved through symbolic links,
+/// or "" when none is loaded. The BLAS's round-off is the factorization's (docs/dda3d.md,
+/// "BLAS").
+std::string loadedLibrary(const std::string& soname);
+/// loadedLibrary("libblas.so.3").
+inline std::string loadedBlas() {
+  return loadedLibrary("libblas.so.3");
+}
 
 }  // namespace rockmass::dda3d

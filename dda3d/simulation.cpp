@@ -666,20 +666,25 @@ void Simulation::listAssembly() {
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const Contact& c = contacts_[k];
     const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
-    const int first = i >= 0 ? i : j;  // both fixed: the first thread records it
-    for (int part = 0; part < assembly_parts_; ++part) {
-      const auto owns = [&](int b) {
-        return b >= 0 && assembly_owner_[static_cast<std::size_t>(b)] == part;
-      };
+    const auto owner = [&](int b) {
+      return b >= 0 ? assembly_owner_[static_cast<std::size_t>(b)] : -1;
+    };
+    // The threads that add something of it: the owners of its blocks (K_ii, K_jj, and K_ij,
+    // which the lower block's owner adds) and the one that records its friction (the first
+    // movable block's owner; the first thread when both are fixed).
+    const int part_i = owner(i), part_j = owner(j);
+    const int part_pair = i >= 0 && j >= 0 ? owner(std::min(i, j)) : -1;
+    const int part_records = i >= 0 ? part_i : j >= 0 ? part_j : 0;
+    for (const int part : {part_i, part_j, part_records}) {
+      if (part < 0) continue;
+      std::vector<AssemblyEntry>& list = assembly_lists_[static_cast<std::size_t>(part)];
+      if (!list.empty() && list.back().contact == k) continue;  // listed for this part already
       std::uint8_t adds = 0;
-      if (owns(i)) adds |= kAddsI;
-      if (owns(j)) adds |= kAddsJ;
-      if (i >= 0 && j >= 0 && owns(std::min(i, j))) adds |= kAddsPair;
-      if (first >= 0 ? owns(first) : part == 0) adds |= kRecords;
-      if (adds != 0) {
-        assembly_lists_[static_cast<std::size_t>(part)].push_back(
-            {static_cast<std::uint32_t>(k), adds});
-      }
+      if (part_i == part) adds |= kAddsI;
+      if (part_j == part) adds |= kAddsJ;
+      if (part_pair == part) adds |= kAddsPair;
+      if (part_records == part) adds |= kRecords;
+      list.push_back({static_cast<std::uint32_t>(k), adds});
     }
   }
   assembly_listed_ = contacts_.size();
@@ -868,7 +873,7 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     for (FacePoints& points : block.face_points) {
       for (FacePoint& p : points.points) p.position = motion(p.position);
     }
-    const Eigen::Matrix3d rotation = rotationMatrix(d.segment<3>(3));
+    const Eigen::Matrix3d& rotation = motion.rotation();
     if (settings_.kinematics == Kinematics::Deformable) {
       const VoigtVector step_strain = d.tail<kVoigtSize>();
       block.stress += elastic_[static_cast<std::size_t>(block.material)] * step_strain;

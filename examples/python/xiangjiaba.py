@@ -10,13 +10,15 @@ Writes xiangjiaba_rqd_ball.png, xiangjiaba_overload.png and xiangjiaba_steps.png
 import os
 import sys
 
+# rockmass first: the process then runs CHOLMOD on rockmass's own BLAS (ATLAS; numpy
+# imported first would bring the system's: docs/dda3d.md, "BLAS").
+import rockmass  # noqa: I001
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-
-import rockmass  # noqa: E402
 
 here = os.path.dirname(os.path.abspath(__file__))
 out = sys.argv[1] if len(sys.argv) > 1 else "out/python"

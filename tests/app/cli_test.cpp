@@ -177,21 +177,33 @@ TEST(Cli, MissingSceneAndBadArgumentsExitWithTwo) {
 }
 
 TEST(Cli, TheProgramRunsOnTheBlasItWasBuiltWith) {
-  // CHOLMOD's factorizations run on ATLAS's BLAS when the build found it (CMakeLists.txt):
-  // the program loads it whatever LD_LIBRARY_PATH says (here the reference BLAS's own
-  // directory, which alone would give CHOLMOD that BLAS and its round-off).
+  // CHOLMOD's factorizations run on ATLAS's BLAS and LAPACK when the build found them
+  // (CMakeLists.txt): the program loads them whatever LD_LIBRARY_PATH says (here the
+  // reference BLAS's and LAPACK's own directories, which alone would give CHOLMOD those and
+  // their round-off; installing ATLAS makes it the system's default, so only such a path
+  // tells the pin from the default).
   const Result plain = test::runCli("--version");
-  const std::size_t at = plain.output.find("\n  BLAS ");
-  ASSERT_NE(at, std::string::npos) << plain.output;
-  const std::string line = plain.output.substr(at + 8, plain.output.find('\n', at + 1) - at - 8);
-  EXPECT_NE(line.find("libblas.so"), std::string::npos) << line;
+  for (const char* library : {"\n  BLAS ", "\n  LAPACK "}) {
+    const std::size_t at = plain.output.find(library);
+    ASSERT_NE(at, std::string::npos) << library << plain.output;
+  }
 #ifdef ROCKMASS_ATLAS_DIR
-  EXPECT_EQ(line.rfind(ROCKMASS_ATLAS_DIR, 0), 0u) << line;
+  const std::string atlas = ROCKMASS_ATLAS_DIR;
+  EXPECT_NE(plain.output.find("\n  BLAS " + atlas + "/libblas.so"), std::string::npos)
+      << plain.output;
+  EXPECT_NE(plain.output.find("\n  LAPACK " + atlas + "/liblapack.so"), std::string::npos)
+      << plain.output;
+  const std::string reference = "/usr/lib/x86_64-linux-gnu/blas/libblas.so.3";
+  ASSERT_TRUE(fs::exists(reference))
+      << reference << " (libblas3, which CHOLMOD's package depends on) is needed to check that "
+      << "LD_LIBRARY_PATH cannot take the program off ATLAS";
   std::string output;
-  ASSERT_EQ(
-      test::runRockmass("--version", &output, "LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/blas"), 0);
-  EXPECT_NE(output.find(std::string("\n  BLAS ") + ROCKMASS_ATLAS_DIR), std::string::npos)
-      << output;
+  ASSERT_EQ(test::runRockmass("--version", &output,
+                              "LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/blas:"
+                              "/usr/lib/x86_64-linux-gnu/lapack"),
+            0);
+  EXPECT_NE(output.find("\n  BLAS " + atlas + "/libblas.so"), std::string::npos) << output;
+  EXPECT_NE(output.find("\n  LAPACK " + atlas + "/liblapack.so"), std::string::npos) << output;
 #endif
 }
 

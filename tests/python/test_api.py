@@ -13,10 +13,13 @@ import subprocess
 import threading
 import time
 
+# rockmass before numpy: its own libblas.so.3 (ATLAS's, docs/dda3d.md "BLAS") is then the
+# process's, as in the rockmass program the tests compare with; numpy first would bring the
+# system's.
+import rockmass  # noqa: I001
+
 import numpy as np
 import pytest
-
-import rockmass
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 XIANGJIABA = os.path.join(ROOT, "examples", "xiangjiaba", "scene.yaml")
