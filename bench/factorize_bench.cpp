@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     best = std::min(
         best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
-  std::printf("BLAS %s\n", rockmass::dda3d::loadedBlas().c_str());
+  std::printf("BLAS %s\n", rockmass::dda3d::loadedLibrary("libblas.so.3").c_str());
   std::printf("unknowns %ld, factor entries %.3g, flops %.3g\n", static_cast<long>(a->nrow),
               factor_entries, flops);
   std::printf("factorization %.4f s (best of %d), %.2f GFlop/s, %s\n", best, repeats,

@@ -90,9 +90,5 @@ std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options);
 /// or "" when none is loaded. The BLAS's round-off is the factorization's (docs/dda3d.md,
 /// "BLAS").
 std::string loadedLibrary(const std::string& soname);
-/// loadedLibrary("libblas.so.3").
-inline std::string loadedBlas() {
-  return loadedLibrary("libblas.so.3");
-}
 
 }  // namespace rockmass::dda3d
