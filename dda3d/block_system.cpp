@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include <tbb/parallel_for.h>
+
 namespace rockmass::dda3d {
 
 namespace {
@@ -27,6 +29,7 @@ bool BlockSystem::setPairs(std::vector<std::pair<int, int>> pairs) {
     return false;
   }
   pairs_ = std::move(pairs);
+  ++pairs_version_;
   off_diagonal_.assign(pairs_.size(), BlockMatrix::Zero());
   pair_index_.clear();
   columns_.assign(static_cast<std::size_t>(block_count_), {});
@@ -64,15 +67,25 @@ bool BlockSystem::setPairs(std::vector<std::pair<int, int>> pairs) {
 }
 
 void BlockSystem::clear() {
-  for (BlockMatrix& m : diagonal_) m.setZero();
-  for (BlockMatrix& m : off_diagonal_) m.setZero();
-  for (BlockVector& f : rhs_) f.setZero();
+  tbb::parallel_for(std::size_t{0}, diagonal_.size(), [&](std::size_t b) {
+    diagonal_[b].setZero();
+    rhs_[b].setZero();
+  });
+  tbb::parallel_for(std::size_t{0}, off_diagonal_.size(),
+                    [&](std::size_t p) { off_diagonal_[p].setZero(); });
 }
 
 BlockMatrix& BlockSystem::pairBlock(int i, int j, bool& transposed) {
   transposed = i > j;
   const auto found = pair_index_.find(transposed ? pairKey(j, i) : pairKey(i, j));
   return off_diagonal_[static_cast<std::size_t>(found->second)];
+}
+
+int BlockSystem::pairSlot(int i, int j, bool& transposed) const {
+  transposed = i > j;
+  if (i < 0 || j < 0 || i == j) return -1;
+  const auto found = pair_index_.find(transposed ? pairKey(j, i) : pairKey(i, j));
+  return found == pair_index_.end() ? -1 : found->second;
 }
 
 namespace {
@@ -125,10 +138,87 @@ void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVecto
   }
 }
 
+namespace {
+
+/// T^T S T of a rigid block's T = [I | R] (its first six columns), S symmetric, by its 3 x 3
+/// parts: [[S, S R], [R^T S, R^T S R]].
+void addRigidBlock(BlockMatrix& m, double sign, const Eigen::Matrix3d& s,
+                   const Eigen::Matrix3d& sr_left, const Eigen::Matrix3d& r_left,
+                   const Eigen::Matrix3d& sr_right) {
+  // m += sign * T_l^T S T_r with S R_l = sr_left, S R_r = sr_right.
+  m.topLeftCorner<3, 3>() += sign * s;
+  m.block<3, 3>(0, 3) += sign * sr_right;
+  m.block<3, 3>(3, 0) += sign * sr_left.transpose();
+  m.block<3, 3>(3, 3).noalias() += sign * (r_left.transpose() * sr_right);
+}
+
+}  // namespace
+
+void BlockSystem::addPointSprings(int i, const DisplacementMatrix& ti, int j,
+                                  const DisplacementMatrix& tj, const Eigen::Matrix3d& s,
+                                  const geometry::Vec3& offsets, const Parts& parts) {
+  const bool pair = i >= 0 && j >= 0 && parts.pair;
+  const auto pairTarget = [&](bool& transposed) -> BlockMatrix& {
+    transposed = parts.transposed;
+    return parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
+  };
+  if (dofs_ == 6) {
+    addRigidPointSprings(i, ti.middleCols<3>(3), j, tj.middleCols<3>(3), s, offsets, parts);
+    return;
+  }
+  const DisplacementMatrix wi = s * ti, wj = s * tj;
+  if (i >= 0 && parts.i) {
+    diagonal_[static_cast<std::size_t>(i)].noalias() += ti.transpose() * wi;
+    rhs_[static_cast<std::size_t>(i)].noalias() -= ti.transpose() * offsets;
+  }
+  if (j >= 0 && parts.j) {
+    diagonal_[static_cast<std::size_t>(j)].noalias() += tj.transpose() * wj;
+    rhs_[static_cast<std::size_t>(j)].noalias() += tj.transpose() * offsets;
+  }
+  if (pair) {
+    bool transposed = false;
+    BlockMatrix& m = pairTarget(transposed);
+    if (transposed) {
+      m.noalias() -= tj.transpose() * wi;
+    } else {
+      m.noalias() -= ti.transpose() * wj;
+    }
+  }
+}
+
+void BlockSystem::addRigidPointSprings(int i, const Eigen::Matrix3d& ri, int j,
+                                       const Eigen::Matrix3d& rj, const Eigen::Matrix3d& s,
+                                       const geometry::Vec3& offsets, const Parts& parts) {
+  const Eigen::Matrix3d sri = s * ri, srj = s * rj;
+  if (i >= 0 && parts.i) {
+    addRigidBlock(diagonal_[static_cast<std::size_t>(i)], 1.0, s, sri, ri, sri);
+    BlockVector& f = rhs_[static_cast<std::size_t>(i)];
+    f.head<3>() -= offsets;
+    f.segment<3>(3) -= ri.transpose() * offsets;
+  }
+  if (j >= 0 && parts.j) {
+    addRigidBlock(diagonal_[static_cast<std::size_t>(j)], 1.0, s, srj, rj, srj);
+    BlockVector& f = rhs_[static_cast<std::size_t>(j)];
+    f.head<3>() += offsets;
+    f.segment<3>(3) += rj.transpose() * offsets;
+  }
+  if (i >= 0 && j >= 0 && parts.pair) {
+    bool transposed = parts.transposed;
+    BlockMatrix& m = parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
+    if (transposed) {
+      addRigidBlock(m, -1.0, s, srj, rj, sri);  // stored K_ji = -T_j^T S T_i
+    } else {
+      addRigidBlock(m, -1.0, s, sri, ri, srj);
+    }
+  }
+}
+
 const SparseMatrix& BlockSystem::matrix() {
   double* values = matrix_.valuePtr();
-  int at = 0;
-  for (int b = 0; b < block_count_; ++b) {
+  const int* outer = matrix_.outerIndexPtr();
+  // Each block's columns in parallel: they start where the pattern says (setPairs).
+  tbb::parallel_for(0, block_count_, [&](int b) {
+    int at = outer[b * dofs_];
     for (int c = 0; c < dofs_; ++c) {
       for (const Source& s : columns_[static_cast<std::size_t>(b)]) {
         if (s.pair < 0) {
@@ -144,7 +234,7 @@ const SparseMatrix& BlockSystem::matrix() {
         }
       }
     }
-  }
+  });
   return matrix_;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dda3d/block_state.h"
+#include "dda3d/displacement_field.h"
 #include "dda3d/linear_solver.h"
 
 namespace rockmass::dda3d {
@@ -32,20 +33,40 @@ class BlockSystem {
   /// of one spring each its own, in parallel, every sum in the serial order.
   struct Parts {
     bool i = true, j = true, pair = true;
-    /// K_ij's stored block when already found (withPair), else looked up per spring.
+    /// K_ij's stored block when already found (withSlot), else looked up per spring.
     BlockMatrix* pair_block = nullptr;
     bool transposed = false;  ///< pair_block stores K_ji
   };
-  /// `parts` with K_ij's block found once, for several springs between blocks i and j.
-  Parts withPair(int i, int j, Parts parts) {
-    if (parts.pair && i >= 0 && j >= 0 && i != j) {
-      parts.pair_block = &pairBlock(i, j, parts.transposed);
+  /// Where K_ij is stored: the index of its block among the coupled pairs, negative when i or j
+  /// is fixed, i == j, or the pair is not coupled; `transposed` when the block stores K_ji.
+  /// Valid until the pairs change (pairsVersion()).
+  int pairSlot(int i, int j, bool& transposed) const;
+  /// `parts` with K_ij's block taken from its slot (pairSlot).
+  Parts withSlot(int slot, bool transposed, Parts parts) {
+    if (parts.pair && slot >= 0) {
+      parts.pair_block = &off_diagonal_[static_cast<std::size_t>(slot)];
+      parts.transposed = transposed;
     }
     return parts;
   }
+  /// Bumped each time setPairs changes the coupled pairs.
+  int pairsVersion() const { return pairs_version_; }
   /// addSpring's terms that `parts` names, each added exactly as addSpring adds it.
   void addSpring(int i, const BlockVector& a, int j, const BlockVector& b, double k, double d0,
                  const Parts& parts);
+  /// The springs of one contact point at once: k_m along orthonormal directions e_m with
+  /// offsets d_m, passed as S = sum k_m e_m e_m^T and s = sum k_m d_m e_m. The energy
+  /// 1/2 sum k_m (d_m + e_m^T (T_i D_i - T_j D_j))^2 adds K_ii += T_i^T S T_i, F_i -= T_i^T s,
+  /// K_jj += T_j^T S T_j, F_j += T_j^T s, K_ij -= T_i^T S T_j: the sum of addSpring over the
+  /// springs in one product (a locked contact's three springs in a third of the arithmetic).
+  /// i or j = -1 is a fixed body; i == j (both ends on one block) is not taken here.
+  void addPointSprings(int i, const DisplacementMatrix& ti, int j, const DisplacementMatrix& tj,
+                       const Eigen::Matrix3d& s, const geometry::Vec3& offsets, const Parts& parts);
+  /// addPointSprings of rigid blocks (6 unknowns each), from the rotation columns of T_i and
+  /// T_j (rotationColumns; their translation columns are the identity).
+  void addRigidPointSprings(int i, const Eigen::Matrix3d& ri, int j, const Eigen::Matrix3d& rj,
+                            const Eigen::Matrix3d& s, const geometry::Vec3& offsets,
+                            const Parts& parts);
   /// K_ii += m.
   void addDiagonal(int i, const BlockMatrix& m) { diagonal_[static_cast<std::size_t>(i)] += m; }
   /// F_i += f (no-op for i = -1).
@@ -77,6 +98,7 @@ class BlockSystem {
   std::vector<std::pair<int, int>> pairs_;  // sorted, unique, first < second
   std::vector<BlockMatrix> off_diagonal_;   // K_{first, second}
   std::unordered_map<long long, int> pair_index_;
+  int pairs_version_ = 0;
   /// Per block column: row blocks in ascending order, each with its source (-1: diagonal,
   /// else pair index) and whether that source is stored transposed.
   struct Source {

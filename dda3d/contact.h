@@ -85,6 +85,48 @@ struct Contact {
   bool held = false;
 };
 
+/// The fields of a contact that an attempt at a step changes (the open-close iteration's
+/// Simulation::updateContactStates): what a redone attempt restores. Everything else of the
+/// entry (its geometry, joint, area, history) is fixed from the contact search to the
+/// accepted step, so the step keeps this third of each entry instead of a copy of all.
+struct ContactStepState {
+  ContactStepState() = default;
+  explicit ContactStepState(const Contact& c)
+      : shear(c.shear),
+        slide_direction(c.slide_direction),
+        normal_force(c.normal_force),
+        gap(c.gap),
+        slip_length(c.slip_length),
+        flips(c.flips),
+        toggles(c.toggles),
+        state(c.state),
+        bonded(c.bonded),
+        held(c.held) {}
+  void restore(Contact& c) const {
+    c.shear = shear;
+    c.slide_direction = slide_direction;
+    c.normal_force = normal_force;
+    c.gap = gap;
+    c.slip_length = slip_length;
+    c.flips = flips;
+    c.toggles = toggles;
+    c.state = state;
+    c.bonded = bonded;
+    c.held = held;
+  }
+
+  geometry::Vec3 shear = geometry::Vec3::Zero();
+  geometry::Vec3 slide_direction = geometry::Vec3::Zero();
+  double normal_force = 0.0;
+  double gap = 0.0;
+  double slip_length = 0.0;
+  int flips = 0;
+  int toggles = 0;
+  ContactState state = ContactState::Open;
+  bool bonded = true;
+  bool held = false;
+};
+
 /// The part of `v` in the plane normal to the unit vector `n` (a contact's shear plane).
 inline geometry::Vec3 tangential(const geometry::Vec3& v, const geometry::Vec3& n) {
   return v - n * n.dot(v);

@@ -48,6 +48,10 @@ struct ReachLimits {
 /// so contacts between pieces farther apart than the sum of their blocks' reaches cannot form
 /// within the step.
 double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits);
+/// stepReach with the last step's largestVertexDisplacement(block, block.last_displacement)
+/// already known (`last_largest`, from the geometry as it is now).
+double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits,
+                 double last_largest);
 
 /// Piece boxes grown by their block's `reach` (one per block, m), intersected by
 /// overlappingPieces(): the candidate pairs (sorted, different blocks, not both fixed).

@@ -55,6 +55,15 @@ BlockVector Simulation::unknownsOf(const Eigen::VectorXd& solution, int block) c
   return m < 0 ? BlockVector::Zero() : system_->unknowns(solution, m);
 }
 
+std::vector<BlockVector> Simulation::blockUnknowns(const Eigen::VectorXd& solution) const {
+  std::vector<BlockVector> unknowns(blocks_.size(), BlockVector::Zero());
+  if (solution.size() == 0) return unknowns;  // no solve (no movable block)
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
+    unknowns[b] = unknownsOf(solution, static_cast<int>(b));
+  });
+  return unknowns;
+}
+
 Vec3 Simulation::relativeDisplacement(const Contact& c, const Eigen::VectorXd& solution,
                                       bool rigid_part) const {
   return relativeDisplacement(c, unknownsOf(solution, c.block_i), unknownsOf(solution, c.block_j),
@@ -71,6 +80,12 @@ Vec3 Simulation::relativeDisplacement(const Contact& c, BlockVector di, BlockVec
                                       bool rigid_part) const {
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+  if (dofs_ == 6) {
+    // Rigid blocks: T(x) d = u0 + r x (x - c), without the zero strain columns.
+    const Vec3 ui = di.head<3>() + di.segment<3>(3).cross(c.point - bi.centroid);
+    const Vec3 uj = dj.head<3>() + dj.segment<3>(3).cross(c.foot - bj.centroid);
+    return ui - uj;
+  }
   if (rigid_part) {
     di.tail<kVoigtSize>().setZero();
     dj.tail<kVoigtSize>().setZero();
@@ -257,10 +272,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // Each contact's update reads the solution and changes that contact only: in parallel,
   // each recording how it changed (1 changed, 2 closed), then counted in order.
   // Every block's unknowns, read once (not twice per contact).
-  std::vector<BlockVector> unknowns(blocks_.size());
-  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
-    unknowns[b] = unknownsOf(solution, static_cast<int>(b));
-  });
+  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   std::vector<char> how(contacts_.size(), 0);
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
@@ -311,12 +323,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
 }
 
 void Simulation::recordContactHistory(const Eigen::VectorXd& solution) {
+  const std::vector<BlockVector> unknowns =
+      solution.size() > 0 ? blockUnknowns(solution) : std::vector<BlockVector>{};
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
     if (c.state == ContactState::Open) return;
     c.was_closed = true;
     if (c.state == ContactState::Sliding && solution.size() > 0) {
-      c.slipped += tangential(relativeDisplacement(c, solution), c.normal).norm();
+      c.slipped += tangential(relativeDisplacement(c, unknowns), c.normal).norm();
     }
   });
 }

@@ -25,6 +25,18 @@ using ElasticMatrix = Eigen::Matrix<double, kVoigtSize, kVoigtSize>;
 /// centroid `centroid` (m); columns u0 v0 w0 rx ry rz ex ey ez gyz gzx gxy.
 DisplacementMatrix displacementMatrix(const geometry::Vec3& point, const geometry::Vec3& centroid);
 
+/// Columns rx, ry, rz of displacementMatrix(centroid + arm, centroid): the small rotation's
+/// displacement r x arm as a matrix R (R r = r x arm).
+inline Eigen::Matrix3d rotationColumns(const geometry::Vec3& arm) {
+  Eigen::Matrix3d r;
+  // clang-format off
+  r << 0.0,      arm.z(),  -arm.y(),
+       -arm.z(), 0.0,      arm.x(),
+       arm.y(),  -arm.x(), 0.0;
+  // clang-format on
+  return r;
+}
+
 /// Isotropic elastic matrix (Pa), 6 x 6, mapping strains (ex, ey, ez, gyz, gzx, gxy) with
 /// engineering shear strains to stresses (sx, sy, sz, tyz, tzx, txy); `young` in Pa (> 0),
 /// `poisson` dimensionless in (-1, 0.5). Throws std::invalid_argument otherwise.

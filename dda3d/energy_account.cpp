@@ -57,17 +57,18 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // Each contact's terms in parallel, summed in contact order as one loop would.
   const std::size_t applied = std::min(contacts_.size(), applied_friction_.size());
   std::vector<ContactTerms> terms(applied);
+  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   tbb::parallel_for(std::size_t{0}, applied, [&](std::size_t k) {
     const AppliedFriction& f = applied_friction_[k];
     if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) return;
     ContactTerms& t = terms[k];
-    const Vec3 relative = relativeDisplacement(contacts_[k], solution);
+    const Vec3 relative = relativeDisplacement(contacts_[k], unknowns);
     t.first = f.force.dot(relative);
     t.counts = kFirst;
     if (f.transverse_stiffness > 0.0) {
       // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
       const double x =
-          f.across.dot(dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], solution, true));
+          f.across.dot(dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], unknowns, true));
       t.second = f.transverse_stiffness * x * x;
       t.counts |= kSecond;
     }

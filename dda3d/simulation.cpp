@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "dda3d/block_terms.h"
 #include "dda3d/contact_detection.h"
@@ -263,6 +264,28 @@ void startStep(Contact& c) {
   c.held = false;
 }
 
+/// The step's start of each contact's fields that an attempt changes (`save`), in parallel, in
+/// `to`'s buffer when it is large enough.
+void saveStepStart(const std::vector<Contact>& from, std::vector<ContactStepState>& to) {
+  to.resize(from.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        to[k] = ContactStepState(from[k]);
+                      }
+                    });
+}
+
+/// Each contact back to its step's start (saveStepStart), for a redone attempt.
+void restoreStepStart(const std::vector<ContactStepState>& from, std::vector<Contact>& to) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        from[k].restore(to[k]);
+                      }
+                    });
+}
+
 }  // namespace
 
 double Simulation::keptEntriesMargin() const {
@@ -312,8 +335,11 @@ int Simulation::detectContacts() {
   const ReachLimits limits{kRestingReachRatio * g2_l0, kAcceptedDisplacementRatio * g2_l0,
                            model_.gravity.norm()};
   reach_.resize(blocks_.size());
-  for (std::size_t b = 0; b < blocks_.size(); ++b)
-    reach_[b] = stepReach(blocks_[b], dt_, last_dt_, limits);
+  const bool known = last_largest_.size() == blocks_.size();
+  tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
+    reach_[b] = known ? stepReach(blocks_[b], dt_, last_dt_, limits, last_largest_[b])
+                      : stepReach(blocks_[b], dt_, last_dt_, limits);
+  });
   // Penetrations are kept down to 3 g2 l0 (the former search distance), whatever the reach.
   const double depth = 2.0 * kAcceptedDisplacementRatio * g2_l0;
   // Entries kept while no block moved beyond the margin; only the pairs of the blocks that
@@ -447,7 +473,7 @@ void Simulation::startFromCreep() {
   });
 }
 
-void Simulation::assembleBlockTerms(double dt) {
+void Simulation::assembleBlockTerms(double dt, bool defer_water) {
   ActiveTerms step;
   step.inertia = true;
   const bool deformable = settings_.kinematics == Kinematics::Deformable;
@@ -489,24 +515,28 @@ void Simulation::assembleBlockTerms(double dt) {
   }
   // With pores in the blocks, the area each entry wets (from the same clipped face).
   const bool pores = settings_.biot_coefficient > 0.0 && deformable;
-  std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
-  // Each face's water load in parallel (a clipped face integrated: the region has some 10 000),
-  // added to its block in the list's order.
-  std::vector<BlockVector> face_loads(model_.pressures.size());
-  tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
-    const DdaPressure& p = model_.pressures[e];
-    const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
-    if (block.fixed) return;
-    face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
-                                 pores ? &wetted[e] : nullptr);
-  });
-  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
-    const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
-    if (block.fixed) continue;
-    load_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
-    step.surface_pressure = true;
+  water_ = defer_water && !pores && !model_.pressures.empty() ? DeferredWater::Pending
+                                                              : DeferredWater::None;
+  if (water_ == DeferredWater::None) {
+    std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
+    // Each face's water load in parallel (a clipped face integrated: the region has some
+    // 10 000), added to its block in the list's order.
+    std::vector<BlockVector> face_loads(model_.pressures.size());
+    tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
+      const DdaPressure& p = model_.pressures[e];
+      const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+      if (block.fixed) return;
+      face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face,
+                                   p, pores ? &wetted[e] : nullptr);
+    });
+    for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+      const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
+      if (block.fixed) continue;
+      load_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
+      step.surface_pressure = true;
+    }
+    if (pores) step.block_pore_pressure |= addBlockPorePressure(wetted);
   }
-  if (pores) step.block_pore_pressure |= addBlockPorePressure(wetted);
   for (const DdaHydrodynamicPressure& p : model_.hydrodynamic) {
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
     if (block.fixed) continue;
@@ -537,6 +567,28 @@ void Simulation::assembleBlockTerms(double dt) {
   active_ |= step;
 }
 
+void Simulation::addWaterLoads() {
+  std::vector<BlockVector> face_loads(model_.pressures.size());
+  tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
+    const DdaPressure& p = model_.pressures[e];
+    const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
+    if (block.fixed) return;
+    face_loads[e] =
+        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p, nullptr);
+  });
+  water_f_.assign(base_f_.size(), BlockVector::Zero());
+  bool any = false;
+  for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
+    const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
+    if (block.fixed) continue;
+    water_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
+    any = true;
+  }
+  for (std::size_t m = 0; m < water_f_.size(); ++m) load_f_[m] += water_f_[m];
+  active_.surface_pressure |= any;
+  water_ = DeferredWater::Ready;
+}
+
 Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
                                                         const BlockSystem::Parts& parts,
                                                         ActiveTerms& active) {
@@ -544,11 +596,31 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
   const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
   const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
   const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+  active.contact_normal = true;
+  if (c.state == ContactState::Locked && i != j) {
+    // The normal spring (k_n along n, offset gap0) and the two shear springs (k_s along the
+    // tangents, offsets the shear's components) in one product (BlockSystem::addPointSprings).
+    const double ks = penalty_ / settings_.shear_penalty_ratio;
+    Vec3 t[2];
+    tangents(c.normal, t[0], t[1]);
+    const Eigen::Matrix3d s = penalty_ * c.normal * c.normal.transpose() +
+                              ks * (t[0] * t[0].transpose() + t[1] * t[1].transpose());
+    const Vec3 offsets = penalty_ * c.gap0 * c.normal + ks * c.shear.dot(t[0]) * t[0] +
+                         ks * c.shear.dot(t[1]) * t[1];
+    if (dofs_ == 6) {
+      system_->addRigidPointSprings(i, rotationColumns(c.point - bi.centroid), j,
+                                    rotationColumns(c.foot - bj.centroid), s, offsets, parts);
+    } else {
+      system_->addPointSprings(i, displacementMatrix(c.point, bi.centroid), j,
+                               displacementMatrix(c.foot, bj.centroid), s, offsets, parts);
+    }
+    active.contact_shear = true;
+    return {};
+  }
   const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
   const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
   system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0,
                      parts);
-  active.contact_normal = true;
   if (c.state == ContactState::Locked) {
     const double ks = penalty_ / settings_.shear_penalty_ratio;
     Vec3 t[2];
@@ -593,6 +665,7 @@ void Simulation::assembleSystem() {
   for (std::size_t m = 0; m < base_k_.size(); ++m) {
     system_->addDiagonal(static_cast<int>(m), base_k_[m]);
     system_->addForce(static_cast<int>(m), base_f_[m]);
+    if (water_ == DeferredWater::Ready) system_->addForce(static_cast<int>(m), water_f_[m]);
   }
   // The contacts' terms in parallel, bit for bit the serial loop's sums: each thread goes
   // through its contacts in order (listAssembly) and adds the terms of its own blocks (K_ii,
@@ -601,7 +674,9 @@ void Simulation::assembleSystem() {
   // slabs is computed by both, and its friction recorded by the owner of its first movable
   // block.
   if (assembly_owner_.size() != base_k_.size()) splitAssembly();
-  if (assembly_listed_ != contacts_.size()) listAssembly();
+  if (assembly_listed_ != contacts_.size() || assembly_pairs_version_ != system_->pairsVersion()) {
+    listAssembly();
+  }
   applied_friction_.resize(contacts_.size());
   std::vector<ActiveTerms> active(static_cast<std::size_t>(assembly_parts_));
   tbb::parallel_for(0, assembly_parts_, [&](int part) {
@@ -611,12 +686,9 @@ void Simulation::assembleSystem() {
       mine.i = (entry.adds & kAddsI) != 0;
       mine.j = (entry.adds & kAddsJ) != 0;
       mine.pair = (entry.adds & kAddsPair) != 0;
-      const AppliedFriction applied = addContactTerms(
-          c,
-          c.state == ContactState::Open
-              ? mine
-              : system_->withPair(movableIndex(c.block_i), movableIndex(c.block_j), mine),
-          active[static_cast<std::size_t>(part)]);
+      const AppliedFriction applied =
+          addContactTerms(c, system_->withSlot(entry.pair, entry.transposed, mine),
+                          active[static_cast<std::size_t>(part)]);
       if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
     }
   });
@@ -684,10 +756,13 @@ void Simulation::listAssembly() {
       if (part_j == part) adds |= kAddsJ;
       if (part_pair == part) adds |= kAddsPair;
       if (part_records == part) adds |= kRecords;
-      list.push_back({static_cast<std::uint32_t>(k), adds});
+      AssemblyEntry entry{static_cast<std::uint32_t>(k), adds, false, -1};
+      if (adds & kAddsPair) entry.pair = system_->pairSlot(i, j, entry.transposed);
+      list.push_back(entry);
     }
   }
   assembly_listed_ = contacts_.size();
+  assembly_pairs_version_ = system_->pairsVersion();
 }
 
 Eigen::VectorXd Simulation::solveSystem(double dt, int iteration, const Eigen::VectorXd& previous) {
@@ -720,7 +795,26 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     bool positive = false;
     {
       PhaseTimer timer(step_profile_, StepPhase::Factorize);
-      positive = solver_->factorize(system_->matrix());
+      const SparseMatrix& k = system_->matrix();
+      // The factorization holds one thread: beside it, what the solve and the state updates
+      // need and K does not, on the other threads (the same values as before the
+      // factorization: each is its own pass over the blocks or the contacts).
+      const bool water = water_ == DeferredWater::Pending;
+      if (water || step_start_pending_) {
+        tbb::task_group beside;
+        if (water) beside.run([&] { addWaterLoads(); });
+        if (step_start_pending_) beside.run([&] { saveStepStart(contacts_, step_start_); });
+        positive = solver_->factorize(k);
+        beside.wait();
+        step_start_pending_ = false;
+        if (water) {
+          for (std::size_t m = 0; m < water_f_.size(); ++m) {
+            system_->addForce(static_cast<int>(m), water_f_[m]);
+          }
+        }
+      } else {
+        positive = solver_->factorize(k);
+      }
       if (solver_->stats().analyzed) ++pattern_changes_;
     }
     if (!positive) {
@@ -836,15 +930,17 @@ double Simulation::maxPenetration() const {
 }
 
 void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
+  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
     if (c.state == ContactState::Locked) {
-      c.shear = tangential(c.shear + relativeDisplacement(c, solution), c.normal);
+      c.shear = tangential(c.shear + relativeDisplacement(c, unknowns), c.normal);
     } else {
       c.shear.setZero();
     }
   });
   const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
+  const bool rigid = settings_.kinematics != Kinematics::Deformable;
   const auto move = [&](std::vector<MaterialPoint>& points) {
     for (MaterialPoint& p : points) {
       if (p.block < 0) continue;
@@ -867,13 +963,28 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
     work[b] = load_f_[static_cast<std::size_t>(block.dof_offset)].dot(d);
     const BlockMotion motion(block.centroid, d);
+    Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 high = -low;
     for (geometry::Polyhedron& piece : block.pieces) {
-      for (Vec3& v : piece.vertices) v = motion(v);
+      for (Vec3& v : piece.vertices) {
+        v = motion(v);
+        low = low.cwiseMin(v);
+        high = high.cwiseMax(v);
+      }
     }
     for (FacePoints& points : block.face_points) {
       for (FacePoint& p : points.points) p.position = motion(p.position);
     }
     const Eigen::Matrix3d& rotation = motion.rotation();
+    if (rigid) {
+      // A rigid motion keeps the volume and carries the centroid and the central second
+      // moments along (S' = R S R^T): the same values as integrating the moved pieces again,
+      // to round-off, without the pass over every face (updateMassProperties).
+      block.centroid = motion(block.centroid);
+      const Eigen::Matrix3d second = rotation * block.second * rotation.transpose();
+      block.second = 0.5 * (second + second.transpose());
+      block.size = (high - low).norm();
+    }
     if (settings_.kinematics == Kinematics::Deformable) {
       const VoigtVector step_strain = d.tail<kVoigtSize>();
       block.stress += elastic_[static_cast<std::size_t>(block.material)] * step_strain;
@@ -886,7 +997,7 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
         ratio * endVelocity(block.velocity, block.acceleration, a1, dt, scheme_).eval();
     block.acceleration = ratio * a1;
     block.last_displacement = d;
-    block.updateMassProperties();
+    if (!rigid) block.updateMassProperties();
   });
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (blocks_[b].fixed) continue;
@@ -958,10 +1069,12 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     updateBlocks(solution, dt);
     // How far each block moved, for the kept broad-phase pairs (a first-order bound, from
     // the moved geometry: 1 % over it covers the difference).
+    last_largest_.assign(blocks_.size(), 0.0);
     std::vector<double> moved(blocks_.size(), 0.0);
     tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
       if (!blocks_[b].fixed) {
-        moved[b] = 1.01 * largestVertexDisplacement(blocks_[b], blocks_[b].last_displacement);
+        last_largest_[b] = largestVertexDisplacement(blocks_[b], blocks_[b].last_displacement);
+        moved[b] = 1.01 * last_largest_[b];
       }
     });
     for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
@@ -986,21 +1099,6 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
   report.penalty = penalty_;
 }
 
-namespace {
-
-/// `to` = `from`, in parallel, in `to`'s buffer when it is large enough.
-void copyContacts(const std::vector<Contact>& from, std::vector<Contact>& to) {
-  to.resize(from.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      std::copy(from.begin() + static_cast<std::ptrdiff_t>(range.begin()),
-                                from.begin() + static_cast<std::ptrdiff_t>(range.end()),
-                                to.begin() + static_cast<std::ptrdiff_t>(range.begin()));
-                    });
-}
-
-}  // namespace
-
 StepReport Simulation::step() {
   if (interruptRequested()) {
     std::ostringstream where;
@@ -1019,18 +1117,25 @@ StepReport Simulation::step() {
     report.contacts_searched = searches_ > searches_before;
     report.contacts_searched_partly = partial_searches_ > partial_before;
   }
-  copyContacts(contacts_, step_start_);
+  // Saved beside the first factorization (openCloseIterate), before any state changes.
+  step_start_pending_ = true;
   double dt = dt_;
   Eigen::VectorXd solution;
   for (int attempt = 1;; ++attempt) {
     report.attempts = attempt;
-    if (attempt > 1) copyContacts(step_start_, contacts_);
+    if (attempt > 1) restoreStepStart(step_start_, contacts_);
     {
       PhaseTimer timer(step_profile_, StepPhase::AssembleBlockTerms);
-      assembleBlockTerms(dt);
+      assembleBlockTerms(dt, true);
     }
     bool settled = false;
     report.iterations = openCloseIterate(dt, solution, settled);
+    if (step_start_pending_) {
+      // No factorization ran (no movable block): the contacts are as they started.
+      saveStepStart(contacts_, step_start_);
+      step_start_pending_ = false;
+    }
+    if (water_ == DeferredWater::Pending) addWaterLoads();  // for the work of the loads
     const bool last_chance = attempt >= settings_.max_step_attempts;
     if (checkStep(solution, settled, last_chance, dt, report) == StepCheck::Accept) break;
   }

@@ -200,7 +200,14 @@ class Simulation {
   /// The mass matrix of a block's inertia term: M, or in static mode M scaled by
   /// staticMassScale with a deformable block's strain inertia held to its stiffness.
   BlockMatrix inertiaMatrix(const BlockState& block) const;
-  void assembleBlockTerms(double dt);
+  /// The blocks' own terms and loads (base_k_, base_f_, load_f_). With `defer_water`, the
+  /// water on the blocks' faces (some 10 000 clipped faces on the Xiangjiaba region) is left
+  /// for addWaterLoads, which the first factorization of the attempt runs beside it
+  /// (openCloseIterate); not with pores in the blocks, whose pressure needs it at once.
+  void assembleBlockTerms(double dt, bool defer_water = false);
+  /// The water on the blocks' faces (model_.pressures) of the current geometry into water_f_
+  /// (each face in parallel, added to its block in the list's order) and load_f_.
+  void addWaterLoads();
   /// Adds the pore pressure the deformable rock blocks carry (DdaSettings::biot_coefficient)
   /// to their loads, given the area each pressure entry wets (assembleBlockTerms); true when
   /// some block carries one.
@@ -277,6 +284,8 @@ class Simulation {
   double maxPenetration() const;
   void updateBlocks(const Eigen::VectorXd& solution, double dt);
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;
+  /// unknownsOf of every block (zero for fixed ones), for passes over the contacts.
+  std::vector<BlockVector> blockUnknowns(const Eigen::VectorXd& solution) const;
   int movableIndex(int block) const { return blocks_[static_cast<std::size_t>(block)].dof_offset; }
   /// The largest vertex displacement of the step `report` accounts for (m).
   double stepDisplacement(const StepReport& report) const;
@@ -325,11 +334,17 @@ class Simulation {
   struct AssemblyEntry {
     std::uint32_t contact = 0;
     std::uint8_t adds = 0;
+    bool transposed = false;  ///< the pair's block stores K_ji
+    int pair = -1;            ///< BlockSystem::pairSlot of the contact's blocks
   };
   /// Each thread's entries in contact order (listAssembly), for contacts_ of
   /// assembly_listed_ entries (npos: to be listed).
   std::vector<std::vector<AssemblyEntry>> assembly_lists_;
   std::size_t assembly_listed_ = static_cast<std::size_t>(-1);
+  int assembly_pairs_version_ = -1;  ///< BlockSystem::pairsVersion of the lists' pair slots
+  /// Per block, largestVertexDisplacement of its last accepted step on its moved geometry
+  /// (acceptStep), for the next step's reach; empty before the first step.
+  std::vector<double> last_largest_;
   std::vector<BlockState> blocks_;
   std::vector<geometry::Vec3> initial_centroids_;
   std::vector<ElasticMatrix> elastic_;
@@ -340,7 +355,7 @@ class Simulation {
   /// The contacts as a step found them, for a redone attempt; its buffer is kept between
   /// steps (a fresh copy of the region's 214 000 entries, 56 MB, faulted its pages in anew
   /// every step: 0.04 s, more than the solve).
-  std::vector<Contact> step_start_;
+  std::vector<ContactStepState> step_start_;
   std::vector<double> reach_;  // per block, m (contactReach())
   /// The broad phase's pairs, kept between steps while the blocks move less than a margin.
   CandidatePairs candidates_;
@@ -355,6 +370,15 @@ class Simulation {
   std::vector<BlockMatrix> base_k_;  // block terms per movable block
   std::vector<BlockVector> base_f_;
   std::vector<BlockVector> load_f_;  // external loads per movable block (for the work)
+  /// The attempt's water loads per movable block when assembleBlockTerms deferred them (not
+  /// in base_f_): Pending until addWaterLoads computes them, then Ready (assembleSystem adds
+  /// them to F); None when they are in base_f_.
+  enum class DeferredWater { None, Pending, Ready };
+  DeferredWater water_ = DeferredWater::None;
+  std::vector<BlockVector> water_f_;
+  /// The step's start of the contacts (step_start_) is still to be saved: the first
+  /// factorization of the step saves it beside it.
+  bool step_start_pending_ = false;
   ActiveTerms active_;
   StepProfile timings_;       ///< summed over the steps
   StepProfile step_profile_;  ///< of the step being run

@@ -12,6 +12,7 @@ using geometry::Polyhedron;
 using geometry::Vec3;
 
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
+  if (d.isZero(0.0)) return 0.0;  // every vertex's displacement is exactly zero
   // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
   const Vec3 at_centroid = displacementMatrix(block.centroid, block.centroid) * d;
   Eigen::Matrix3d jacobian;
@@ -30,10 +31,16 @@ double largestVertexDisplacement(const BlockState& block, const BlockVector& d) 
 
 double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits) {
   if (block.fixed) return 0.0;
+  return stepReach(block, dt, last_dt, limits,
+                   largestVertexDisplacement(block, block.last_displacement));
+}
+
+double stepReach(const BlockState& block, double dt, double last_dt, const ReachLimits& limits,
+                 double last_largest) {
+  if (block.fixed) return 0.0;
   const double by_velocity =
       largestVertexDisplacement(block, block.velocity) * dt + 0.5 * limits.acceleration * dt * dt;
-  const double by_last_step = largestVertexDisplacement(block, block.last_displacement) *
-                              (last_dt > 0.0 ? dt / last_dt : 1.0);
+  const double by_last_step = last_largest * (last_dt > 0.0 ? dt / last_dt : 1.0);
   return std::min(limits.cap, std::max(limits.floor, 2.0 * std::max(by_velocity, by_last_step)));
 }
 
