@@ -322,15 +322,37 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   return changes;
 }
 
-void Simulation::recordContactHistory(const Eigen::VectorXd& solution) {
-  const std::vector<BlockVector> unknowns =
-      solution.size() > 0 ? blockUnknowns(solution) : std::vector<BlockVector>{};
+void Simulation::finishContacts(const Eigen::VectorXd& solution) {
+  // One pass over the contacts (each changes only its own): the history, the locked
+  // contacts' shear, and each spring's energy after the step, summed by acceptStep.
+  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
+  const bool solved = solution.size() > 0;
+  const double ks = penalty_ / settings_.shear_penalty_ratio;
+  springs_after_.resize(contacts_.size());
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
-    if (c.state == ContactState::Open) return;
+    SpringEnergyTerms& t = springs_after_[k];
+    t = SpringEnergyTerms{};
+    if (c.state == ContactState::Open) {
+      c.shear.setZero();
+      return;
+    }
+    // Closed at the end of an accepted step; a sliding one adds its slip.
     c.was_closed = true;
-    if (c.state == ContactState::Sliding && solution.size() > 0) {
-      c.slipped += tangential(relativeDisplacement(c, unknowns), c.normal).norm();
+    const Vec3 relative = solved ? relativeDisplacement(c, unknowns) : Vec3(Vec3::Zero());
+    if (c.state == ContactState::Sliding) {
+      if (solved) c.slipped += tangential(relative, c.normal).norm();
+      c.shear.setZero();
+    } else {
+      // A locked contact's shear spring carries the step's relative motion.
+      c.shear = tangential(c.shear + relative, c.normal);
+    }
+    // The springs after the step (springEnergy): 1/2 k_n d^2, locked 1/2 k_s |s|^2.
+    t.closed = true;
+    t.normal = 0.5 * penalty_ * c.gap * c.gap;
+    if (c.state == ContactState::Locked) {
+      t.locked = true;
+      t.shear = 0.5 * ks * c.shear.squaredNorm();
     }
   });
 }

@@ -307,7 +307,7 @@ std::vector<char> Simulation::blocksToSearch() const {
 }
 
 bool Simulation::keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched,
-                             double depth) {
+                             double depth, bool creep) {
   // In place: a search that follows (an entry deeper than `depth`) only reads the entries'
   // keys and states (PreviousContacts), which the refresh leaves as they were.
   if (refreshContacts(blocks_, entries) > depth) return false;
@@ -315,6 +315,7 @@ bool Simulation::keepEntries(std::vector<Contact>& entries, const std::vector<ch
     Contact& c = entries[k];
     carryOver(c, c);
     startStep(c);
+    if (creep) startFromCreep(c);
   });
   // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
   // by at most how far they moved since: a step that moves no block farther than its reach
@@ -346,10 +347,9 @@ int Simulation::detectContacts() {
   // did searched while they are at most half of them (a search of all beyond).
   const std::vector<char> only = blocksToSearch();
   const auto to_search = static_cast<std::size_t>(std::count(only.begin(), only.end(), 1));
-  if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth)) {
-    startFromCreep();  // the same contacts: the search's split of the assembly holds
-    return 0;
-  }
+  // The same contacts, each started from its creep (startFromCreep) in the same pass: the
+  // search's split of the assembly holds.
+  if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth, true)) return 0;
   if (to_search > 0 && 2 * to_search <= blocks_.size()) {
     int late = 0;
     if (searchPartly(only, depth, late)) return late;
@@ -462,15 +462,16 @@ void Simulation::startFromCreep() {
   // and was never at rest below the limit load (K 12 % below f W / H on a block on a plane).
   // A contact that slid farther is sliding: stuck for a trial, a moving block would pivot on
   // its base springs.
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
-  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
-    Contact& c = contacts_[k];
-    if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) return;
-    const double stretch = shearStrength(c, jointOf(c)) / ks;
-    if (!(c.slip_length <= stretch)) return;
-    c.state = ContactState::Locked;
-    c.shear = stretch * c.slide_direction;
-  });
+  tbb::parallel_for(std::size_t{0}, contacts_.size(),
+                    [&](std::size_t k) { startFromCreep(contacts_[k]); });
+}
+
+void Simulation::startFromCreep(Contact& c) const {
+  if (c.state != ContactState::Sliding || c.slide_direction.squaredNorm() == 0.0) return;
+  const double stretch = shearStrength(c, jointOf(c)) / (penalty_ / settings_.shear_penalty_ratio);
+  if (!(c.slip_length <= stretch)) return;
+  c.state = ContactState::Locked;
+  c.shear = stretch * c.slide_direction;
 }
 
 void Simulation::assembleBlockTerms(double dt, bool defer_water) {
@@ -924,21 +925,18 @@ double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fa
 }
 
 double Simulation::maxPenetration() const {
-  double deepest = 0.0;
-  for (const Contact& c : contacts_) deepest = std::max(deepest, -c.gap);
-  return deepest;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, contacts_.size(), 8192), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& range, double deepest) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          deepest = std::max(deepest, -contacts_[k].gap);
+        }
+        return deepest;
+      },
+      [](double x, double y) { return std::max(x, y); });
 }
 
 void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
-  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
-  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
-    Contact& c = contacts_[k];
-    if (c.state == ContactState::Locked) {
-      c.shear = tangential(c.shear + relativeDisplacement(c, unknowns), c.normal);
-    } else {
-      c.shear.setZero();
-    }
-  });
   const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
   const bool rigid = settings_.kinematics != Kinematics::Deformable;
   const auto move = [&](std::vector<MaterialPoint>& points) {
@@ -1065,7 +1063,7 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
   {
     PhaseTimer timer(step_profile_, StepPhase::UpdateBlocks);
     accountDissipation(solution, dt);
-    recordContactHistory(solution);
+    finishContacts(solution);
     updateBlocks(solution, dt);
     // How far each block moved, for the kept broad-phase pairs (a first-order bound, from
     // the moved geometry: 1 % over it covers the difference).
@@ -1081,7 +1079,14 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     for (std::size_t b = 0; b < moved_since_search_.size(); ++b) {
       moved_since_search_[b] += moved[b];
     }
-    springs_after_step_ = springEnergy();
+    // springEnergy(): the points' springs (moved with their blocks), then the contacts' terms
+    // of finishContacts in contact order.
+    double springs = pointSpringEnergy();
+    for (const SpringEnergyTerms& t : springs_after_) {
+      if (t.closed) springs += t.normal;
+      if (t.locked) springs += t.shear;
+    }
+    springs_after_step_ = springs;
     last_solution_ = solution;
     last_dt_ = dt;
   }

@@ -178,10 +178,14 @@ class Simulation {
   std::vector<char> blocksToSearch() const;
   /// `entries` moved to the blocks' geometry, their states carried on, and the reach of the
   /// blocks `searched` does not flag cut by their motion since their search; false (nothing
-  /// else changed) when one is deeper than `depth` (m; the step searches instead).
-  bool keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched, double depth);
+  /// else changed) when one is deeper than `depth` (m; the step searches instead). With
+  /// `creep`, each entry is also started from its creep (startFromCreep) in the same pass.
+  bool keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched, double depth,
+                   bool creep = false);
   /// Contacts that crept in the last step start this one stuck (an elastic predictor).
   void startFromCreep();
+  /// startFromCreep of one contact.
+  void startFromCreep(Contact& c) const;
   /// Searches the pairs of the blocks `only` flags and keeps (refreshed) the entries between
   /// the others; false (nothing changed) when a kept entry is deeper than `depth`. `late`:
   /// the entries first seen deeper than the allowed penetration.
@@ -212,9 +216,20 @@ class Simulation {
   /// to their loads, given the area each pressure entry wets (assembleBlockTerms); true when
   /// some block carries one.
   bool addBlockPorePressure(const std::vector<double>& wetted_area);
-  /// After an accepted step (before the blocks move): marks the closed contacts as having
-  /// been closed and adds the slip of the sliding ones (Contact::was_closed, slipped).
-  void recordContactHistory(const Eigen::VectorXd& solution);
+  /// After an accepted step (before the blocks move), one pass over the contacts: marks the
+  /// closed ones as having been closed and adds the slip of the sliding ones
+  /// (Contact::was_closed, slipped), carries the locked ones' shear by the step's relative
+  /// motion (others: none), and keeps each spring's energy after the step (springs_after_).
+  void finishContacts(const Eigen::VectorXd& solution);
+  /// A contact's terms of springEnergy() (its normal spring when closed, its shear spring
+  /// when locked), summed in contact order.
+  struct SpringEnergyTerms {
+    double normal = 0.0;
+    double shear = 0.0;
+    bool closed = false;
+    bool locked = false;
+  };
+  std::vector<SpringEnergyTerms> springs_after_;
   /// The system of one open-close iteration: the block terms, every contact's springs or
   /// friction, the bolts.
   void assembleSystem();
