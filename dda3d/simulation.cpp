@@ -520,16 +520,7 @@ void Simulation::assembleBlockTerms(double dt, bool defer_water) {
                                                               : DeferredWater::None;
   if (water_ == DeferredWater::None) {
     std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
-    // Each face's water load in parallel (a clipped face integrated: the region has some
-    // 10 000), added to its block in the list's order.
-    std::vector<BlockVector> face_loads(model_.pressures.size());
-    tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
-      const DdaPressure& p = model_.pressures[e];
-      const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
-      if (block.fixed) return;
-      face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face,
-                                   p, pores ? &wetted[e] : nullptr);
-    });
+    const std::vector<BlockVector> face_loads = faceWaterLoads(pores ? &wetted : nullptr);
     for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
       const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
       if (block.fixed) continue;
@@ -568,15 +559,22 @@ void Simulation::assembleBlockTerms(double dt, bool defer_water) {
   active_ |= step;
 }
 
-void Simulation::addWaterLoads() {
+std::vector<BlockVector> Simulation::faceWaterLoads(std::vector<double>* wetted) const {
+  // Each face's water load in parallel (a clipped face integrated: the region has some
+  // 10 000); the callers add them to their blocks in the list's order.
   std::vector<BlockVector> face_loads(model_.pressures.size());
   tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
     const DdaPressure& p = model_.pressures[e];
     const BlockState& block = blocks_[static_cast<std::size_t>(p.block)];
     if (block.fixed) return;
-    face_loads[e] =
-        pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p, nullptr);
+    face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
+                                 wetted ? &(*wetted)[e] : nullptr);
   });
+  return face_loads;
+}
+
+void Simulation::addWaterLoads() {
+  const std::vector<BlockVector> face_loads = faceWaterLoads(nullptr);
   water_f_.assign(base_f_.size(), BlockVector::Zero());
   bool any = false;
   for (std::size_t e = 0; e < model_.pressures.size(); ++e) {

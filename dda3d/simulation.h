@@ -212,6 +212,9 @@ class Simulation {
   /// The water on the blocks' faces (model_.pressures) of the current geometry into water_f_
   /// (each face in parallel, added to its block in the list's order) and load_f_.
   void addWaterLoads();
+  /// The water load of each entry of model_.pressures on its block (zero on fixed blocks),
+  /// each face in parallel; with `wetted`, the area each entry wets.
+  std::vector<BlockVector> faceWaterLoads(std::vector<double>* wetted) const;
   /// Adds the pore pressure the deformable rock blocks carry (DdaSettings::biot_coefficient)
   /// to their loads, given the area each pressure entry wets (assembleBlockTerms); true when
   /// some block carries one.
