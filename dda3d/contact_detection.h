@@ -23,6 +23,23 @@ void tangents(const geometry::Vec3& n, geometry::Vec3& t1, geometry::Vec3& t2);
 /// (chord <= arc), so a step checked against it never moves farther.
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d);
 
+/// The first-order displacement field T(x) d of a block's unknowns `d`, affine in x:
+/// u(x) = u(c) + J (x - c) (largestVertexDisplacement's, for a pass over the vertices that
+/// computes other things too).
+class LinearDisplacement {
+ public:
+  LinearDisplacement(const BlockState& block, const BlockVector& d);
+  /// |u(x)|^2.
+  double squaredAt(const geometry::Vec3& x) const {
+    return (at_centroid_ + jacobian_ * (x - centroid_)).squaredNorm();
+  }
+
+ private:
+  geometry::Vec3 centroid_;
+  geometry::Vec3 at_centroid_;
+  Eigen::Matrix3d jacobian_;
+};
+
 /// The sub-contact points of `piece`: each face cut into a grid of cells of about `spacing`
 /// (m) along the face's longest edge and across it (cells clipped to the face), a point at
 /// the centroid of each cell carrying the cell's area. A face narrower than two cells either

@@ -329,13 +329,25 @@ void Simulation::finishContacts(const Eigen::VectorXd& solution) {
   const bool solved = solution.size() > 0;
   const double ks = penalty_ / settings_.shear_penalty_ratio;
   springs_after_.resize(contacts_.size());
+  springs_start_.resize(contacts_.size());
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
     SpringEnergyTerms& t = springs_after_[k];
+    SpringEnergyTerms& start = springs_start_[k];
     t = SpringEnergyTerms{};
+    start = SpringEnergyTerms{};
     if (c.state == ContactState::Open) {
       c.shear.setZero();
       return;
+    }
+    // The springs at the start of the step, in the state it ended with: 1/2 k_n d0^2 and,
+    // locked, 1/2 k_s |s|^2 of the shear it started with (accountDissipation).
+    start.closed = true;
+    start.normal = 0.5 * penalty_ * c.gap0 * c.gap0;
+    start.apart = c.gap0 > 0.0;
+    if (c.state == ContactState::Locked) {
+      start.locked = true;
+      start.shear = 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
     }
     // Closed at the end of an accepted step; a sliding one adds its slip.
     c.was_closed = true;

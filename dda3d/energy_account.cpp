@@ -90,16 +90,13 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // exception: the solve counts 1/2 k d0^2 as if its spring pulled from the start and takes
   // it back in 1/2 d^T K d (an implicit, inelastic impact), so that share is moved from the
   // numerical dissipation instead of being counted as a change.
+  // (Each contact's terms from finishContacts' pass, which ran before this one.)
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
-  const std::vector<ContactTerms> springs = contactSprings(
-      contacts_, penalty_, penalty_ / settings_.shear_penalty_ratio,
-      [](const Contact& c) { return c.gap0; },
-      [](const Contact& c) { return tangential(c.shear, c.normal); });
-  for (const ContactTerms& t : springs) {
-    if (!(t.counts & kFirst)) continue;
-    (t.counts & kApart ? pulling : springs_start) += t.first;
-    if (t.counts & kSecond) springs_start += t.second;
+  for (const SpringEnergyTerms& t : springs_start_) {
+    if (!t.closed) continue;
+    (t.apart ? pulling : springs_start) += t.normal;
+    if (t.locked) springs_start += t.shear;
   }
   contact_changes_ += springs_start - springs_after_step_;
   numerical_dissipation_ -= pulling;

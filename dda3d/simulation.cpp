@@ -60,23 +60,6 @@ constexpr double kAcceptedDisplacementRatio = 1.5;
 /// Reach of a block at rest, in g2 l0: room for the step that starts it moving.
 constexpr double kRestingReachRatio = 0.1;
 
-/// The largest ratio of a movable block's vertex displacement in `solution` to its reach.
-double reachRatio(const std::vector<BlockState>& blocks, const BlockSystem& system,
-                  const Eigen::VectorXd& solution, const std::vector<double>& reach) {
-  std::vector<double> ratio(blocks.size(), 0.0);
-  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
-    if (blocks[b].fixed) return;
-    ratio[b] =
-        largestVertexDisplacement(blocks[b], system.unknowns(solution, blocks[b].dof_offset)) /
-        reach[b];
-  });
-  double largest = 0.0;
-  for (std::size_t b = 0; b < blocks.size(); ++b) {
-    if (!blocks[b].fixed) largest = std::max(largest, ratio[b]);
-  }
-  return largest;
-}
-
 }  // namespace
 
 Simulation::Simulation(DdaModel model, DdaSettings settings)
@@ -889,21 +872,36 @@ bool Simulation::addBlockPorePressure(const std::vector<double>& wetted_area) {
 }
 
 double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest,
-                                        double* weighed) const {
-  // Each block's largest vertex displacement in parallel, then the largest in block order.
+                                        double* weighed, double* reach_ratio) const {
+  // Each block's largest vertex displacement in parallel, then the largest in block order;
+  // in the same pass over the vertices, the largest first-order displacement
+  // (largestVertexDisplacement) against the block's reach.
   std::vector<double> moved(blocks_.size(), 0.0);
+  std::vector<double> reached(blocks_.size(), 0.0);
   tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
     const BlockState& block = blocks_[b];
     if (block.fixed) return;
-    const BlockMotion motion(block.centroid, system_->unknowns(solution, block.dof_offset));
+    const BlockVector d = system_->unknowns(solution, block.dof_offset);
+    const BlockMotion motion(block.centroid, d);
+    const bool linear = reach_ratio != nullptr && !d.isZero(0.0);
+    const LinearDisplacement field(block, d);
     double block_largest = 0.0;
+    double block_linear = 0.0;
     for (const geometry::Polyhedron& piece : block.pieces) {
       for (const Vec3& v : piece.vertices) {
         block_largest = std::max(block_largest, (motion(v) - v).norm());
+        if (linear) block_linear = std::max(block_linear, field.squaredAt(v));
       }
     }
     moved[b] = block_largest;
+    if (reach_ratio) reached[b] = std::sqrt(block_linear) / reach_[b];
   });
+  if (reach_ratio) {
+    *reach_ratio = 0.0;
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      if (!blocks_[b].fixed) *reach_ratio = std::max(*reach_ratio, reached[b]);
+    }
+  }
   double largest = 0.0;
   double largest_weighed = 0.0;
   int largest_block = -1;
@@ -951,6 +949,7 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
   move(bolt_a_);
   move(bolt_b_);
   block_work_.resize(blocks_.size(), 0.0);
+  last_largest_.assign(blocks_.size(), 0.0);
   // Each block moves on its own (in parallel); the loads' work is summed in block order.
   std::vector<double> work(blocks_.size(), 0.0);
   tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
@@ -994,6 +993,8 @@ void Simulation::updateBlocks(const Eigen::VectorXd& solution, double dt) {
     block.acceleration = ratio * a1;
     block.last_displacement = d;
     if (!rigid) block.updateMassProperties();
+    // On the moved geometry: the next step's reach and the kept pairs' bound (acceptStep).
+    last_largest_[b] = largestVertexDisplacement(block, d);
   });
   for (std::size_t b = 0; b < blocks_.size(); ++b) {
     if (blocks_[b].fixed) continue;
@@ -1027,10 +1028,9 @@ Simulation::StepCheck Simulation::checkStep(const Eigen::VectorXd& solution, boo
   double reach_ratio = 0.0;
   {
     PhaseTimer timer(step_profile_, StepPhase::UpdateStates);
-    report.displacement_ratio =
-        maxDisplacementRatio(solution, &report.fastest_block, &report.unbalanced_displacement);
+    report.displacement_ratio = maxDisplacementRatio(solution, &report.fastest_block,
+                                                     &report.unbalanced_displacement, &reach_ratio);
     report.max_penetration = maxPenetration();
-    reach_ratio = reachRatio(blocks_, *system_, solution, reach_);
   }
   const bool too_far = report.displacement_ratio > kAcceptedDisplacementRatio || reach_ratio > 1.0;
   if (too_far && !last_chance && can_shrink) {
@@ -1060,19 +1060,15 @@ Simulation::StepCheck Simulation::checkStep(const Eigen::VectorXd& solution, boo
 void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepReport& report) {
   {
     PhaseTimer timer(step_profile_, StepPhase::UpdateBlocks);
+    finishContacts(solution);  // before accountDissipation: the springs' start terms
     accountDissipation(solution, dt);
-    finishContacts(solution);
     updateBlocks(solution, dt);
     // How far each block moved, for the kept broad-phase pairs (a first-order bound, from
     // the moved geometry: 1 % over it covers the difference).
-    last_largest_.assign(blocks_.size(), 0.0);
     std::vector<double> moved(blocks_.size(), 0.0);
-    tbb::parallel_for(std::size_t{0}, blocks_.size(), [&](std::size_t b) {
-      if (!blocks_[b].fixed) {
-        last_largest_[b] = largestVertexDisplacement(blocks_[b], blocks_[b].last_displacement);
-        moved[b] = 1.01 * last_largest_[b];
-      }
-    });
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      if (!blocks_[b].fixed) moved[b] = 1.01 * last_largest_[b];
+    }
     for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
     for (std::size_t b = 0; b < moved_since_search_.size(); ++b) {
       moved_since_search_[b] += moved[b];

@@ -222,7 +222,8 @@ class Simulation {
   /// After an accepted step (before the blocks move), one pass over the contacts: marks the
   /// closed ones as having been closed and adds the slip of the sliding ones
   /// (Contact::was_closed, slipped), carries the locked ones' shear by the step's relative
-  /// motion (others: none), and keeps each spring's energy after the step (springs_after_).
+  /// motion (others: none), and keeps each spring's energy at the start of the step in its
+  /// end state (springs_start_, for accountDissipation) and after the step (springs_after_).
   void finishContacts(const Eigen::VectorXd& solution);
   /// A contact's terms of springEnergy() (its normal spring when closed, its shear spring
   /// when locked), summed in contact order.
@@ -230,9 +231,13 @@ class Simulation {
     double normal = 0.0;
     double shear = 0.0;
     bool closed = false;
+    bool apart = false;  ///< the normal spring's gap is positive (it pulls)
     bool locked = false;
   };
   std::vector<SpringEnergyTerms> springs_after_;
+  /// The springs at the start of the step in the states it ended with (accountDissipation's
+  /// terms: gap0 and the shear before the step's motion), from finishContacts' pass.
+  std::vector<SpringEnergyTerms> springs_start_;
   /// The system of one open-close iteration: the block terms, every contact's springs or
   /// friction, the bolts.
   void assembleSystem();
@@ -297,8 +302,10 @@ class Simulation {
   /// Largest vertex displacement of `solution` over g2 l0; `fastest` (when given) gets the
   /// movable block it belongs to (-1 when none moved).
   /// `weighed`: the largest vertex displacement times its block's inertia scale (m).
+  /// `reach_ratio`: the largest ratio of a movable block's first-order vertex displacement
+  /// (largestVertexDisplacement) to its reach, from the same pass over the vertices.
   double maxDisplacementRatio(const Eigen::VectorXd& solution, int* fastest = nullptr,
-                              double* weighed = nullptr) const;
+                              double* weighed = nullptr, double* reach_ratio = nullptr) const;
   double maxPenetration() const;
   void updateBlocks(const Eigen::VectorXd& solution, double dt);
   BlockVector unknownsOf(const Eigen::VectorXd& solution, int block) const;

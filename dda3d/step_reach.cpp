@@ -11,20 +11,22 @@ namespace rockmass::dda3d {
 using geometry::Polyhedron;
 using geometry::Vec3;
 
+LinearDisplacement::LinearDisplacement(const BlockState& block, const BlockVector& d)
+    : centroid_(block.centroid) {
+  // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
+  at_centroid_ = displacementMatrix(block.centroid, block.centroid) * d;
+  for (int k = 0; k < 3; ++k) {
+    jacobian_.col(k) =
+        displacementMatrix(block.centroid + Vec3::Unit(k), block.centroid) * d - at_centroid_;
+  }
+}
+
 double largestVertexDisplacement(const BlockState& block, const BlockVector& d) {
   if (d.isZero(0.0)) return 0.0;  // every vertex's displacement is exactly zero
-  // T(x) d is affine in x: u(x) = u(c) + J (x - c), J column k = (T(c + e_k) - T(c)) d.
-  const Vec3 at_centroid = displacementMatrix(block.centroid, block.centroid) * d;
-  Eigen::Matrix3d jacobian;
-  for (int k = 0; k < 3; ++k) {
-    jacobian.col(k) =
-        displacementMatrix(block.centroid + Vec3::Unit(k), block.centroid) * d - at_centroid;
-  }
+  const LinearDisplacement field(block, d);
   double largest = 0.0;
   for (const Polyhedron& piece : block.pieces) {
-    for (const Vec3& v : piece.vertices) {
-      largest = std::max(largest, (at_centroid + jacobian * (v - block.centroid)).squaredNorm());
-    }
+    for (const Vec3& v : piece.vertices) largest = std::max(largest, field.squaredAt(v));
   }
   return std::sqrt(largest);
 }
