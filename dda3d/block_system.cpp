@@ -162,10 +162,6 @@ void BlockSystem::addPointSprings(int i, const DisplacementMatrix& ti, int j,
     transposed = parts.transposed;
     return parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
   };
-  if (dofs_ == 6) {
-    addRigidPointSprings(i, ti.middleCols<3>(3), j, tj.middleCols<3>(3), s, offsets, parts);
-    return;
-  }
   const DisplacementMatrix wi = s * ti, wj = s * tj;
   if (i >= 0 && parts.i) {
     diagonal_[static_cast<std::size_t>(i)].noalias() += ti.transpose() * wi;

@@ -60,6 +60,7 @@ class BlockSystem {
   /// K_jj += T_j^T S T_j, F_j += T_j^T s, K_ij -= T_i^T S T_j: the sum of addSpring over the
   /// springs in one product (a locked contact's three springs in a third of the arithmetic).
   /// i or j = -1 is a fixed body; i == j (both ends on one block) is not taken here.
+  /// Deformable blocks (12 unknowns); rigid ones take addRigidPointSprings.
   void addPointSprings(int i, const DisplacementMatrix& ti, int j, const DisplacementMatrix& tj,
                        const Eigen::Matrix3d& s, const geometry::Vec3& offsets, const Parts& parts);
   /// addPointSprings of rigid blocks (6 unknowns each), from the rotation columns of T_i and

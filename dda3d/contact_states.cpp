@@ -327,7 +327,6 @@ void Simulation::finishContacts(const Eigen::VectorXd& solution) {
   // contacts' shear, and each spring's energy after the step, summed by acceptStep.
   const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   const bool solved = solution.size() > 0;
-  const double ks = penalty_ / settings_.shear_penalty_ratio;
   springs_after_.resize(contacts_.size());
   springs_start_.resize(contacts_.size());
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
@@ -340,15 +339,11 @@ void Simulation::finishContacts(const Eigen::VectorXd& solution) {
       c.shear.setZero();
       return;
     }
-    // The springs at the start of the step, in the state it ended with: 1/2 k_n d0^2 and,
-    // locked, 1/2 k_s |s|^2 of the shear it started with (accountDissipation).
-    start.closed = true;
-    start.normal = 0.5 * penalty_ * c.gap0 * c.gap0;
-    start.apart = c.gap0 > 0.0;
-    if (c.state == ContactState::Locked) {
-      start.locked = true;
-      start.shear = 0.5 * ks * tangential(c.shear, c.normal).squaredNorm();
-    }
+    // The springs at the start of the step, in the state it ended with: the gap and, locked,
+    // the shear it started with (accountDissipation).
+    start = springTerms(
+        c.state, c.gap0,
+        c.state == ContactState::Locked ? tangential(c.shear, c.normal) : Vec3(Vec3::Zero()));
     // Closed at the end of an accepted step; a sliding one adds its slip.
     c.was_closed = true;
     const Vec3 relative = solved ? relativeDisplacement(c, unknowns) : Vec3(Vec3::Zero());
@@ -359,14 +354,32 @@ void Simulation::finishContacts(const Eigen::VectorXd& solution) {
       // A locked contact's shear spring carries the step's relative motion.
       c.shear = tangential(c.shear + relative, c.normal);
     }
-    // The springs after the step (springEnergy): 1/2 k_n d^2, locked 1/2 k_s |s|^2.
-    t.closed = true;
-    t.normal = 0.5 * penalty_ * c.gap * c.gap;
-    if (c.state == ContactState::Locked) {
-      t.locked = true;
-      t.shear = 0.5 * ks * c.shear.squaredNorm();
-    }
+    // The springs after the step (springEnergy).
+    t = springTerms(c.state, c.gap, c.shear);
   });
+}
+
+Simulation::SpringEnergyTerms Simulation::springTerms(ContactState state, double gap,
+                                                      const Vec3& shear) const {
+  SpringEnergyTerms t;
+  if (state == ContactState::Open) return t;
+  t.closed = true;
+  t.normal = 0.5 * penalty_ * gap * gap;
+  t.apart = gap > 0.0;
+  if (state == ContactState::Locked) {
+    t.locked = true;
+    t.shear = 0.5 * (penalty_ / settings_.shear_penalty_ratio) * shear.squaredNorm();
+  }
+  return t;
+}
+
+void Simulation::sumSprings(const std::vector<SpringEnergyTerms>& terms, double& stored,
+                            double* pulling) {
+  for (const SpringEnergyTerms& t : terms) {
+    if (!t.closed) continue;
+    (pulling && t.apart ? *pulling : stored) += t.normal;
+    if (t.locked) stored += t.shear;
+  }
 }
 
 double Simulation::holdLimit(const Contact& c) const {

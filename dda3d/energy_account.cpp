@@ -23,28 +23,7 @@ struct ContactTerms {
   double second = 0.0;
   std::uint8_t counts = 0;
 };
-constexpr std::uint8_t kFirst = 1, kSecond = 2, kApart = 4;
-
-/// Each closed contact's normal spring 1/2 k d^2 (kFirst; kApart when d > 0) and, locked, its
-/// shear spring 1/2 k_s |s|^2 (kSecond), d = gap(c) and s = shear(c).
-template <class Gap, class Shear>
-std::vector<ContactTerms> contactSprings(const std::vector<Contact>& contacts, double penalty,
-                                         double ks, const Gap& gap, const Shear& shear) {
-  std::vector<ContactTerms> springs(contacts.size());
-  tbb::parallel_for(std::size_t{0}, contacts.size(), [&](std::size_t k) {
-    const Contact& c = contacts[k];
-    if (c.state == ContactState::Open) return;
-    ContactTerms& t = springs[k];
-    const double d = gap(c);
-    t.first = 0.5 * penalty * d * d;
-    t.counts = d > 0.0 ? kFirst | kApart : kFirst;
-    if (c.state == ContactState::Locked) {
-      t.second = 0.5 * ks * shear(c).squaredNorm();
-      t.counts |= kSecond;
-    }
-  });
-  return springs;
-}
+constexpr std::uint8_t kFirst = 1, kSecond = 2;
 
 }  // namespace
 
@@ -93,11 +72,7 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // (Each contact's terms from finishContacts' pass, which ran before this one.)
   double springs_start = pointSpringEnergy();
   double pulling = 0.0;
-  for (const SpringEnergyTerms& t : springs_start_) {
-    if (!t.closed) continue;
-    (t.apart ? pulling : springs_start) += t.normal;
-    if (t.locked) springs_start += t.shear;
-  }
+  sumSprings(springs_start_, springs_start, &pulling);
   contact_changes_ += springs_start - springs_after_step_;
   numerical_dissipation_ -= pulling;
   if (solution.size() == 0) return;
@@ -147,14 +122,12 @@ EnergyAccount Simulation::energy() const {
 
 double Simulation::springEnergy() const {
   double energy = pointSpringEnergy();
-  const std::vector<ContactTerms> springs = contactSprings(
-      contacts_, penalty_, penalty_ / settings_.shear_penalty_ratio,
-      [](const Contact& c) { return c.gap; },
-      [](const Contact& c) -> const Vec3& { return c.shear; });
-  for (const ContactTerms& t : springs) {
-    if (t.counts & kFirst) energy += t.first;
-    if (t.counts & kSecond) energy += t.second;
-  }
+  std::vector<SpringEnergyTerms> springs(contacts_.size());
+  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
+    const Contact& c = contacts_[k];
+    springs[k] = springTerms(c.state, c.gap, c.shear);
+  });
+  sumSprings(springs, energy);
   return energy;
 }
 

@@ -503,13 +503,9 @@ void Simulation::assembleBlockTerms(double dt, bool defer_water) {
                                                               : DeferredWater::None;
   if (water_ == DeferredWater::None) {
     std::vector<double> wetted(pores ? model_.pressures.size() : 0, 0.0);
-    const std::vector<BlockVector> face_loads = faceWaterLoads(pores ? &wetted : nullptr);
-    for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
-      const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
-      if (block.fixed) continue;
-      load_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
-      step.surface_pressure = true;
-    }
+    const std::vector<BlockVector> water =
+        blockWaterLoads(pores ? &wetted : nullptr, step.surface_pressure);
+    for (std::size_t m = 0; m < water.size(); ++m) load_f_[m] += water[m];
     if (pores) step.block_pore_pressure |= addBlockPorePressure(wetted);
   }
   for (const DdaHydrodynamicPressure& p : model_.hydrodynamic) {
@@ -542,9 +538,9 @@ void Simulation::assembleBlockTerms(double dt, bool defer_water) {
   active_ |= step;
 }
 
-std::vector<BlockVector> Simulation::faceWaterLoads(std::vector<double>* wetted) const {
+std::vector<BlockVector> Simulation::blockWaterLoads(std::vector<double>* wetted, bool& any) const {
   // Each face's water load in parallel (a clipped face integrated: the region has some
-  // 10 000); the callers add them to their blocks in the list's order.
+  // 10 000), then added to its block in the list's order.
   std::vector<BlockVector> face_loads(model_.pressures.size());
   tbb::parallel_for(std::size_t{0}, model_.pressures.size(), [&](std::size_t e) {
     const DdaPressure& p = model_.pressures[e];
@@ -553,21 +549,19 @@ std::vector<BlockVector> Simulation::faceWaterLoads(std::vector<double>* wetted)
     face_loads[e] = pressureLoad(block, block.pieces[static_cast<std::size_t>(p.piece)], p.face, p,
                                  wetted ? &(*wetted)[e] : nullptr);
   });
-  return face_loads;
-}
-
-void Simulation::addWaterLoads() {
-  const std::vector<BlockVector> face_loads = faceWaterLoads(nullptr);
-  water_f_.assign(base_f_.size(), BlockVector::Zero());
-  bool any = false;
+  std::vector<BlockVector> sums(base_f_.size(), BlockVector::Zero());
   for (std::size_t e = 0; e < model_.pressures.size(); ++e) {
     const BlockState& block = blocks_[static_cast<std::size_t>(model_.pressures[e].block)];
     if (block.fixed) continue;
-    water_f_[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
+    sums[static_cast<std::size_t>(block.dof_offset)] += face_loads[e];
     any = true;
   }
+  return sums;
+}
+
+void Simulation::addWaterLoads() {
+  water_f_ = blockWaterLoads(nullptr, active_.surface_pressure);
   for (std::size_t m = 0; m < water_f_.size(); ++m) load_f_[m] += water_f_[m];
-  active_.surface_pressure |= any;
   water_ = DeferredWater::Ready;
 }
 
@@ -1076,10 +1070,7 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     // springEnergy(): the points' springs (moved with their blocks), then the contacts' terms
     // of finishContacts in contact order.
     double springs = pointSpringEnergy();
-    for (const SpringEnergyTerms& t : springs_after_) {
-      if (t.closed) springs += t.normal;
-      if (t.locked) springs += t.shear;
-    }
+    sumSprings(springs_after_, springs);
     springs_after_step_ = springs;
     last_solution_ = solution;
     last_dt_ = dt;

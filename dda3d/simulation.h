@@ -210,11 +210,12 @@ class Simulation {
   /// (openCloseIterate); not with pores in the blocks, whose pressure needs it at once.
   void assembleBlockTerms(double dt, bool defer_water = false);
   /// The water on the blocks' faces (model_.pressures) of the current geometry into water_f_
-  /// (each face in parallel, added to its block in the list's order) and load_f_.
+  /// and load_f_ (blockWaterLoads).
   void addWaterLoads();
-  /// The water load of each entry of model_.pressures on its block (zero on fixed blocks),
-  /// each face in parallel; with `wetted`, the area each entry wets.
-  std::vector<BlockVector> faceWaterLoads(std::vector<double>* wetted) const;
+  /// The water loads of model_.pressures summed per block (indexed like base_f_; fixed blocks
+  /// take none): each face in parallel, added to its block in the list's order. With
+  /// `wetted`, the area each entry wets; `any` is set when some movable block is loaded.
+  std::vector<BlockVector> blockWaterLoads(std::vector<double>* wetted, bool& any) const;
   /// Adds the pore pressure the deformable rock blocks carry (DdaSettings::biot_coefficient)
   /// to their loads, given the area each pressure entry wets (assembleBlockTerms); true when
   /// some block carries one.
@@ -226,7 +227,7 @@ class Simulation {
   /// end state (springs_start_, for accountDissipation) and after the step (springs_after_).
   void finishContacts(const Eigen::VectorXd& solution);
   /// A contact's terms of springEnergy() (its normal spring when closed, its shear spring
-  /// when locked), summed in contact order.
+  /// when locked), summed in contact order by sumSprings.
   struct SpringEnergyTerms {
     double normal = 0.0;
     double shear = 0.0;
@@ -234,6 +235,14 @@ class Simulation {
     bool apart = false;  ///< the normal spring's gap is positive (it pulls)
     bool locked = false;
   };
+  /// The springs of a contact in `state` with normal gap `gap` and shear displacement
+  /// `shear`: 1/2 k_n gap^2 when closed, 1/2 k_s |shear|^2 when locked (k_s = k_n over
+  /// DdaSettings::shear_penalty_ratio).
+  SpringEnergyTerms springTerms(ContactState state, double gap, const geometry::Vec3& shear) const;
+  /// `terms`' energy added to `stored` in contact order; with `pulling`, the normal springs
+  /// that are apart are added there instead.
+  static void sumSprings(const std::vector<SpringEnergyTerms>& terms, double& stored,
+                         double* pulling = nullptr);
   std::vector<SpringEnergyTerms> springs_after_;
   /// The springs at the start of the step in the states it ended with (accountDissipation's
   /// terms: gap0 and the shear before the step's motion), from finishContacts' pass.

@@ -1,0 +1,97 @@
+// The block-structured assembly of K D = F (dda3d/block_system.h): a contact point's springs
+// added as one 3 x 3 stiffness (addPointSprings, addRigidPointSprings) against the same
+// springs added one by one (addSpring), whose energy 1/2 k (d0 + a^T D_i + b^T D_j)^2 is the
+// DDA's penalty spring (Shi 1988, ch. 4; docs dda3d-formulation.md).
+#include "dda3d/block_system.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "dda3d/displacement_field.h"
+
+namespace rockmass::dda3d {
+namespace {
+
+using geometry::Vec3;
+
+/// One contact point's three springs: stiffness k_m along orthonormal e_m with offsets d_m.
+struct PointSprings {
+  Vec3 e[3];
+  double k[3];
+  double d[3];
+  Eigen::Matrix3d stiffness() const {
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+    for (int m = 0; m < 3; ++m) s += k[m] * e[m] * e[m].transpose();
+    return s;
+  }
+  Vec3 offsets() const {
+    Vec3 s = Vec3::Zero();
+    for (int m = 0; m < 3; ++m) s += k[m] * d[m] * e[m];
+    return s;
+  }
+};
+
+PointSprings testSprings() {
+  // A tilted normal (a locked contact's normal spring and two shear springs at a tenth of it).
+  const Vec3 n = Vec3(0.3, -0.5, 0.81).normalized();
+  const Vec3 t0 = n.unitOrthogonal();
+  const Vec3 t1 = n.cross(t0);
+  return {{n, t0, t1}, {4.0e9, 4.0e8, 4.0e8}, {-2.0e-4, 3.0e-5, -1.5e-5}};
+}
+
+/// The system of blocks 0 and 1 (and fixed -1) from each way of adding the springs.
+void expectSameSystems(int dofs, int i, int j) {
+  const Vec3 ci(1.0, 2.0, -3.0), cj(2.5, 1.0, -2.0);
+  const Vec3 point(1.7, 1.4, -2.4), foot(1.7, 1.4, -2.4002);
+  const PointSprings springs = testSprings();
+  BlockSystem one_by_one(2, dofs), combined(2, dofs);
+  if (i >= 0 && j >= 0) {
+    one_by_one.setPairs({{0, 1}});
+    combined.setPairs({{0, 1}});
+  }
+  const DisplacementMatrix ti = displacementMatrix(point, ci);
+  const DisplacementMatrix tj = displacementMatrix(foot, cj);
+  for (int m = 0; m < 3; ++m) {
+    const BlockVector a = ti.transpose() * springs.e[m];
+    const BlockVector b = -(tj.transpose() * springs.e[m]);
+    one_by_one.addSpring(i, a, j, b, springs.k[m], springs.d[m]);
+  }
+  if (dofs == 6) {
+    combined.addRigidPointSprings(i, rotationColumns(point - ci), j, rotationColumns(foot - cj),
+                                  springs.stiffness(), springs.offsets(), BlockSystem::Parts{});
+  } else {
+    combined.addPointSprings(i, ti, j, tj, springs.stiffness(), springs.offsets(),
+                             BlockSystem::Parts{});
+  }
+  const Eigen::MatrixXd k1 = Eigen::MatrixXd(one_by_one.matrix());
+  const Eigen::MatrixXd k2 = Eigen::MatrixXd(combined.matrix());
+  ASSERT_EQ(k1.rows(), 2 * dofs);
+  ASSERT_EQ(k2.rows(), 2 * dofs);
+  // Both are sums of the same products in another order: equal to round-off of the largest
+  // entry (k_n |arm|^2 ~ 1e10; 64 eps of it).
+  const double scale = k1.cwiseAbs().maxCoeff();
+  EXPECT_GT(scale, 1e9);  // the springs did land in K
+  EXPECT_LE((k1 - k2).cwiseAbs().maxCoeff(), 64 * 2.2e-16 * scale);
+  const Eigen::VectorXd f1 = one_by_one.rhs(), f2 = combined.rhs();
+  const double f_scale = f1.cwiseAbs().maxCoeff();
+  EXPECT_GT(f_scale, 1e4);
+  EXPECT_LE((f1 - f2).cwiseAbs().maxCoeff(), 64 * 2.2e-16 * f_scale);
+}
+
+TEST(BlockSystem, DeformablePointSpringsEqualTheirSpringsOneByOne) {
+  expectSameSystems(12, 0, 1);
+}
+
+TEST(BlockSystem, RigidPointSpringsEqualTheirSpringsOneByOne) {
+  expectSameSystems(6, 0, 1);
+}
+
+TEST(BlockSystem, PointSpringsAgainstAFixedBodyLoadOnlyTheMovableBlock) {
+  // j = -1 (a fixed block) and i = -1: only the movable side's K_ii and F_i, no coupling.
+  expectSameSystems(12, 0, -1);
+  expectSameSystems(6, -1, 1);
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
