@@ -215,6 +215,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     const int previous = previous_face(a.block, a.piece, static_cast<int>(v), b.block, b.piece);
     int best = -1;
     double best_gap = 0.0, best_alignment = 0.0;
+    bool best_on_face = false;
     for (std::size_t f = 0; f < b.planes.size(); ++f) {
       // Interior faces of b's block are no contact faces: a vertex near one is near (or in)
       // the neighbouring piece, whose exterior faces carry it.
@@ -265,14 +266,24 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
         best = previous;
         break;
       }
-      // Least penetration first (the face it most likely entered through); among equal gaps
-      // (a vertex on an edge or corner of b) the face that looks most towards the vertex.
+      // A face that a face of a around the vertex lies on (on_face) first: the vertex came
+      // through it, however little deeper it sits behind it than behind a steeper face of
+      // b's edge. A vertex of the flat rock surface at a dam's toe edge sat 1 um behind the
+      // dam's base and 0.5 um behind its sloping downstream face: taken by the slope, it
+      // became a buttress of 6e8 N against the dam's sliding (the Xiangjiaba dam held at a
+      // strength reduction of 6, twice its limit-equilibrium factor). Then the least
+      // penetration (the face it most likely entered through); among equal gaps (a vertex on
+      // an edge or corner of b) the face that looks most towards the vertex.
       const double alignment = plane.normal.dot((p - b.centroid).normalized());
-      if (best < 0 || gap > best_gap + tolerance ||
-          (gap > best_gap - tolerance && alignment > best_alignment)) {
+      const bool better = on_face != best_on_face
+                              ? on_face
+                              : gap > best_gap + tolerance ||
+                                    (gap > best_gap - tolerance && alignment > best_alignment);
+      if (best < 0 || better) {
         best = static_cast<int>(f);
         best_gap = gap;
         best_alignment = alignment;
+        best_on_face = on_face;
       }
     }
     if (best < 0) continue;

@@ -639,3 +639,46 @@ TEST(NarrowPhase, ACornerComingDownOntoTheEdgeOfASideBySideNeighbourHasAnEntry) 
 
 }  // namespace
 }  // namespace rockmass::dda3d
+
+namespace rockmass::dda3d {
+namespace {
+
+// A vertex of a face lying on a face of b, at b's convex edge, is that face's contact
+// however little deeper it sits behind it than behind b's other face there. b is a dam's
+// section (base on z = 0, toe at x = 4, its downstream face sloping back at 53 degrees),
+// pressed 1e-6 m into a rock block a whose top (z = 0) starts at the toe, and moved 1.5e-6 m
+// downstream: a's corner at the toe is 1e-6 m behind b's base and 6e-7 m behind its slope.
+// Matched to the slope by the least depth, the rock's corner pushed the dam back up its
+// slope: on the Xiangjiaba model two such corners held the dam against a strength reduction
+// of 6, twice its limit-equilibrium factor (docs/stability.md, "Contact points").
+TEST(NarrowPhase, AVertexLyingOnAFaceAtAConvexEdgeTakesThatFace) {
+  constexpr double kPress = 1e-6, kMoved = 1.5e-6;
+  const geometry::Polyhedron dam = prismXZ(
+      {{kMoved, -kPress}, {4 + kMoved, -kPress}, {1 + kMoved, 4 - kPress}, {kMoved, 4 - kPress}}, 0,
+      1);
+  // The rock: top z = 0 from the toe downstream; its upstream face (a joint) runs down
+  // downstream at 18 degrees: its edge does not dive into the dam's slope, so the slope is a
+  // candidate face, and the joint does not face the slope (the slope is no face-to-face
+  // contact of the corner).
+  const geometry::Polyhedron rock = prismXZ({{7, -1}, {10, -1}, {10, 0}, {4, 0}}, 0, 1);
+  ASSERT_GT(geometry::massProperties(dam).volume, 0.0);
+  ASSERT_GT(geometry::massProperties(rock).volume, 0.0);
+  const Vec3 slope_normal = Vec3(4, 0, 3).normalized();
+  const Vec3 corner(4, 0, 0);
+  // Behind the slope by less than behind the base: the case the rule is for.
+  ASSERT_NEAR(slope_normal.dot(corner - Vec3(4 + kMoved, 0, -kPress)), -6e-7, 1e-12);
+  const std::vector<BlockState> blocks = blocksOf({{rock}, {dam}});
+  const std::vector<Contact> contacts = findContacts(blocks, {0.01, 0.01}, 0.02, kNoPrevious);
+  int at_toe = 0;
+  for (const Contact& c : contacts) {
+    if (c.kind != ContactKind::VertexFace || c.block_i != 0) continue;
+    if ((c.point - Vec3(4, c.point.y(), 0)).norm() > 1e-12) continue;
+    ++at_toe;                                // the rock's two corners at the toe (y = 0 and 1)
+    EXPECT_NEAR(c.normal.z(), -1.0, 1e-12);  // the dam's base, not its slope
+    EXPECT_NEAR(c.gap0, -kPress, 1e-12);
+  }
+  EXPECT_EQ(at_toe, 2);
+}
+
+}  // namespace
+}  // namespace rockmass::dda3d
