@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -877,14 +878,16 @@ double Simulation::maxDisplacementRatio(const Eigen::VectorXd& solution, int* fa
     if (block.fixed) return;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);
     const BlockMotion motion(block.centroid, d);
-    const bool linear = reach_ratio != nullptr && !d.isZero(0.0);
-    const LinearDisplacement field(block, d);
+    // The first-order field only where the reach is checked and the block moved (zero d:
+    // every vertex's displacement is exactly zero).
+    std::optional<LinearDisplacement> field;
+    if (reach_ratio != nullptr && !d.isZero(0.0)) field.emplace(block, d);
     double block_largest = 0.0;
     double block_linear = 0.0;
     for (const geometry::Polyhedron& piece : block.pieces) {
       for (const Vec3& v : piece.vertices) {
         block_largest = std::max(block_largest, (motion(v) - v).norm());
-        if (linear) block_linear = std::max(block_linear, field.squaredAt(v));
+        if (field) block_linear = std::max(block_linear, field->squaredAt(v));
       }
     }
     moved[b] = block_largest;
@@ -1059,13 +1062,11 @@ void Simulation::acceptStep(const Eigen::VectorXd& solution, double dt, StepRepo
     updateBlocks(solution, dt);
     // How far each block moved, for the kept broad-phase pairs (a first-order bound, from
     // the moved geometry: 1 % over it covers the difference).
-    std::vector<double> moved(blocks_.size(), 0.0);
+    // (moved_since_search_ is empty before the run's first search.)
     for (std::size_t b = 0; b < blocks_.size(); ++b) {
-      if (!blocks_[b].fixed) moved[b] = 1.01 * last_largest_[b];
-    }
-    for (std::size_t b = 0; b < blocks_.size(); ++b) candidates_.moved(b, moved[b]);
-    for (std::size_t b = 0; b < moved_since_search_.size(); ++b) {
-      moved_since_search_[b] += moved[b];
+      const double moved = blocks_[b].fixed ? 0.0 : 1.01 * last_largest_[b];
+      candidates_.moved(b, moved);
+      if (b < moved_since_search_.size()) moved_since_search_[b] += moved;
     }
     // springEnergy(): the points' springs (moved with their blocks), then the contacts' terms
     // of finishContacts in contact order.
