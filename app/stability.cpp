@@ -60,6 +60,7 @@ dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& 
                  label, run.factor, run.bisection ? " (bisection)" : "",
                  e.reached            ? "at rest"
                  : !e.stalled.empty() ? "NOT at rest (failing: cannot progress)"
+                 : e.steady           ? "NOT at rest (failing: moving steadily)"
                  : e.failing          ? "NOT at rest (failing: stopped early)"
                                       : "NOT at rest",
                  e.steps, e.unbalanced_ratio, e.all_blocks_ratio, e.min_time_step,

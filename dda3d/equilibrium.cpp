@@ -23,7 +23,36 @@ MovedBlock movedBlock(const Simulation& sim, int b) {
   return {b, block.volume, block.centroid};
 }
 
+/// Block `b`'s last step displacement as the steady-motion rule compares it: translation
+/// and rotation times the block's size (m).
+SteadyMotion::Motion stepMotion(const Simulation& sim, int b) {
+  const BlockState& block = sim.blocks()[static_cast<std::size_t>(b)];
+  SteadyMotion::Motion d = block.last_displacement.head<6>();
+  d.tail<3>() *= std::cbrt(block.volume);
+  return d;
+}
+
 }  // namespace
+
+bool SteadyMotion::add(int block, double ratio, const Motion& motion) {
+  if (steps_ <= 0) return false;
+  const double norm = motion.norm();
+  const Motion direction = norm > 0.0 ? Motion(motion / norm) : Motion::Zero();
+  const double same_way = std::cos(8.0 * M_PI / 180.0);
+  if (!window_.empty() &&
+      (block != window_.back().block || direction.dot(window_.back().direction) < same_way)) {
+    window_.clear();
+  }
+  window_.push_back({block, ratio, direction});
+  if (static_cast<int>(window_.size()) > steps_) window_.pop_front();
+  if (static_cast<int>(window_.size()) < steps_) return false;
+  double low = window_.front().ratio, high = low;
+  for (const Step& s : window_) {
+    low = std::min(low, s.ratio);
+    high = std::max(high, s.ratio);
+  }
+  return high > 0.0 && high - low <= spread_ * high;
+}
 
 std::vector<int> monitoredMovableBlocks(const DdaModel& model) {
   std::vector<int> blocks;
@@ -69,6 +98,8 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   int pushed = 0;
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
                         settings.failure_ratio > 0.0 && settings.failure_steps > 0;
+  const bool can_steady = sim.settings().mode == AnalysisMode::Static && settings.steady_steps > 0;
+  SteadyMotion steady(can_steady ? settings.steady_steps : 0, settings.steady_spread);
   while (result.steps < settings.max_steps) {
     StepReport report;
     try {
@@ -145,6 +176,14 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     pushed = can_fail && result.unbalanced_ratio >= settings.failure_ratio ? pushed + 1 : 0;
     if (pushed >= settings.failure_steps) {
       result.failing = true;
+      break;
+    }
+    const int mover = every_block ? report.fastest_block : result.watched.block;
+    if (still || mover < 0) {
+      steady.clear();
+    } else if (steady.add(mover, result.unbalanced_ratio, stepMotion(sim, mover))) {
+      result.failing = true;
+      result.steady = true;
       break;
     }
   }

@@ -2,6 +2,7 @@
 // strength-reduction analyses (docs/stability.md).
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <string>
 
@@ -36,6 +37,16 @@ struct EquilibriumSettings {
   /// 0 turns the early stop off.
   double failure_ratio = 1.0;
   int failure_steps = 10;  ///< steps in a row of the early stop
+  /// Static runs only: a run whose watched motion is steady for `steady_steps` steps in a row
+  /// is not at rest, and stops there: every step not calm, its fastest watched block the
+  /// same block, moving the same way (the directions of its step displacements, translation
+  /// and rotation times the block's size, within 8 degrees of the step before), and the
+  /// unbalanced ratios within `steady_spread` of the window's largest. A block sliding on a
+  /// joint at its strength keeps a constant out-of-balance force and moves the same distance
+  /// every static step; a run that is coming to rest does not (its ratio falls or wanders).
+  /// 0 turns the rule off.
+  int steady_steps = 10;
+  double steady_spread = 0.01;  ///< (largest - smallest) / largest ratio of the window (-)
   /// The blocks whose unbalanced ratio, kinetic energy and failure decide the run. With
   /// Monitors, a block elsewhere that keeps moving (a loose block under a free face) does not
   /// keep the run from being at rest, nor stop it early; it is still reported
@@ -75,6 +86,8 @@ struct EquilibriumResult {
   /// (not counted in contact_searches: their other entries were kept).
   int partial_contact_searches = 0;
   bool failing = false;  ///< stopped early by the failure rule (not at rest)
+  /// Stopped early by the steady-motion rule (EquilibriumSettings::steady_steps); failing too.
+  bool steady = false;
   /// Why the run could not go on (StepFailure's message), empty when it could: such a run is
   /// failing and not at rest (a step that fails its checks at the smallest time step).
   std::string stalled;
@@ -93,6 +106,29 @@ std::vector<int> monitoredMovableBlocks(const DdaModel& model);
 /// The movable blocks `watch` selects in `sim`'s model, in increasing order. Throws
 /// std::invalid_argument when Monitors selects none (no monitor, or all in held blocks).
 std::vector<int> watchedBlocks(const Simulation& sim, EquilibriumWatch watch);
+
+/// The steady-motion rule's window (EquilibriumSettings::steady_steps, steady_spread): the last
+/// `steps` steps that were not calm, each with its fastest watched block, its unbalanced ratio
+/// and its step displacement (translation and rotation times the block's size, m).
+class SteadyMotion {
+ public:
+  using Motion = Eigen::Matrix<double, 6, 1>;
+  SteadyMotion(int steps, double spread) : steps_(steps), spread_(spread) {}
+  /// Adds a step; true when the window is full and steady: one block, each step's motion
+  /// within 8 degrees of the step's before, the ratios within `spread` of the largest.
+  bool add(int block, double ratio, const Motion& motion);
+  void clear() { window_.clear(); }
+
+ private:
+  struct Step {
+    int block;
+    double ratio;
+    Motion direction;  ///< unit vector (zero: no motion)
+  };
+  int steps_;
+  double spread_;
+  std::deque<Step> window_;
+};
 
 /// Called after each step with the result so far (progress output).
 using EquilibriumStepCallback = std::function<void(const EquilibriumResult&)>;

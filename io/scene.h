@@ -267,6 +267,10 @@ struct EquilibriumAnalysis {
   std::optional<int> start_steps;
   double failure_ratio = 1.0;  ///< static runs: early stop at this unbalanced ratio (0: none)
   int failure_steps = 10;      ///< ... held this many steps in a row
+  /// static runs: early stop after this many steps of steady motion (0: none;
+  /// dda3d::EquilibriumSettings::steady_steps)
+  int steady_steps = 10;
+  double steady_spread = 0.01;  ///< ... their ratios within this share of the largest
   /// watch: all | monitors. monitors: only the blocks that carry a monitor decide whether a
   /// run is at rest (or failing); needs a monitor in a movable block.
   bool watch_monitors = false;

@@ -470,9 +470,9 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 
 /// analysis.equilibrium
 EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) {
-  const Cursor m =
-      c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps", "dynamic_ratio",
-             "start", "start_steps", "failure_ratio", "failure_steps", "watch"});
+  const Cursor m = c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps",
+                          "dynamic_ratio", "start", "start_steps", "failure_ratio", "failure_steps",
+                          "steady_steps", "steady_spread", "watch"});
   EquilibriumAnalysis e;
   if (const auto watch = m.get("watch")) {
     e.watch_monitors = watch->choice("watch", {"all", "monitors"}) == 1;
@@ -498,6 +498,13 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) 
   e.kinetic_ratio = m.numberOr("kinetic_ratio", e.kinetic_ratio, kPositive);
   e.failure_ratio = m.numberOr("failure_ratio", e.failure_ratio, kNonNegative);
   e.failure_steps = m.integerOr("failure_steps", e.failure_steps, above(0));
+  if (const auto steps = m.get("steady_steps")) {
+    e.steady_steps = steps->integer(kNonNegative);
+    // One step has no trend: every step that is not calm would stop the run.
+    if (e.steady_steps == 1) steps->fail("0 (no steady-motion stop) or at least 2 steps");
+  }
+  e.steady_spread = m.numberOr("steady_spread", e.steady_spread,
+                               {.low = 0, .high = 1, .low_open = true, .high_open = true});
   e.settle_steps = m.integerOr("settle_steps", e.settle_steps, above(0));
   e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio,
                                {.low = 0, .high = 1, .low_open = false, .high_open = false});

@@ -21,7 +21,9 @@ constexpr const char* kSearchRule =
     "(ascending) at which the run is not at rest marks the loss of stability; the critical "
     "factor is the middle of [last factor at rest, first factor not at rest], bisected to the "
     "tolerance; a static run whose unbalanced ratio is at least failure_ratio in failure_steps "
-    "steps in a row is not at rest and stops there (failing); the ratios are of the blocks "
+    "steps in a row is not at rest and stops there (failing), and so is one whose fastest watched "
+    "block moves the same way in steady_steps steps in a row, none calm, their unbalanced "
+    "ratios within steady_spread of the largest (failing, steady); the ratios are of the blocks "
     "that equilibrium.watch names (all: every movable block; monitors: the blocks that carry "
     "a monitor)";
 
@@ -51,6 +53,7 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
          {"unbalanced_ratio", finiteOrNull(r.equilibrium.unbalanced_ratio)},
          {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
          {"failing", r.equilibrium.failing},
+         {"steady", r.equilibrium.steady},
          {"stalled", r.equilibrium.stalled.empty() ? Json(nullptr) : Json(r.equilibrium.stalled)},
          {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
          {"min_time_step", r.equilibrium.min_time_step},
@@ -106,6 +109,8 @@ Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
           {"max_steps", settings.max_steps},
           {"failure_ratio", settings.failure_ratio},
           {"failure_steps", settings.failure_steps},
+          {"steady_steps", settings.steady_steps},
+          {"steady_spread", settings.steady_spread},
           {"watch", settings.watch == dda3d::EquilibriumWatch::All ? "all" : "monitors"}};
 }
 

@@ -44,6 +44,8 @@ dda3d::EquilibriumSettings equilibriumSettings(const Scene& scene) {
   settings.settle_steps = e.settle_steps;
   settings.failure_ratio = e.failure_ratio;
   settings.failure_steps = e.failure_steps;
+  settings.steady_steps = e.steady_steps;
+  settings.steady_spread = e.steady_spread;
   settings.watch =
       e.watch_monitors ? dda3d::EquilibriumWatch::Monitors : dda3d::EquilibriumWatch::All;
   return settings;

@@ -333,6 +333,9 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   const EquilibriumResult rest = runToEquilibrium(held, equilibrium);
   EXPECT_TRUE(rest.reached);
   EXPECT_FALSE(rest.failing);
+  // The slow slider's ratio stays below failure_ratio: without the steady-motion rule it runs
+  // to the limit.
+  equilibrium.steady_steps = 0;
   Simulation slow(blockOnSlope(20.0, 19.0), settings);
   const EquilibriumResult sliding = runToEquilibrium(slow, equilibrium);
   EXPECT_FALSE(sliding.reached);
@@ -341,6 +344,80 @@ TEST(Equilibrium, AFailingStaticRunStopsEarly) {
   // Dynamic runs never stop early (their ratio also counts the velocity).
   Simulation dynamic(blockOnSlope(60.0, 10.0), dampedRigid());
   EXPECT_FALSE(runToEquilibrium(dynamic, equilibrium).failing);
+}
+
+// The steady-motion rule (steady_steps 10, steady_spread 0.01, the defaults). A block sliding
+// on a 20 degree slope at phi = 19 degrees moves the same way by the same distance every static
+// step, a = g (sin 20 - cos 20 tan 19) = 0.018 g: 10 steps after its contacts have closed it
+// stops, failing and steady, its ratio that a / g (less the springs' share, 1e-2), long before
+// the 60-step limit. A block coming to rest (20 degrees, phi 25) is at rest as before.
+TEST(Equilibrium, AStaticRunMovingSteadilyStopsEarly) {
+  const DdaSettings settings = staticRigid();
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 60;
+  Simulation slow(blockOnSlope(20.0, 19.0), settings);
+  const EquilibriumResult sliding = runToEquilibrium(slow, equilibrium);
+  EXPECT_FALSE(sliding.reached);
+  EXPECT_TRUE(sliding.failing);
+  EXPECT_TRUE(sliding.steady);
+  EXPECT_LE(sliding.steps, 20);  // 10 steady steps after the contacts close (1-3 steps)
+  const double a = std::sin(radians(20.0)) - std::cos(radians(20.0)) * std::tan(radians(19.0));
+  EXPECT_NEAR(sliding.unbalanced_ratio, a, 1e-2 * a);
+  EXPECT_EQ(sliding.fastest.block, 1);
+
+  Simulation held(blockOnSlope(20.0, 25.0), settings);
+  const EquilibriumResult rest = runToEquilibrium(held, equilibrium);
+  EXPECT_TRUE(rest.reached);
+  EXPECT_FALSE(rest.steady);
+
+  // The rule is off at steady_steps 0, and dynamic runs never stop by it.
+  equilibrium = EquilibriumSettings{};
+  equilibrium.max_steps = 60;
+  equilibrium.steady_steps = 0;
+  Simulation off(blockOnSlope(20.0, 19.0), settings);
+  EXPECT_EQ(runToEquilibrium(off, equilibrium).steps, 60);
+  equilibrium.steady_steps = 10;
+  Simulation dynamic(blockOnSlope(20.0, 19.0), dampedRigid());
+  EXPECT_FALSE(runToEquilibrium(dynamic, equilibrium).steady);
+}
+
+// The steady-motion window on its own. Steady: 10 steps of one block moving the same way, its
+// ratios within 1 % (the Xiangjiaba dam sliding at SRF 3: 0.0200-0.0201). Not steady: a ratio
+// that decays by 1 % a step (9.6 % over the window, a run still coming to rest, however
+// slowly), one that wanders (2e-3..2e-2, the foundation settling), a block that turns back
+// every step (the same ratio, opposite motions), another block taking over, or a window
+// not yet full.
+TEST(Equilibrium, SteadyMotionWindow) {
+  using Motion = SteadyMotion::Motion;
+  const Motion east = (Motion() << 1e-7, 0, -2e-8, 0, 1e-9, 0).finished();
+  const auto run = [](const std::function<bool(int)>& step) {
+    for (int k = 0; k < 9; ++k) EXPECT_FALSE(step(k)) << k;  // the window is not full
+    return step(9);
+  };
+  SteadyMotion steady(10, 0.01);
+  EXPECT_TRUE(run([&](int k) { return steady.add(3, 0.0200 + 1e-5 * (k % 2), east); }));
+  SteadyMotion decaying(10, 0.01);
+  EXPECT_FALSE(run([&](int k) { return decaying.add(3, 0.02 * std::pow(0.99, k), east); }));
+  SteadyMotion wandering(10, 0.01);
+  EXPECT_FALSE(run([&](int k) { return wandering.add(3, k % 3 ? 2e-3 : 2e-2, east); }));
+  SteadyMotion turning(10, 0.01);
+  EXPECT_FALSE(run([&](int k) { return turning.add(3, 0.02, k % 2 ? east : Motion(-east)); }));
+  SteadyMotion other(10, 0.01);
+  EXPECT_FALSE(run([&](int k) { return other.add(k == 5 ? 4 : 3, 0.02, east); }));
+  // A slightly different direction (a few degrees a step) is still the same way; after
+  // clear() the window starts again.
+  SteadyMotion veering(10, 0.01);
+  EXPECT_TRUE(run([&](int k) {
+    Motion m = east;
+    m[1] = 5e-9 * k;  // about 3 degrees more each step
+    return veering.add(3, 0.02, m);
+  }));
+  veering.clear();
+  for (int k = 0; k < 9; ++k) EXPECT_FALSE(veering.add(3, 0.02, east));
+  EXPECT_TRUE(veering.add(3, 0.02, east));
+  // Off at 0 steps.
+  SteadyMotion off(0, 0.01);
+  for (int k = 0; k < 20; ++k) EXPECT_FALSE(off.add(3, 0.02, east));
 }
 
 // Equilibrium judged on the monitored blocks (watch: monitors). Two 1 m cubes on one fixed
