@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "dda3d/contact_detection.h"
+#include "geometry/orientation.h"
 
 namespace rockmass::dda3d {
 
@@ -23,6 +24,9 @@ MovedBlock movedBlock(const Simulation& sim, int b) {
   return {b, block.volume, block.centroid};
 }
 
+/// Two steps' motions go "the same way" when their directions are within this angle (deg).
+constexpr double kSameWayDegrees = 8.0;
+
 /// Block `b`'s last step displacement as the steady-motion rule compares it: translation
 /// and rotation times the block's size (m).
 SteadyMotion::Motion stepMotion(const Simulation& sim, int b) {
@@ -38,7 +42,7 @@ bool SteadyMotion::add(int block, double ratio, const Motion& motion) {
   if (steps_ <= 0) return false;
   const double norm = motion.norm();
   const Motion direction = norm > 0.0 ? Motion(motion / norm) : Motion::Zero();
-  const double same_way = std::cos(8.0 * M_PI / 180.0);
+  const double same_way = std::cos(geometry::radians(kSameWayDegrees));
   if (!window_.empty() &&
       (block != window_.back().block || direction.dot(window_.back().direction) < same_way)) {
     window_.clear();
@@ -99,7 +103,7 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
   const bool can_fail = sim.settings().mode == AnalysisMode::Static &&
                         settings.failure_ratio > 0.0 && settings.failure_steps > 0;
   const bool can_steady = sim.settings().mode == AnalysisMode::Static && settings.steady_steps > 0;
-  SteadyMotion steady(can_steady ? settings.steady_steps : 0, settings.steady_spread);
+  SteadyMotion steady(settings.steady_steps, settings.steady_spread);
   while (result.steps < settings.max_steps) {
     StepReport report;
     try {
@@ -181,7 +185,7 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     const int mover = every_block ? report.fastest_block : result.watched.block;
     if (still || mover < 0) {
       steady.clear();
-    } else if (steady.add(mover, result.unbalanced_ratio, stepMotion(sim, mover))) {
+    } else if (can_steady && steady.add(mover, result.unbalanced_ratio, stepMotion(sim, mover))) {
       result.failing = true;
       result.steady = true;
       break;

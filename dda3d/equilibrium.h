@@ -85,7 +85,9 @@ struct EquilibriumResult {
   /// Steps that searched only the pairs of the blocks that moved beyond the search margin
   /// (not counted in contact_searches: their other entries were kept).
   int partial_contact_searches = 0;
-  bool failing = false;  ///< stopped early by the failure rule (not at rest)
+  /// Stopped early (not at rest): by the failure rule (failure_ratio), the steady-motion rule
+  /// (`steady`) or a step that cannot progress (`stalled`).
+  bool failing = false;
   /// Stopped early by the steady-motion rule (EquilibriumSettings::steady_steps); failing too.
   bool steady = false;
   /// Why the run could not go on (StepFailure's message), empty when it could: such a run is
