@@ -215,30 +215,37 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     distance = (c.point - sample.point).squaredNorm();
     return true;
   };
-  // The nearest entry to `sample` among [begin, end) that may take it.
+  // Entries about as near as the nearest (within kAreaTieShare of the sample's distance) are
+  // tied: the earliest in by_pair order takes the sample.
+  const auto tie = [](const AreaSample& sample) { return kAreaTieShare * sample.distance; };
+  // The nearest entry to `sample` among [begin, end) that may take it (ties to the earliest).
   const auto nearestIn = [&](const AreaSample& sample, Iterator begin, Iterator end,
                              double& nearest_distance) {
-    Contact* nearest = nullptr;
     nearest_distance = std::numeric_limits<double>::infinity();
     for (auto it = begin; it != end; ++it) {
-      Contact& c = contacts[*it];
+      const Contact& c = contacts[*it];
       if (c.kind == ContactKind::FacePoint) continue;  // carries its own area
       double distance = 0.0;
-      if (!takes(c, sample, distance)) continue;
-      if (distance < nearest_distance) {
-        nearest_distance = distance;
-        nearest = &c;
-      }
+      if (takes(c, sample, distance)) nearest_distance = std::min(nearest_distance, distance);
     }
-    return nearest;
+    if (!(nearest_distance < std::numeric_limits<double>::infinity()))
+      return static_cast<Contact*>(nullptr);
+    const double within = std::pow(std::sqrt(nearest_distance) + tie(sample), 2);
+    for (auto it = begin; it != end; ++it) {
+      Contact& c = contacts[*it];
+      if (c.kind == ContactKind::FacePoint) continue;
+      double distance = 0.0;
+      if (takes(c, sample, distance) && distance <= within) return &c;
+    }
+    return static_cast<Contact*>(nullptr);
   };
   // The nearest of the whole pair of blocks is searched outward from the sample along x,
   // over the pair's entries sorted by x (a Xiangjiaba region step falls back for about
   // 180 000 of its 420 000 samples, and the linear scan over the pair's entries read 3.4e7
-  // entries a step). The scan stops where the x distance alone exceeds the nearest found:
-  // the squared distance of any entry beyond is larger (a sum of non-negative terms rounds
-  // no lower than one of them). Ties go to the earlier entry in by_pair order, the scan's
-  // own choice, so the result is that of the linear scan.
+  // entries a step). The scan stops where the x distance alone exceeds the nearest found
+  // (the squared distance of any entry beyond is larger: a sum of non-negative terms rounds
+  // no lower than one of them), then again within the tie of the nearest for the earliest
+  // entry in by_pair order: the result is that of the linear scan.
   struct ByX {
     double x;
     std::size_t position;  ///< in by_pair
@@ -246,32 +253,42 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   };
   const auto nearestByX = [&](const AreaSample& sample, const std::vector<ByX>& sorted,
                               double& nearest_distance) {
-    Contact* nearest = nullptr;
-    std::size_t nearest_position = 0;
     nearest_distance = std::numeric_limits<double>::infinity();
-    const auto consider = [&](const ByX& e) {
-      Contact& c = contacts[by_pair[e.position]];
-      double distance = 0.0;
-      if (!takes(c, sample, distance)) return;
-      if (distance < nearest_distance ||
-          (distance == nearest_distance && e.position < nearest_position)) {
-        nearest_distance = distance;
-        nearest_position = e.position;
-        nearest = &c;
-      }
-    };
     const double x = sample.point.x();
     const auto middle = std::lower_bound(sorted.begin(), sorted.end(), ByX{x, 0});
-    const auto beyond = [&](const ByX& e) {
-      const double dx = e.x - x;
-      return dx * dx > nearest_distance;
+    // Visits the entries outward from x while their x distance alone is within `bound` (a
+    // squared distance, read after each visit).
+    const auto outward = [&](const double& bound, const auto& visit) {
+      const auto beyond = [&](const ByX& e) {
+        const double dx = e.x - x;
+        return dx * dx > bound;
+      };
+      for (auto it = middle; it != sorted.end() && !beyond(*it); ++it) visit(*it);
+      for (auto it = middle; it != sorted.begin();) {
+        --it;
+        if (beyond(*it)) break;
+        visit(*it);
+      }
     };
-    for (auto it = middle; it != sorted.end() && !beyond(*it); ++it) consider(*it);
-    for (auto it = middle; it != sorted.begin();) {
-      --it;
-      if (beyond(*it)) break;
-      consider(*it);
-    }
+    outward(nearest_distance, [&](const ByX& e) {
+      double distance = 0.0;
+      if (takes(contacts[by_pair[e.position]], sample, distance)) {
+        nearest_distance = std::min(nearest_distance, distance);
+      }
+    });
+    Contact* nearest = nullptr;
+    if (!(nearest_distance < std::numeric_limits<double>::infinity())) return nearest;
+    const double within = std::pow(std::sqrt(nearest_distance) + tie(sample), 2);
+    std::size_t nearest_position = 0;
+    outward(within, [&](const ByX& e) {
+      Contact& c = contacts[by_pair[e.position]];
+      double distance = 0.0;
+      if (takes(c, sample, distance) && distance <= within &&
+          (nearest == nullptr || e.position < nearest_position)) {
+        nearest = &c;
+        nearest_position = e.position;
+      }
+    });
     return nearest;
   };
   // Pairs of blocks with fewer entries than this are scanned linearly.
