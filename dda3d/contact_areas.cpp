@@ -218,6 +218,11 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   // Entries about as near as the nearest (within kAreaTieShare of the sample's distance) are
   // tied: the earliest in by_pair order takes the sample.
   const auto tie = [](const AreaSample& sample) { return kAreaTieShare * sample.distance; };
+  // The squared distance within which entries tie with the nearest (at `nearest`, squared):
+  // never below the nearest's own, whatever the round-off of the root and the square.
+  const auto tiedWithin = [](double nearest, double tie) {
+    return std::max(nearest, std::pow(std::sqrt(nearest) + tie, 2));
+  };
   // The nearest entry to `sample` among [begin, end) that may take it (ties to the earliest).
   const auto nearestIn = [&](const AreaSample& sample, Iterator begin, Iterator end,
                              double& nearest_distance) {
@@ -230,7 +235,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     }
     if (!(nearest_distance < std::numeric_limits<double>::infinity()))
       return static_cast<Contact*>(nullptr);
-    const double within = std::pow(std::sqrt(nearest_distance) + tie(sample), 2);
+    const double within = tiedWithin(nearest_distance, tie(sample));
     for (auto it = begin; it != end; ++it) {
       Contact& c = contacts[*it];
       if (c.kind == ContactKind::FacePoint) continue;
@@ -278,7 +283,7 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     });
     Contact* nearest = nullptr;
     if (!(nearest_distance < std::numeric_limits<double>::infinity())) return nearest;
-    const double within = std::pow(std::sqrt(nearest_distance) + tie(sample), 2);
+    const double within = tiedWithin(nearest_distance, tie(sample));
     std::size_t nearest_position = 0;
     outward(within, [&](const ByX& e) {
       Contact& c = contacts[by_pair[e.position]];
