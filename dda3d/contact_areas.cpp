@@ -215,42 +215,58 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
     distance = (c.point - sample.point).squaredNorm();
     return true;
   };
-  // Entries about as near as the nearest (within kAreaTieShare of the sample's distance) are
-  // tied: the earliest in by_pair order takes the sample.
-  const auto tie = [](const AreaSample& sample) { return kAreaTieShare * sample.distance; };
-  // The squared distance within which entries tie with the nearest (at `nearest`, squared):
-  // never below the nearest's own, whatever the round-off of the root and the square.
-  const auto tiedWithin = [](double nearest, double tie) {
-    return std::max(nearest, std::pow(std::sqrt(nearest) + tie, 2));
+  // The entry that takes `sample` among the candidates `visit` shows (their positions in
+  // by_pair, FacePoints left out: they carry their own area): the nearest, or among those
+  // about as near as it (within kAreaTieShare of the sample's distance) the earliest in
+  // by_pair order. `visit(bound, f)` calls f on the candidates, and may skip those whose
+  // squared distance is known to exceed `bound` (read after each call); it is called twice,
+  // for the nearest distance, then for the earliest within the tie of it.
+  const auto tiedNearest = [&](const AreaSample& sample, const auto& visit,
+                               double& nearest_distance) {
+    nearest_distance = std::numeric_limits<double>::infinity();
+    visit(nearest_distance, [&](std::size_t position) {
+      double distance = 0.0;
+      if (takes(contacts[by_pair[position]], sample, distance)) {
+        nearest_distance = std::min(nearest_distance, distance);
+      }
+    });
+    Contact* nearest = nullptr;
+    if (!(nearest_distance < std::numeric_limits<double>::infinity())) return nearest;
+    // Never below the nearest's own squared distance, whatever the round-off of the root and
+    // the square.
+    const double within =
+        std::max(nearest_distance,
+                 std::pow(std::sqrt(nearest_distance) + kAreaTieShare * sample.distance, 2));
+    std::size_t nearest_position = 0;
+    visit(within, [&](std::size_t position) {
+      Contact& c = contacts[by_pair[position]];
+      double distance = 0.0;
+      if (takes(c, sample, distance) && distance <= within &&
+          (nearest == nullptr || position < nearest_position)) {
+        nearest = &c;
+        nearest_position = position;
+      }
+    });
+    return nearest;
   };
-  // The nearest entry to `sample` among [begin, end) that may take it (ties to the earliest).
+  // The taker among [begin, end), scanned.
   const auto nearestIn = [&](const AreaSample& sample, Iterator begin, Iterator end,
                              double& nearest_distance) {
-    nearest_distance = std::numeric_limits<double>::infinity();
-    for (auto it = begin; it != end; ++it) {
-      const Contact& c = contacts[*it];
-      if (c.kind == ContactKind::FacePoint) continue;  // carries its own area
-      double distance = 0.0;
-      if (takes(c, sample, distance)) nearest_distance = std::min(nearest_distance, distance);
-    }
-    if (!(nearest_distance < std::numeric_limits<double>::infinity()))
-      return static_cast<Contact*>(nullptr);
-    const double within = tiedWithin(nearest_distance, tie(sample));
-    for (auto it = begin; it != end; ++it) {
-      Contact& c = contacts[*it];
-      if (c.kind == ContactKind::FacePoint) continue;
-      double distance = 0.0;
-      if (takes(c, sample, distance) && distance <= within) return &c;
-    }
-    return static_cast<Contact*>(nullptr);
+    const auto scan = [&](const double&, const auto& f) {
+      for (auto it = begin; it != end; ++it) {
+        if (contacts[*it].kind != ContactKind::FacePoint) {
+          f(static_cast<std::size_t>(it - by_pair.begin()));
+        }
+      }
+    };
+    return tiedNearest(sample, scan, nearest_distance);
   };
   // The nearest of the whole pair of blocks is searched outward from the sample along x,
   // over the pair's entries sorted by x (a Xiangjiaba region step falls back for about
   // 180 000 of its 420 000 samples, and the linear scan over the pair's entries read 3.4e7
-  // entries a step). The scan stops where the x distance alone exceeds the nearest found
-  // (the squared distance of any entry beyond is larger: a sum of non-negative terms rounds
-  // no lower than one of them), then again within the tie of the nearest for the earliest
-  // entry in by_pair order: the result is that of the linear scan.
+  // entries a step). Each pass stops where the x distance alone exceeds its bound (the
+  // squared distance of any entry beyond is larger: a sum of non-negative terms rounds no
+  // lower than one of them), so the result is that of the linear scan.
   struct ByX {
     double x;
     std::size_t position;  ///< in by_pair
@@ -258,43 +274,21 @@ void assignAreas(std::vector<Contact>& contacts, const std::vector<AreaSample>& 
   };
   const auto nearestByX = [&](const AreaSample& sample, const std::vector<ByX>& sorted,
                               double& nearest_distance) {
-    nearest_distance = std::numeric_limits<double>::infinity();
     const double x = sample.point.x();
     const auto middle = std::lower_bound(sorted.begin(), sorted.end(), ByX{x, 0});
-    // Visits the entries outward from x while their x distance alone is within `bound` (a
-    // squared distance, read after each visit).
-    const auto outward = [&](const double& bound, const auto& visit) {
+    const auto outward = [&](const double& bound, const auto& f) {
       const auto beyond = [&](const ByX& e) {
         const double dx = e.x - x;
         return dx * dx > bound;
       };
-      for (auto it = middle; it != sorted.end() && !beyond(*it); ++it) visit(*it);
+      for (auto it = middle; it != sorted.end() && !beyond(*it); ++it) f(it->position);
       for (auto it = middle; it != sorted.begin();) {
         --it;
         if (beyond(*it)) break;
-        visit(*it);
+        f(it->position);
       }
     };
-    outward(nearest_distance, [&](const ByX& e) {
-      double distance = 0.0;
-      if (takes(contacts[by_pair[e.position]], sample, distance)) {
-        nearest_distance = std::min(nearest_distance, distance);
-      }
-    });
-    Contact* nearest = nullptr;
-    if (!(nearest_distance < std::numeric_limits<double>::infinity())) return nearest;
-    const double within = tiedWithin(nearest_distance, tie(sample));
-    std::size_t nearest_position = 0;
-    outward(within, [&](const ByX& e) {
-      Contact& c = contacts[by_pair[e.position]];
-      double distance = 0.0;
-      if (takes(c, sample, distance) && distance <= within &&
-          (nearest == nullptr || e.position < nearest_position)) {
-        nearest = &c;
-        nearest_position = e.position;
-      }
-    });
-    return nearest;
+    return tiedNearest(sample, outward, nearest_distance);
   };
   // Pairs of blocks with fewer entries than this are scanned linearly.
   constexpr std::ptrdiff_t kSortedSearch = 32;

@@ -458,6 +458,14 @@ std::vector<PiecePair> broadPhase(const std::vector<BlockState>& blocks,
 
 namespace {
 
+/// The diagonal of the box of piece `piece` of block `block` (m): the size the narrow phase's
+/// tolerances of a pair of pieces scale with (findContacts).
+double pieceDiagonal(const std::vector<BlockState>& blocks, int block, int piece) {
+  return geometry::bounds(
+             blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)])
+      .diagonal();
+}
+
 /// One point of block i pressed into block j has one entry per piece of j it was found
 /// against, each with that piece's least deep face. The block's surface is the union of
 /// its pieces' surface faces: a point sunk into piece q beside the face where q meets
@@ -483,16 +491,12 @@ void dropDeeperEntries(const std::vector<std::size_t>& order, std::size_t first,
     ++penetrating;
   }
   if (penetrating < 2) return;
-  const auto diagonal = [&](int block, int piece) {
-    return geometry::bounds(
-               blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)])
-        .diagonal();
-  };
   for (std::size_t k = first; k < end; ++k) {
     const Contact& c = entry(order[k]);
     if (!keep[order[k]] || c.kind != ContactKind::VertexFace || !(c.gap0 < 0.0)) continue;
     // The keep margin of the entry's pair of pieces (findContacts' Range::keep_margin).
-    const double size = diagonal(c.block_i, c.piece_i) + diagonal(c.block_j, c.piece_j);
+    const double size =
+        pieceDiagonal(blocks, c.block_i, c.piece_i) + pieceDiagonal(blocks, c.block_j, c.piece_j);
     if (c.gap0 < least_deep - std::max(1e-9 * size, 1e-4 * size)) keep[order[k]] = 0;
   }
 }
@@ -513,11 +517,6 @@ void dropDeeperEntries(const std::vector<std::size_t>& order, std::size_t first,
 template <class Key, class Entry>
 void dropEdgeCopies(const std::vector<Key>& keys, std::vector<char>& keep, const Entry& entry,
                     const std::vector<BlockState>& blocks) {
-  const auto diagonal = [&](int block, int piece) {
-    return geometry::bounds(
-               blocks[static_cast<std::size_t>(block)].pieces[static_cast<std::size_t>(piece)])
-        .diagonal();
-  };
   const auto isCrossing = [&](const Key& key) {
     return keep[key.index] && key.vertex < 0 && entry(key.index).kind == ContactKind::EdgeEdge;
   };
@@ -531,7 +530,8 @@ void dropEdgeCopies(const std::vector<Key>& keys, std::vector<char>& keep, const
         break;
       }
       if (tolerance < 0.0) {
-        tolerance = 1e-9 * (diagonal(c.block_i, c.piece_i) + diagonal(c.block_j, c.piece_j));
+        tolerance = 1e-9 * (pieceDiagonal(blocks, c.block_i, c.piece_i) +
+                            pieceDiagonal(blocks, c.block_j, c.piece_j));
       }
       if (keys[m].x - keys[k].x > tolerance) break;
       if (!isCrossing(keys[m])) continue;
