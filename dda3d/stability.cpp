@@ -1,6 +1,8 @@
 #include "dda3d/stability.h"
 
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 namespace rockmass::dda3d {
 
@@ -32,19 +34,36 @@ DdaModel reducedStrength(const DdaModel& model, double srf) {
 
 namespace {
 
-/// One run of `make(factor)` to equilibrium.
+/// Where an incremental search's next run starts: the end of the run at rest that set the
+/// bracket's lower end.
+struct RestState {
+  DdaModel model;  ///< settledModel of that run
+  std::vector<Contact> contacts;
+};
+
+/// One run of `make(factor)` to equilibrium, from `from` (incremental) or from the search's
+/// start. With `keep`, the run's end state is stored there when it came to rest.
 FactorRun runFactor(const std::function<DdaModel(double)>& make, const DdaSettings& settings,
-                    const EquilibriumSettings& equilibrium,
-                    const std::vector<Contact>& start_contacts, double factor, bool bisection) {
-  Simulation sim(make(factor), settings);
-  if (!start_contacts.empty()) sim.adoptContacts(start_contacts);
+                    const FactorSearch& search, const RestState* from, double factor,
+                    bool bisection, std::optional<RestState>* keep) {
+  DdaModel model = make(factor);
+  std::vector<geometry::Vec3> origins;  // the monitors where the search started
+  for (const DdaMonitor& m : model.monitors) origins.push_back(m.point);
+  if (from) model = carriedState(std::move(model), from->model);
+  Simulation sim(std::move(model), settings);
+  const std::vector<Contact>& contacts = from ? from->contacts : search.start_contacts;
+  if (!contacts.empty()) sim.adoptContacts(contacts);
   FactorRun run;
   run.factor = factor;
   run.bisection = bisection;
-  run.equilibrium = runToEquilibrium(sim, equilibrium);
+  run.equilibrium = runToEquilibrium(sim, search.equilibrium);
   run.monitors = sim.monitors();
+  for (std::size_t k = 0; k < run.monitors.size(); ++k) {
+    run.monitors[k].displacement = run.monitors[k].position - origins[k];
+  }
   run.terms = sim.activeTerms();
   run.bolts = sim.bolts();
+  if (keep && run.equilibrium.reached) *keep = RestState{settledModel(sim), sim.contacts()};
   return run;
 }
 
@@ -60,14 +79,21 @@ FactorSearchResult searchCriticalFactor(const std::function<DdaModel(double)>& m
     }
   }
   FactorSearchResult result;
-  const auto run = [&](double factor, bool bisection) {
-    result.runs.push_back(
-        runFactor(make, settings, search.equilibrium, search.start_contacts, factor, bisection));
+  result.incremental = search.incremental;
+  // The end of the run that set last_stable (incremental searches only).
+  std::optional<RestState> low_state;
+  // Runs `factor`; `raises_low`: a run at rest there becomes the bracket's lower end.
+  const auto run = [&](double factor, bool bisection, bool raises_low) {
+    std::optional<RestState> end;
+    result.runs.push_back(runFactor(make, settings, search, low_state ? &*low_state : nullptr,
+                                    factor, bisection,
+                                    search.incremental && raises_low ? &end : nullptr));
+    if (end) low_state = std::move(end);
     if (callback) callback(result.runs.back());
     return result.runs.back().equilibrium.reached;
   };
   for (double factor : search.factors) {
-    const bool stable = run(factor, false);
+    const bool stable = run(factor, false, !result.first_unstable);
     if (!result.first_unstable) {
       if (stable) {
         result.last_stable = factor;
@@ -81,7 +107,7 @@ FactorSearchResult searchCriticalFactor(const std::function<DdaModel(double)>& m
   double low = *result.last_stable, high = *result.first_unstable;
   while (search.tolerance > 0.0 && high - low > search.tolerance) {
     const double middle = 0.5 * (low + high);
-    (run(middle, true) ? low : high) = middle;
+    (run(middle, true, true) ? low : high) = middle;
   }
   result.last_stable = low;
   result.first_unstable = high;
@@ -138,6 +164,42 @@ DdaModel settledModel(const Simulation& sim) {
     out.bolts[k].broken = sim.bolts()[k].broken;
   }
   return out;
+}
+
+DdaModel carriedState(DdaModel target, const DdaModel& state) {
+  if (target.blocks.size() != state.blocks.size() ||
+      target.monitors.size() != state.monitors.size() ||
+      target.point_loads.size() != state.point_loads.size() ||
+      target.fixed_points.size() != state.fixed_points.size() ||
+      target.bolts.size() != state.bolts.size()) {
+    throw std::invalid_argument("a state carries over only to a model of the same blocks");
+  }
+  for (std::size_t b = 0; b < target.blocks.size(); ++b) {
+    DdaBlock& to = target.blocks[b];
+    const DdaBlock& from = state.blocks[b];
+    if (to.pieces.size() != from.pieces.size()) {
+      throw std::invalid_argument("a state carries over only to a model of the same blocks");
+    }
+    to.pieces = from.pieces;
+    to.initial_stress = from.initial_stress;
+    to.initial_velocity = from.initial_velocity;
+    to.initial_angular_velocity = from.initial_angular_velocity;
+  }
+  for (std::size_t k = 0; k < target.monitors.size(); ++k)
+    target.monitors[k].point = state.monitors[k].point;
+  for (std::size_t k = 0; k < target.point_loads.size(); ++k)
+    target.point_loads[k].point = state.point_loads[k].point;
+  for (std::size_t k = 0; k < target.fixed_points.size(); ++k)
+    target.fixed_points[k].current = state.fixed_points[k].current;
+  for (std::size_t k = 0; k < target.bolts.size(); ++k) {
+    DdaBolt& to = target.bolts[k];
+    const DdaBolt& from = state.bolts[k];
+    to.point_a = from.point_a;
+    to.point_b = from.point_b;
+    to.pretension = from.pretension;
+    to.broken = from.broken;
+  }
+  return target;
 }
 
 }  // namespace rockmass::dda3d

@@ -45,6 +45,15 @@ struct FactorSearch {
   /// Contacts every run starts from (Simulation::adoptContacts), e.g. those of the run that
   /// settled the model (settledModel); empty: each run detects its own from scratch.
   std::vector<Contact> start_contacts;
+  /// false: every run starts from the search's start (the model `make` gives, with
+  /// start_contacts). true (incremental): a run starts where the run at rest that set the
+  /// bracket's lower end (last_stable) ended, its blocks, contacts, supports and bolts as
+  /// they were (carriedState), with the model of its own factor; the first, and every run
+  /// before any came to rest, from the search's start. The loads or strengths then change
+  /// by steps, as in a finite-element strength reduction that continues from the state of
+  /// the last factor (Plaxis's phi-c reduction), rather than all at once from the start.
+  /// Monitor displacements are counted from the search's start either way.
+  bool incremental = false;
 };
 
 /// One run at one factor.
@@ -65,6 +74,7 @@ struct FactorSearchResult {
   /// The critical factor: the middle of [last_stable, first_unstable] when both exist
   /// (within half the bracket width of the true one), else none.
   std::optional<double> critical;
+  bool incremental = false;  ///< the runs followed the incremental path (FactorSearch)
 };
 
 /// Called after each run (progress output).
@@ -97,5 +107,12 @@ FactorSearchResult runStrengthReduction(const DdaModel& model, const DdaSettings
 /// strength-reduction runs from the settled (geostatic) state (analysis.equilibrium.start:
 /// settled, docs/stability.md).
 DdaModel settledModel(const Simulation& sim);
+
+/// `target` (a model of the same blocks, e.g. with other loads or strengths) in the state of
+/// `state` (a settledModel): its pieces, stresses, monitor and point-load positions, the
+/// supports' current positions and the bolts as they are in `state`; everything else
+/// (materials, joints, loads) of `target`. Throws std::invalid_argument when the two do not
+/// have the same blocks, monitors, point loads, supports and bolts.
+DdaModel carriedState(DdaModel target, const DdaModel& state);
 
 }  // namespace rockmass::dda3d

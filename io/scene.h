@@ -248,6 +248,8 @@ struct OverloadAnalysis {
 struct StrengthReductionAnalysis {
   std::vector<double> factors;  ///< strength reduction factors, increasing
   double tolerance = 0.02;      ///< bisection to this bracket width
+  /// path: incremental: each SRF from the end of the last SRF at rest (dda3d::FactorSearch).
+  bool incremental = false;
 };
 
 /// analysis.equilibrium: when an overload or strength-reduction run is at rest

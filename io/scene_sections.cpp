@@ -462,9 +462,12 @@ OverloadAnalysis readOverloadAnalysis(const Cursor& c) {
 
 /// analysis.strength_reduction
 StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
-  const Cursor m = c.map({"factors", "tolerance"});
+  const Cursor m = c.map({"factors", "tolerance", "path"});
   StrengthReductionAnalysis srf{.factors = m.at("factors").increasingNumbers(kPositive)};
   srf.tolerance = m.numberOr("tolerance", srf.tolerance, kPositive);
+  srf.incremental = m.valueOr("path", srf.incremental, [](const Cursor& v) {
+    return v.choice("path", {"restart", "incremental"}) == 1;
+  });
   return srf;
 }
 

@@ -9,11 +9,11 @@ namespace rockmass::io {
 /// {unbalanced_ratio, kinetic_ratio, settle_steps, max_steps}
 SummaryJson equilibriumJson(const dda3d::EquilibriumSettings& settings);
 
-/// {rule, scales, scale_uplift, last_stable, first_unstable, K_s, runs[]}
+/// {rule, path, scales, scale_uplift, last_stable, first_unstable, K_s, runs[]}
 SummaryJson overloadJson(const dda3d::FactorSearchResult& overload,
                          const std::vector<std::string>& scales, bool scale_uplift);
 
-/// {rule, last_stable, first_unstable, critical_srf, runs[]}
+/// {rule, path, last_stable, first_unstable, critical_srf, runs[]}
 SummaryJson strengthReductionJson(const dda3d::FactorSearchResult& strength);
 
 /// Adds equilibrium, overload and strength_reduction (those that ran) and safety_factor.

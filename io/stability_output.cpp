@@ -114,9 +114,19 @@ Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
           {"watch", settings.watch == dda3d::EquilibriumWatch::All ? "all" : "monitors"}};
 }
 
+namespace {
+
+/// analysis.*.path of a search: "incremental" or "restart".
+const char* pathName(const dda3d::FactorSearchResult& search) {
+  return search.incremental ? "incremental" : "restart";
+}
+
+}  // namespace
+
 Json overloadJson(const dda3d::FactorSearchResult& overload, const std::vector<std::string>& scales,
                   bool scale_uplift) {
   return {{"rule", kSearchRule},
+          {"path", pathName(overload)},
           {"scales", scales},
           {"scale_uplift", scale_uplift},
           {"last_stable", optionalJson(overload.last_stable)},
@@ -127,6 +137,7 @@ Json overloadJson(const dda3d::FactorSearchResult& overload, const std::vector<s
 
 Json strengthReductionJson(const dda3d::FactorSearchResult& strength) {
   return {{"rule", kSearchRule},
+          {"path", pathName(strength)},
           {"last_stable", optionalJson(strength.last_stable)},
           {"first_unstable", optionalJson(strength.first_unstable)},
           {"critical_srf", optionalJson(strength.critical)},

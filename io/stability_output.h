@@ -37,8 +37,8 @@ struct StabilitySummary {
 
 /// summary.json of `overload` / `strength`: the header, blocks, fixed_blocks, glued_blocks
 /// (when blocks were glued), pressures,
-/// equilibrium{...}, overload{rule, scales, scale_uplift, factors_at_rest, last_stable,
-/// first_unstable, K_s, runs[]} and/or strength_reduction{rule, last_stable,
+/// equilibrium{...}, overload{rule, path, scales, scale_uplift, factors_at_rest, last_stable,
+/// first_unstable, K_s, runs[]} and/or strength_reduction{rule, path, last_stable,
 /// first_unstable, critical_srf, runs[]}, safety_factor (K_s when the overload ran, else
 /// the critical SRF; null when the factors did not bracket it), then timings.
 std::string formatStabilitySummary(const RunInfo& run, const StabilitySummary& summary);

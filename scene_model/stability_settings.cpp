@@ -88,8 +88,13 @@ dda3d::FactorSearch strengthReductionSearch(const Scene& scene) {
   if (!scene.analysis.strength_reduction) {
     missing(scene, "strength_reduction", "the strength reduction");
   }
-  return factorSearch(scene, scene.analysis.strength_reduction->factors,
-                      scene.analysis.strength_reduction->tolerance, /*sweep_all=*/false);
+  dda3d::FactorSearch search =
+      factorSearch(scene, scene.analysis.strength_reduction->factors,
+                   scene.analysis.strength_reduction->tolerance, /*sweep_all=*/false);
+  // Only the strength reduction offers the incremental path (docs/stability.md, "Path of the
+  // runs"): its loads, and so the base's tension zone, are the same at every factor.
+  search.incremental = scene.analysis.strength_reduction->incremental;
+  return search;
 }
 
 }  // namespace rockmass::scene_model

@@ -475,6 +475,83 @@ INSTANTIATE_TEST_SUITE_P(Cases, EccentricDam,
                                            DamCase{1.0, 0.0, true, -0.475},
                                            DamCase{2.0, 30.0e3, true, -0.045}));
 
+// `path: incremental`: each SRF runs from where the last SRF at rest ended (the blocks, their
+// contacts and springs), not from the start. Limit equilibrium does not depend on the path, so
+// the incremental strength reduction must find the same factors as the tests above, within
+// the same tolerances: the massive dam with cohesion, the cohesive wedge (plastic joints) and
+// the off-centre dam with uplift and cohesion (its base resultant 0.11 L upstream).
+TEST_F(LimitEquilibriumCli, AnIncrementalPathFindsTheLimitEquilibriumFactors) {
+  const auto incremental = [](std::string scene, const std::string& tolerance) {
+    const std::string key = "tolerance: " + tolerance + "}";
+    const std::size_t at = scene.find(key);
+    EXPECT_NE(at, std::string::npos) << key;
+    if (at != std::string::npos) {
+      scene.replace(at, key.size(), "tolerance: " + tolerance + ", path: incremental}");
+    }
+    return scene;
+  };
+  const auto check = [](const nlohmann::json& s, double expected, double tolerance,
+                        const std::string& group, const std::string& name,
+                        const std::string& source) {
+    ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
+    const double measured = s["safety_factor"].get<double>();
+    EXPECT_NEAR(measured, expected, tolerance * expected) << name;
+    test::recordFactor(group, name, source, expected, measured, tolerance);
+  };
+  // The massive dam: (f W + c A) / H = 3.811 (within 3 %, as above).
+  const double weight = 24.0e3 * 0.5 * (120.0 + 8.0) * 162.0 * 20.0;
+  const double thrust = 0.5 * 9810.0 * 158.0 * 158.0 * 20.0;
+  check(summaryOf("strength", "big-dam-incremental",
+                  incremental(bigDamScene("{friction: 1.2, cohesion: 1.4e6}"), "0.02")),
+        (1.2 * weight + 1.4e6 * 120.0 * 20.0) / thrust, 0.03, "Dams",
+        "Xiangjiaba dam section on a rock box, f = 1.2, c = 1.4 MPa, incremental strength "
+        "reduction: critical SRF",
+        "shear friction SRF = (f W + c A) / H (USBR, Design of Small Dams, ch. 8)");
+  // The wedge with c = 10 kPa, plastic joints: block theory 1.689 (within 3 %).
+  check(summaryOf("strength", "wedge-incremental", incremental(wedgeScene("10.0e3"), "0.02")),
+        wedgeFactor(10.0e3), 0.03, "Wedges",
+        "tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 10 kPa, plastic, "
+        "incremental strength reduction: critical SRF",
+        "block theory FS = ((N_A + N_B) tan phi + c (A_A + A_B)) / |w . s| (Hoek & Bray, Rock "
+        "Slope Engineering, ch. 7)");
+  // The crest-1 dam with full uplift and c = 30 kPa under the loads of factor 1: its base
+  // resultant lies 0.36 L upstream of the centre, beyond the middle third, so the toe lifts
+  // and only L_c = 3 (L/2 - |e|) = 3.43 m of the 8 m base keeps its cohesion. The loads (and
+  // so the crack) are the same at every SRF: SRF = (f (W - U) + c B L_c) / H = 1.142 (the
+  // cracked base of CrackedCohesiveBase*; USACE EM 1110-2-2200, ch. 4). Within 3 %: the
+  // bisection's half-width (0.7 %) and the crack's tip between two rows of sub-contact points
+  // 0.5 m apart (a quarter of their spacing in L_c is 3.7 % of SRF).
+  std::string dam = damScene(1.0, "30.0e3", /*uplift=*/true);
+  const std::string overload =
+      "overload: {factors: [0.5, 1, 1.5, 2, 2.5, 3, 3.5, 4], "
+      "scales: [water], tolerance: 0.02}";
+  ASSERT_NE(dam.find(overload), std::string::npos);
+  dam.replace(dam.find(overload), overload.size(),
+              "strength_reduction: {factors: [1, 1.5, 2, 2.5], tolerance: 0.02}");
+  const double width = 4.0, length = 8.0, height = 6.0, c = 30.0e3;
+  const double dam_weight = 2400.0 * kG * 0.5 * (length + 1.0) * height * width;
+  const double centroid = (length * length + length + 1.0) / (3.0 * (length + 1.0));
+  const double uplift = 9810.0 * height * length * width;
+  const double water = 0.5 * 9810.0 * height * height * width;
+  const double normal = dam_weight - uplift;
+  const double e = (dam_weight * centroid - uplift * 0.5 * length + water * height / 3.0) / normal -
+                   0.5 * length;
+  ASSERT_LT(e, -length / 6.0);  // the premise: the resultant is beyond the middle third
+  const double cracked = (0.6 * normal + c * width * 3.0 * (0.5 * length + e)) / water;
+  ASSERT_NEAR(cracked, 1.142, 0.001);
+  check(summaryOf("strength", "dam-incremental", incremental(dam, "0.02")), cracked, 0.03, "Dams",
+        "dam 8/1/6 m, f = 0.6, c = 30 kPa, full uplift, resultant 0.36 L upstream (toe lifting), "
+        "incremental strength reduction: critical SRF",
+        "cracked base: SRF = (f (W - U) + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM "
+        "1110-2-2200, ch. 4)");
+  // The same from the start of each run (restart, the default).
+  check(summaryOf("strength", "dam-restart", dam), cracked, 0.03, "Dams",
+        "dam 8/1/6 m, f = 0.6, c = 30 kPa, full uplift, resultant 0.36 L upstream (toe lifting): "
+        "critical SRF",
+        "cracked base: SRF = (f (W - U) + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM "
+        "1110-2-2200, ch. 4)");
+}
+
 TEST_F(LimitEquilibriumCli, BrittleJointsUnderAnOffCentreDamFailBelowTheShearFrictionFactor) {
   // The crest-1 dam with uplift and brittle joints: its base resultant lies 0.11 L upstream,
   // so the corners carry uneven normal forces; the least loaded slide first and lose their

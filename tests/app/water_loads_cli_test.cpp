@@ -55,18 +55,6 @@ int lineOf(const std::string& text, const std::string& key) {
                  std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
-void record(const std::string& group, const std::string& name, const std::string& source,
-            double expected, double measured, double tolerance) {
-  test::recordVerification({.group = group,
-                            .name = name,
-                            .source = source,
-                            .expected = expected,
-                            .measured = measured,
-                            .tolerance = tolerance,
-                            .relative = true,
-                            .unit = "-"});
-}
-
 // ---------------------------------------------------------------------------------------
 // A block on an inclined joint under a phreatic level.
 
@@ -126,18 +114,19 @@ TEST_F(WaterLoadsCli, BlockOnAnInclinedJointUnderAPhreaticLevel) {
   ASSERT_TRUE(w["safety_factor"].is_number()) << w.dump(2);
   // The 2 % (bisection to 0.02: 1.3 % of FS).
   EXPECT_NEAR(w["safety_factor"].get<double>(), wet, 0.02 * wet);
-  record("Water loads", "block on a 30 deg joint, phreatic level 4 m below the crest: critical SRF",
-         "FS = (W cos psi - U) tan phi / (W sin psi) (Hoek & Bray, Rock Slope Engineering, ch. 6)",
-         wet, w["safety_factor"].get<double>(), 0.02);
+  test::recordFactor(
+      "Water loads", "block on a 30 deg joint, phreatic level 4 m below the crest: critical SRF",
+      "FS = (W cos psi - U) tan phi / (W sin psi) (Hoek & Bray, Rock Slope Engineering, ch. 6)",
+      wet, w["safety_factor"].get<double>(), 0.02);
   // Both sides of the joint carry the pressure: two entries, one per face.
   EXPECT_EQ(w["pressures"].get<int>(), 2);
 
   const nlohmann::json d = summaryOf("strength", "dry", inclineScene(""));
   ASSERT_TRUE(d["safety_factor"].is_number()) << d.dump(2);
   EXPECT_NEAR(d["safety_factor"].get<double>(), dry, 0.02 * dry);
-  record("Incline: sliding and toppling", "the same block, dry: critical SRF",
-         "FS = tan phi / tan psi (Hoek & Bray, ch. 6)", dry, d["safety_factor"].get<double>(),
-         0.02);
+  test::recordFactor("Incline: sliding and toppling", "the same block, dry: critical SRF",
+                     "FS = tan phi / tan psi (Hoek & Bray, ch. 6)", dry,
+                     d["safety_factor"].get<double>(), 0.02);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -235,17 +224,18 @@ TEST_F(WaterLoadsCli, WedgeWithWaterInBothJoints) {
       summaryOf("strength", "wedge-wet", wedgeScene("  pore_pressure:\n    - {level: 18.5}\n"));
   ASSERT_TRUE(w["safety_factor"].is_number()) << w.dump(2);
   EXPECT_NEAR(w["safety_factor"].get<double>(), wet, 0.03 * wet);  // the 3 %
-  record("Wedges",
-         "wedge 45/105 and 70/235 deg, phi = 35 deg, water to 1.5 m below the crest: critical SRF",
-         "FS = (N_A + N_B) tan phi / T with N = N_dry - U (Hoek & Bray, Rock Slope Engineering, "
-         "ch. 7; SWedge)",
-         wet, w["safety_factor"].get<double>(), 0.03);
+  test::recordFactor(
+      "Wedges",
+      "wedge 45/105 and 70/235 deg, phi = 35 deg, water to 1.5 m below the crest: critical SRF",
+      "FS = (N_A + N_B) tan phi / T with N = N_dry - U (Hoek & Bray, Rock Slope Engineering, "
+      "ch. 7; SWedge)",
+      wet, w["safety_factor"].get<double>(), 0.03);
   const nlohmann::json d = summaryOf("strength", "wedge-dry", wedgeScene(""));
   ASSERT_TRUE(d["safety_factor"].is_number()) << d.dump(2);
   EXPECT_NEAR(d["safety_factor"].get<double>(), dry, 0.03 * dry);
-  record("Wedges", "the same wedge, dry: critical SRF",
-         "FS = (N_A + N_B) tan phi / T (Hoek & Bray, ch. 7)", dry, d["safety_factor"].get<double>(),
-         0.03);
+  test::recordFactor("Wedges", "the same wedge, dry: critical SRF",
+                     "FS = (N_A + N_B) tan phi / T (Hoek & Bray, ch. 7)", dry,
+                     d["safety_factor"].get<double>(), 0.03);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -312,12 +302,13 @@ TEST_F(WaterLoadsCli, DamWithAnUpliftDiagramAndADrainageCurtain) {
   const nlohmann::json s = summaryOf("overload", "drained", damScene(kDrainedDiagram));
   ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
   EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
-  record("Dams",
-         "dam 8/2/6 m, f = 0.6, c = 30 kPa, uplift diagram with drains 2 m from the heel "
-         "(E = 0.5): overload factor K_s",
-         "K = (f (W - U) + c A) / H, U from the USBR uplift diagram (Design of Small Dams, ch. 8; "
-         "USACE EM 1110-2-2200)",
-         expected, s["safety_factor"].get<double>(), 0.02);
+  test::recordFactor(
+      "Dams",
+      "dam 8/2/6 m, f = 0.6, c = 30 kPa, uplift diagram with drains 2 m from the heel "
+      "(E = 0.5): overload factor K_s",
+      "K = (f (W - U) + c A) / H, U from the USBR uplift diagram (Design of Small Dams, ch. 8; "
+      "USACE EM 1110-2-2200)",
+      expected, s["safety_factor"].get<double>(), 0.02);
   // The summary's uplift on the dam's base: the diagram's U, upward (the pressure is linear:
   // its integral is exact).
   ASSERT_EQ(s["uplift"].size(), 1u) << s.dump(2);
@@ -409,10 +400,11 @@ TEST_F(WaterLoadsCli, AnAnchoredBlockHoldsAtTheStaticForceAndSlidesWhenItsBoltBr
   ASSERT_TRUE(run["at_rest"].get<bool>()) << held.dump(2);
   EXPECT_NEAR(run["bolts"]["largest_force"].get<double>(), force, 0.02 * force);  // the issue's
   EXPECT_EQ(run["bolts"]["broken"].get<int>(), 0);
-  record("Bolts and fixed points",
-         "frictionless block on a 30 deg joint held by one anchor: anchor force at rest",
-         "F = W sin psi / (-d . t) (statics; Hoek & Bray, Rock Slope Engineering, ch. 6)", force,
-         run["bolts"]["largest_force"].get<double>(), 0.02);
+  test::recordFactor(
+      "Bolts and fixed points",
+      "frictionless block on a 30 deg joint held by one anchor: anchor force at rest",
+      "F = W sin psi / (-d . t) (statics; Hoek & Bray, Rock Slope Engineering, ch. 6)", force,
+      run["bolts"]["largest_force"].get<double>(), 0.02);
   // A rupture force below it: the bolt breaks and the block slides (not at rest).
   const nlohmann::json broke = summaryOf(
       "strength", "broken",
@@ -527,12 +519,13 @@ analysis:
   ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
   // The 2 % (bisection to 0.05: 1.3 % of K).
   EXPECT_NEAR(s["safety_factor"].get<double>(), expected, 0.02 * expected);
-  record("Earthquakes",
-         "block on a horizontal plane (f = 0.6), k_h = k_v = 0.1 (upward) scaled together: "
-         "overload factor K_s",
-         "k_h = f (1 - k_v) at sliding (pseudo-static; Kramer, Geotechnical Earthquake "
-         "Engineering, ch. 10)",
-         expected, s["safety_factor"].get<double>(), 0.02);
+  test::recordFactor(
+      "Earthquakes",
+      "block on a horizontal plane (f = 0.6), k_h = k_v = 0.1 (upward) scaled together: "
+      "overload factor K_s",
+      "k_h = f (1 - k_v) at sliding (pseudo-static; Kramer, Geotechnical Earthquake "
+      "Engineering, ch. 10)",
+      expected, s["safety_factor"].get<double>(), 0.02);
 }
 
 }  // namespace

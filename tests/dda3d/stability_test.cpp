@@ -537,6 +537,90 @@ TEST(StrengthReduction, WedgeRecoversTheBlockTheoryFactorOfSafety) {
   EXPECT_TRUE(result.runs[4].bisection);
 }
 
+// An incremental search (FactorSearch::incremental) starts each run where the run at rest
+// that set the bracket's lower end stopped. A cube on a 20 deg slope at phi = atan(1.47 tan 20)
+// (FS = tan phi / tan theta = 1.47, Coulomb friction; every factor run lies at least 1.4 %
+// from it): each run from the start settles the cube onto its springs again, for tens of
+// steps; each incremental run after the first at rest starts locked, its shear force
+// W sin 20 below the reduced strength, and is at rest after the calm steps that decide (at
+// most settle_steps + 1, as expectRestartAtRest). Both paths find FS within the bisection's
+// half-width; monitors count from the search's start on both.
+TEST(FactorSearch, AnIncrementalSearchStartsEachRunWhereTheLastAtRestEnded) {
+  const double fs = 1.47;
+  const double phi = std::atan(fs * std::tan(radians(20.0))) * 180.0 / kPi;
+  DdaModel model = blockOnSlope(20.0, phi);
+  model.monitors = {{"cube", Vec3(0, 0, 0.5), 1}};
+  FactorSearch search;
+  search.factors = {1.0, 1.2, 1.4, 1.6};
+  search.tolerance = 0.06;  // bisects 1.5 (not at rest), then 1.45 (at rest)
+  search.sweep_all = false;
+  search.equilibrium.max_steps = 200;
+  const FactorSearchResult restart = runStrengthReduction(model, staticRigid(), search);
+  search.incremental = true;
+  const FactorSearchResult incremental = runStrengthReduction(model, staticRigid(), search);
+  EXPECT_FALSE(restart.incremental);
+  EXPECT_TRUE(incremental.incremental);
+  for (const FactorSearchResult* r : {&restart, &incremental}) {
+    ASSERT_TRUE(r->critical.has_value());
+    EXPECT_EQ(*r->last_stable, 1.45);
+    EXPECT_EQ(*r->first_unstable, 1.5);
+    // Coulomb: the middle of [1.45, 1.5], within half the bracket (1.7 % of FS).
+    EXPECT_NEAR(*r->critical, fs, 0.025);
+  }
+  test::recordVerification({.group = "Incline: sliding and toppling",
+                            .name = "cube on a 20 deg slope, FS 1.47, incremental strength "
+                                    "reduction (each SRF from the last at rest): critical SRF",
+                            .source = "Coulomb friction: FS = tan phi / tan theta",
+                            .expected = fs,
+                            .measured = *incremental.critical,
+                            .tolerance = 0.025 / fs,
+                            .relative = true,
+                            .unit = "-"});
+  const int settle = search.equilibrium.settle_steps;
+  ASSERT_EQ(restart.runs.size(), incremental.runs.size());
+  ASSERT_TRUE(incremental.runs[0].equilibrium.reached);
+  EXPECT_GT(incremental.runs[0].equilibrium.steps, settle + 1);  // the first settles
+  int later_at_rest = 0;
+  for (std::size_t k = 1; k < incremental.runs.size(); ++k) {
+    const FactorRun& from_start = restart.runs[k];
+    const FactorRun& from_last = incremental.runs[k];
+    ASSERT_EQ(from_start.factor, from_last.factor);  // the same bracket, run by run
+    ASSERT_EQ(from_start.equilibrium.reached, from_last.equilibrium.reached);
+    if (!from_last.equilibrium.reached) continue;
+    ++later_at_rest;
+    EXPECT_LE(from_last.equilibrium.steps, settle + 1) << "SRF " << from_last.factor;
+    EXPECT_GT(from_start.equilibrium.steps, settle + 1) << "SRF " << from_start.factor;
+    // Counted from the search's start, where the cube stood before any run.
+    EXPECT_EQ(from_last.monitors[0].displacement,
+              from_last.monitors[0].position - model.monitors[0].point);
+  }
+  EXPECT_EQ(later_at_rest, 3);  // 1.2, 1.4 and 1.45
+}
+
+// carriedState: the state (geometry, stresses, supports, monitors, bolts) of one model, the
+// strengths and loads of another of the same blocks.
+TEST(SettledStart, CarriedStateTakesTheStateAndKeepsTheTargetsStrengthAndLoads) {
+  DdaModel model = blockOnSlope(20.0, 25.0);
+  model.monitors = {{"cube", Vec3(0, 0, 0.5), 1}};
+  model.fixed_points = {{1, Vec3(0, 0, 1), Vec3::UnitX()}};
+  Simulation sim(model, staticRigid());
+  for (int k = 0; k < 20; ++k) sim.step();
+  const DdaModel state = settledModel(sim);
+  ASSERT_NE(state.blocks[1].pieces[0].vertices, model.blocks[1].pieces[0].vertices);  // moved
+  const DdaModel weak = reducedStrength(scaledLoads(model, {.gravity = true}, 1.5), 2.0);
+  const DdaModel carried = carriedState(weak, state);
+  EXPECT_EQ(carried.blocks[1].pieces[0].vertices, state.blocks[1].pieces[0].vertices);
+  EXPECT_EQ(carried.monitors[0].point, state.monitors[0].point);
+  ASSERT_TRUE(carried.fixed_points[0].current.has_value());
+  EXPECT_EQ(*carried.fixed_points[0].current, *state.fixed_points[0].current);
+  EXPECT_EQ(carried.fixed_points[0].point, model.fixed_points[0].point);  // the anchor
+  EXPECT_EQ(carried.joints[0].friction, weak.joints[0].friction);
+  EXPECT_EQ(carried.gravity, weak.gravity);
+  DdaModel fewer = weak;
+  fewer.blocks.pop_back();
+  EXPECT_THROW(carriedState(fewer, state), std::invalid_argument);
+}
+
 TEST(FactorSearch, UnbracketedWhenEveryFactorIsStableOrNone) {
   FactorSearch search;
   search.factors = {1.0, 1.5};

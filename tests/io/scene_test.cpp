@@ -412,7 +412,8 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
                                      "analysis:\n"
                                      "  overload: {factors: [1, 2], scales: [water], "
                                      "tolerance: 0.05, scale_uplift: true}\n"
-                                     "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01}\n"
+                                     "  strength_reduction: {factors: [1, 1.5], tolerance: 0.01, "
+                                     "path: incremental}\n"
                                      "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
                                      "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9, "
                                      "start: settled, start_steps: 90, failure_ratio: 2, "
@@ -422,6 +423,15 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
   EXPECT_TRUE(scene.analysis.overload->scale_uplift);
   EXPECT_EQ(scene.analysis.strength_reduction->tolerance, 0.01);
+  EXPECT_TRUE(scene.analysis.strength_reduction->incremental);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  strength_reduction: {factors: [1], path: onward}\n"),
+            "bad.yaml:4:44: analysis.strength_reduction.path: unknown path 'onward'; expected "
+            "one of: restart, incremental");
+  // The overload always restarts (docs/stability.md, "Path of the runs").
+  EXPECT_EQ(errorOf(valid_head +
+                    "analysis:\n  overload: {factors: [1], scales: [water], path: incremental}\n"),
+            "bad.yaml:4:45: analysis.overload: unknown key 'path'; expected one of: factors, "
+            "scales, tolerance, scale_uplift");
   ASSERT_TRUE(scene.analysis.equilibrium.has_value());
   EXPECT_EQ(scene.analysis.equilibrium->max_steps, 50);
   EXPECT_EQ(scene.analysis.equilibrium->unbalanced_ratio, 1e-4);
@@ -460,6 +470,7 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   const Scene plain =
       parseScene(valid_head + "analysis:\n  strength_reduction: {factors: [1]}\n", "ok.yaml");
   EXPECT_EQ(plain.analysis.strength_reduction->tolerance, 0.02);
+  EXPECT_FALSE(plain.analysis.strength_reduction->incremental);  // restart
   EXPECT_FALSE(plain.analysis.equilibrium.has_value());
   EXPECT_FALSE(EquilibriumAnalysis{}.watch_monitors);
 }

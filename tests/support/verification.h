@@ -175,4 +175,19 @@ inline void recordVerification(const Verification& v) {
       << ROCKMASS_TEST_PROGRAM << " " << d::escaped(test) << "\"}\n";
 }
 
+/// Records a dimensionless factor (a safety factor, K_s, SRF) checked within a relative
+/// `tolerance` of its hand value.
+inline void recordFactor(const std::string& group, const std::string& name,
+                         const std::string& source, double expected, double measured,
+                         double tolerance) {
+  recordVerification({.group = group,
+                      .name = name,
+                      .source = source,
+                      .expected = expected,
+                      .measured = measured,
+                      .tolerance = tolerance,
+                      .relative = true,
+                      .unit = "-"});
+}
+
 }  // namespace rockmass::test
