@@ -63,8 +63,9 @@ def vtu_array(element, header_type):
     return values.reshape(-1, components) if components > 1 else values
 
 
-def frame_boxes(path):
-    """Per DDA block of one frame: ids, bounding boxes (n x 6) and centroid displacement."""
+def frame_boxes(path, boxes=True):
+    """Per DDA block of one frame: ids, bounding boxes (n x 6; None unless `boxes`) and
+    centroid displacement."""
     root = ET.parse(path).getroot()
     header = root.get("header_type", "UInt32")
     piece = root.find("UnstructuredGrid/Piece")
@@ -72,21 +73,27 @@ def frame_boxes(path):
     for section in ("Points", "Cells", "CellData"):
         for e in piece.find(section).iter("DataArray"):
             arrays[e.get("Name") or section] = (e, section)
+    block = vtu_array(arrays["block"][0], header).astype(np.int64)
+    displacement = vtu_array(arrays["displacement"][0], header).reshape(-1, 3)
+    ids, cell_block = np.unique(block, return_inverse=True)
+    first = np.zeros(len(ids), dtype=np.int64)
+    first[cell_block[::-1]] = np.arange(len(block))[::-1]
+    u = np.linalg.norm(displacement[first], axis=1)
+    if not boxes:
+        return ids, None, u
     points = vtu_array(arrays["Points"][0], header).reshape(-1, 3)
     connectivity = vtu_array(arrays["connectivity"][0], header).astype(np.int64)
     offsets = vtu_array(arrays["offsets"][0], header).astype(np.int64)
-    block = vtu_array(arrays["block"][0], header).astype(np.int64)
-    displacement = vtu_array(arrays["displacement"][0], header).reshape(-1, 3)
     cell = np.repeat(np.arange(len(offsets)), np.diff(offsets, prepend=0))
-    ids, cell_block = np.unique(block, return_inverse=True)
+    # Each block's points together (a stable sort by block), then the least and largest
+    # coordinates of each run: every block has a cell, so the runs' starts increase.
     per_point_block = cell_block[cell]
-    low = np.full((len(ids), 3), np.inf)
-    high = np.full((len(ids), 3), -np.inf)
-    np.minimum.at(low, per_point_block, points[connectivity])
-    np.maximum.at(high, per_point_block, points[connectivity])
-    first = np.zeros(len(ids), dtype=np.int64)
-    first[cell_block[::-1]] = np.arange(len(block))[::-1]
-    return ids, np.hstack([low, high]), np.linalg.norm(displacement[first], axis=1)
+    order = np.argsort(per_point_block, kind="stable")
+    corners = points[connectivity][order]
+    starts = np.searchsorted(per_point_block[order], np.arange(len(ids)))
+    low = np.minimum.reduceat(corners, starts, axis=0)
+    high = np.maximum.reduceat(corners, starts, axis=0)
+    return ids, np.hstack([low, high]), u
 
 
 def dda_frames(out):
@@ -103,7 +110,7 @@ def dda_frames(out):
     ids, boxes, _ = frame_boxes(os.path.join(out, entries[0][1]))
     times, magnitudes = [], []
     for t, name in entries:
-        frame_ids, _, u = frame_boxes(os.path.join(out, name))
+        frame_ids, _, u = frame_boxes(os.path.join(out, name), boxes=False)
         if not np.array_equal(frame_ids, ids):
             sys.exit(f"{name}: the frames hold different blocks")
         times.append(t)
