@@ -85,12 +85,16 @@ def frame_boxes(path, boxes=True):
     connectivity = vtu_array(arrays["connectivity"][0], header).astype(np.int64)
     offsets = vtu_array(arrays["offsets"][0], header).astype(np.int64)
     cell = np.repeat(np.arange(len(offsets)), np.diff(offsets, prepend=0))
+    if len(ids) == 0:
+        return ids, np.empty((0, 6)), u
     # Each block's points together (a stable sort by block), then the least and largest
-    # coordinates of each run: every block has a cell, so the runs' starts increase.
+    # coordinates of each run; reduceat needs every block to own a point (a run per block).
     per_point_block = cell_block[cell]
     order = np.argsort(per_point_block, kind="stable")
     corners = points[connectivity][order]
     starts = np.searchsorted(per_point_block[order], np.arange(len(ids)))
+    if starts[-1] >= len(corners) or not (np.diff(starts) > 0).all():
+        sys.exit(f"{path}: a DDA block of the frame has no point")
     low = np.minimum.reduceat(corners, starts, axis=0)
     high = np.maximum.reduceat(corners, starts, axis=0)
     return ids, np.hstack([low, high]), u

@@ -400,11 +400,15 @@ TEST_F(WaterLoadsCli, AnAnchoredBlockHoldsAtTheStaticForceAndSlidesWhenItsBoltBr
   ASSERT_TRUE(run["at_rest"].get<bool>()) << held.dump(2);
   EXPECT_NEAR(run["bolts"]["largest_force"].get<double>(), force, 0.02 * force);  // the issue's
   EXPECT_EQ(run["bolts"]["broken"].get<int>(), 0);
-  test::recordFactor(
-      "Bolts and fixed points",
-      "frictionless block on a 30 deg joint held by one anchor: anchor force at rest",
-      "F = W sin psi / (-d . t) (statics; Hoek & Bray, Rock Slope Engineering, ch. 6)", force,
-      run["bolts"]["largest_force"].get<double>(), 0.02);
+  test::recordVerification(
+      {.group = "Bolts and fixed points",
+       .name = "frictionless block on a 30 deg joint held by one anchor: anchor force at rest",
+       .source = "F = W sin psi / (-d . t) (statics; Hoek & Bray, Rock Slope Engineering, ch. 6)",
+       .expected = force,
+       .measured = run["bolts"]["largest_force"].get<double>(),
+       .tolerance = 0.02,
+       .relative = true,
+       .unit = "N"});
   // A rupture force below it: the bolt breaks and the block slides (not at rest).
   const nlohmann::json broke = summaryOf(
       "strength", "broken",

@@ -581,18 +581,33 @@ TEST(FactorSearch, AnIncrementalSearchStartsEachRunWhereTheLastAtRestEnded) {
   ASSERT_TRUE(incremental.runs[0].equilibrium.reached);
   EXPECT_GT(incremental.runs[0].equilibrium.steps, settle + 1);  // the first settles
   int later_at_rest = 0;
+  const FactorRun* low = &incremental.runs[0];  // the last run at rest so far
   for (std::size_t k = 1; k < incremental.runs.size(); ++k) {
     const FactorRun& from_start = restart.runs[k];
     const FactorRun& from_last = incremental.runs[k];
     ASSERT_EQ(from_start.factor, from_last.factor);  // the same bracket, run by run
     ASSERT_EQ(from_start.equilibrium.reached, from_last.equilibrium.reached);
-    if (!from_last.equilibrium.reached) continue;
+    // Counted from the search's start, where the cube stood before any run, on both paths.
+    for (const FactorRun* r : {&from_start, &from_last}) {
+      EXPECT_EQ(r->monitors[0].displacement, r->monitors[0].position - model.monitors[0].point);
+    }
+    if (!from_last.equilibrium.reached) {
+      // The cube slid (0.007-0.03 g out of balance, 3e-8 to 1.4e-7 m a static step) from
+      // where the runs at rest left it; a run started from here would not meet the check
+      // below.
+      EXPECT_GT((from_last.monitors[0].position - low->monitors[0].position).norm(), 1e-7)
+          << "SRF " << from_last.factor;
+      continue;
+    }
     ++later_at_rest;
     EXPECT_LE(from_last.equilibrium.steps, settle + 1) << "SRF " << from_last.factor;
     EXPECT_GT(from_start.equilibrium.steps, settle + 1) << "SRF " << from_start.factor;
-    // Counted from the search's start, where the cube stood before any run.
-    EXPECT_EQ(from_last.monitors[0].displacement,
-              from_last.monitors[0].position - model.monitors[0].point);
+    // It started where the last run at rest (the bracket's lower end) ended, locked, and
+    // stayed: within 1e-7 m (its settle_steps + 1 steps move it by round-off only; the
+    // failing runs between moved the cube by more than 1e-5 m).
+    EXPECT_LT((from_last.monitors[0].position - low->monitors[0].position).norm(), 1e-7)
+        << "SRF " << from_last.factor;
+    low = &from_last;
   }
   EXPECT_EQ(later_at_rest, 3);  // 1.2, 1.4 and 1.45
 }
@@ -603,17 +618,39 @@ TEST(SettledStart, CarriedStateTakesTheStateAndKeepsTheTargetsStrengthAndLoads) 
   DdaModel model = blockOnSlope(20.0, 25.0);
   model.monitors = {{"cube", Vec3(0, 0, 0.5), 1}};
   model.fixed_points = {{1, Vec3(0, 0, 1), Vec3::UnitX()}};
+  model.point_loads = {{1, Vec3(0.2, 0, 0.8), Vec3(0, 0, -1e3)}};
+  DdaBolt bolt;
+  bolt.block_a = 1;
+  bolt.point_a = Vec3(0, 0, 0.2);
+  bolt.block_b = 0;
+  bolt.point_b = Vec3(0, 0, -0.5);
+  bolt.stiffness = 1e8;
+  model.bolts = {bolt};
   Simulation sim(model, staticRigid());
   for (int k = 0; k < 20; ++k) sim.step();
-  const DdaModel state = settledModel(sim);
+  DdaModel state = settledModel(sim);
   ASSERT_NE(state.blocks[1].pieces[0].vertices, model.blocks[1].pieces[0].vertices);  // moved
+  // A state that differs from the target in everything carriedState must take from it, and in
+  // what it must not (the support's anchor).
+  state.blocks[1].initial_stress[2] = -1e5;
+  state.fixed_points[0].point += Vec3(0.1, 0, 0);
+  state.bolts[0].pretension = 2e3;
+  state.bolts[0].broken = true;
   const DdaModel weak = reducedStrength(scaledLoads(model, {.gravity = true}, 1.5), 2.0);
   const DdaModel carried = carriedState(weak, state);
   EXPECT_EQ(carried.blocks[1].pieces[0].vertices, state.blocks[1].pieces[0].vertices);
+  EXPECT_EQ(carried.blocks[1].initial_stress, state.blocks[1].initial_stress);
   EXPECT_EQ(carried.monitors[0].point, state.monitors[0].point);
   ASSERT_TRUE(carried.fixed_points[0].current.has_value());
   EXPECT_EQ(*carried.fixed_points[0].current, *state.fixed_points[0].current);
-  EXPECT_EQ(carried.fixed_points[0].point, model.fixed_points[0].point);  // the anchor
+  EXPECT_EQ(carried.fixed_points[0].point, weak.fixed_points[0].point);  // the target's anchor
+  EXPECT_EQ(carried.point_loads[0].point, state.point_loads[0].point);
+  EXPECT_NE(carried.point_loads[0].point, model.point_loads[0].point);  // carried by the cube
+  EXPECT_EQ(carried.point_loads[0].force, weak.point_loads[0].force);
+  EXPECT_EQ(carried.bolts[0].point_a, state.bolts[0].point_a);
+  EXPECT_EQ(carried.bolts[0].point_b, state.bolts[0].point_b);
+  EXPECT_EQ(carried.bolts[0].pretension, 2e3);
+  EXPECT_TRUE(carried.bolts[0].broken);
   EXPECT_EQ(carried.joints[0].friction, weak.joints[0].friction);
   EXPECT_EQ(carried.gravity, weak.gravity);
   DdaModel fewer = weak;
