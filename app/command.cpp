@@ -169,11 +169,14 @@ std::size_t allowedThreads() {
 }
 
 ScriptRun runScript(const std::string& python, const fs::path& script, const fs::path& folder,
-                    const std::string& prefix) {
+                    const std::string& prefix, const std::vector<std::string>& arguments,
+                    bool low_priority) {
   // The script may keep as many processes busy as the run may threads (--threads).
-  const std::string command = "ROCKMASS_THREADS=" + std::to_string(allowedThreads()) + " " +
-                              shellQuote(python) + " " + shellQuote(script.string()) + " " +
-                              shellQuote(folder.string()) + " 2>&1";
+  std::string command = "ROCKMASS_THREADS=" + std::to_string(allowedThreads()) + " " +
+                        (low_priority ? "nice -n 19 " : "") + shellQuote(python) + " " +
+                        shellQuote(script.string()) + " " + shellQuote(folder.string());
+  for (const std::string& argument : arguments) command += " " + shellQuote(argument);
+  command += " 2>&1";
   ScriptRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;

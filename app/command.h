@@ -92,10 +92,13 @@ struct ScriptRun {
   std::vector<std::string> lines;  ///< its output (stdout and stderr), line by line
 };
 
-/// Runs `python script folder` (the figure and report scripts), echoing each line it prints
-/// to stderr as "<prefix>: line" as it comes.
+/// Runs `python script folder arguments...` (the figure and report scripts), echoing each
+/// line it prints to stderr as "<prefix>: line" as it comes. `low_priority` runs it at nice 19
+/// (coreutils' nice): beside a computation that keeps every core busy it takes the time
+/// the computation leaves idle.
 ScriptRun runScript(const std::string& python, const std::filesystem::path& script,
-                    const std::filesystem::path& folder, const std::string& prefix);
+                    const std::filesystem::path& folder, const std::string& prefix,
+                    const std::vector<std::string>& arguments = {}, bool low_priority = false);
 
 /// Adds `--cutter exact|fast` (overriding analysis.blocks.cutter) to a sub-command.
 void addCutterOption(CLI::App& command, std::string& cutter);

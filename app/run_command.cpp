@@ -296,35 +296,43 @@ StagePlan planStages(const io::Scene& scene, const RunOptions& options) {
   return plan;
 }
 
-/// Runs scripts/figures/make_figures.py on the output folder; returns the PNG names it
-/// reports ("figure: NAME" lines). A missing python or matplotlib is a warning.
-std::vector<std::string> makeFigures(const RunOptions& options, const fs::path& out,
+/// scripts/figures/make_figures.py, or nothing with a warning when it or a python with
+/// matplotlib is missing (the figures are then not drawn; not a failure).
+std::optional<fs::path> figureScript(const RunOptions& options,
                                      std::vector<std::string>& warnings) {
   const std::string check = shellQuote(options.python) + " -c 'import matplotlib' >/dev/null 2>&1";
   if (std::system(check.c_str()) != 0) {
     warnings.push_back("figures: " + options.python +
                        " with matplotlib is not available; no figures were drawn");
     std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
-    return {};
+    return std::nullopt;
   }
   const fs::path script = fs::path(options.figure_scripts) / "make_figures.py";
   if (!fs::exists(script)) {
     warnings.push_back("figures: " + script.string() + " not found; no figures were drawn");
     std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
-    return {};
+    return std::nullopt;
   }
-  const ScriptRun run = runScript(options.python, script, out, "run");
-  if (!run.started) throw std::runtime_error("figures: cannot start " + options.python);
-  std::vector<std::string> figures;
+  return script;
+}
+
+/// Adds the PNG names a make_figures.py run reports ("figure: NAME" lines) to `figures`, and
+/// a warning when it failed.
+void addFigures(const ScriptRun& run, const std::string& python, std::vector<std::string>& figures,
+                std::vector<std::string>& warnings) {
+  if (!run.started) throw std::runtime_error("figures: cannot start " + python);
   for (const std::string& line : run.lines) {
     if (line.rfind("figure: ", 0) == 0) figures.push_back(line.substr(8));
   }
   if (!run.succeeded) {
     warnings.push_back("figures: make_figures.py failed (see the messages above)");
   }
-  std::sort(figures.begin(), figures.end());
-  return figures;
 }
+
+/// The figures whose inputs are final before the DDA's stages (fractures.csv, section.csv),
+/// drawn early (RunContext::startEarlyFigures): on the Xiangjiaba scene about 12 s of Python
+/// that would otherwise follow the stability analyses.
+constexpr const char* kEarlyFigures = "stereonet.png,section.png";
 
 /// report.html (scripts/report/make_report.py, next to the figure scripts); false with a
 /// warning when it could not be written (no numpy, no three.js).
@@ -367,6 +375,16 @@ struct RunContext {
   io::RunReport report;
   std::vector<io::StageSummary> parts;
   double write_seconds = 0.0;
+  /// make_figures.py once checked (figureScript; nothing when it cannot run), and the run of
+  /// the figures drawn early (startEarlyFigures), if started.
+  std::optional<std::optional<fs::path>> figure_script;
+  std::future<ScriptRun> early_figures;
+
+  /// make_figures.py, checked on the first call.
+  const std::optional<fs::path>& figures() {
+    if (!figure_script) figure_script = figureScript(options, report.warnings);
+    return *figure_script;
+  }
 
   /// Runs `write`, its time counted in the "write" timing.
   template <class Write>
@@ -385,11 +403,81 @@ struct RunContext {
   }
 };
 
-/// DFN: always (every other stage is built on the network).
+/// Output files written beside the stages that follow (on threads of their own when the run
+/// may use more than one): the fractures' and the blocks' files take about 14 s on the
+/// Xiangjiaba scene, mostly serial work (welding the points, the pieces' volumes) that the
+/// next stages need not wait for. Each write reads only what no later stage changes (the
+/// scene, the network, the cut) and writes files of its own, atomically, so the files are
+/// those of writing in turn. `wait` joins them before summary.json (their time is in the
+/// "write" timing) and rethrows the first error; the destructor joins them on any other
+/// way out, before what they read is destroyed (declare it after that).
+class WritesBeside {
+ public:
+  explicit WritesBeside(bool beside) : beside_(beside) {}
+  WritesBeside(const WritesBeside&) = delete;
+  WritesBeside& operator=(const WritesBeside&) = delete;
+  ~WritesBeside() {
+    for (std::shared_future<double>& write : writes_) {
+      if (write.valid()) write.wait();
+    }
+  }
+  /// Runs `write` beside the caller (returned: its end, to wait for), or at once when the run
+  /// keeps to one thread (returned: nothing to wait for).
+  template <class Write>
+  std::shared_future<double> add(RunContext& ctx, Write write) {
+    if (!beside_) {
+      ctx.timedWrite(write);
+      return {};
+    }
+    writes_.push_back(std::async(std::launch::async, [write] {
+                        const auto start = Clock::now();
+                        write();
+                        return secondsSince(start);
+                      }).share());
+    return writes_.back();
+  }
+  /// Joins every write, adds its time to the "write" timing; rethrows the first error.
+  void wait(RunContext& ctx) {
+    std::exception_ptr error;
+    for (std::shared_future<double>& write : writes_) {
+      try {
+        ctx.write_seconds += write.get();
+      } catch (...) {
+        if (!error) error = std::current_exception();
+      }
+    }
+    writes_.clear();
+    if (error) std::rethrow_exception(error);
+  }
+
+ private:
+  bool beside_;
+  std::vector<std::shared_future<double>> writes_;
+};
+
+/// Starts drawing the figures whose inputs are final now (kEarlyFigures: fractures.csv, once
+/// `fractures_written` has ended, and section.csv) on a thread of its own, at low priority, so
+/// that they take the time the stability analyses leave idle instead of following them;
+/// finishRun draws the others and joins these. Only when the run may use more than one
+/// thread and a stability analysis follows (else they are drawn with the others).
+void startEarlyFigures(RunContext& ctx, std::shared_future<double> fractures_written) {
+  if (ctx.options.no_figures || allowedThreads() < 2 || !fractures_written.valid()) return;
+  const std::optional<fs::path>& script = ctx.figures();
+  if (!script) return;
+  ctx.early_figures =
+      std::async(std::launch::async, [&options = ctx.options, script = *script, out = ctx.out,
+                                      scene = ctx.scene.name, fractures_written] {
+        fractures_written.wait();  // its error, if any, is the write's (WritesBeside::wait)
+        return runScript(options.python, script, out, "run",
+                         {"--only", kEarlyFigures, "--scene", scene}, /*low_priority=*/true);
+      });
+}
+
+/// DFN: always (every other stage is built on the network). Its files are written by the
+/// caller (writeDfnFiles), beside the stages that follow.
 DfnStage dfnStage(RunContext& ctx) {
   DfnStage dfn = runDfnStage(ctx.scene, ctx.options.common.scene);
   ctx.addStage("dfn", dfn.seconds);
-  ctx.timedWrite([&] { writeDfnFiles(ctx.out, ctx.scene, dfn.network); });
   ctx.addFiles({"fractures.csv", "fractures.fab", "fractures.vtu"});
   ctx.parts.push_back({"dfn", io::formatDfnSummary(stageRun(ctx.run, {}), dfn.network, dfn.stats)});
   return dfn;
@@ -415,7 +503,8 @@ void sectionStage(RunContext& ctx, const scene_model::SceneBlocks& cut,
                s.polygons.size(), s.traces.size());
 }
 
-/// Blocks (and the section through them).
+/// Blocks (and the section through them). Their files are written by the caller
+/// (writeBlocksFiles), beside the stages that follow.
 scene_model::SceneBlocks cutStage(
     RunContext& ctx, const geometry::FractureNetwork& network,
     const std::optional<std::pair<geometry::SectionPlane, std::string>>& section) {
@@ -428,7 +517,6 @@ scene_model::SceneBlocks cutStage(
                cut.pieces, cutter.c_str(), seconds);
   ctx.addStage("cut", seconds);
   ctx.report.cutter = cutter;
-  ctx.timedWrite([&] { writeBlocksFiles(ctx.out, ctx.scene, cut.model, network); });
   ctx.addFiles({"blocks.csv", "blocks.vtu", "faces.vtu"});
   ctx.parts.push_back(
       {"cut",
@@ -621,8 +709,19 @@ void finishRun(RunContext& ctx) {
   io::writeFileAtomically(ctx.out / "summary.json",
                           io::formatRunSummary(ctx.run, ctx.parts, ctx.report));
   if (!ctx.options.no_figures) {
+    // The figures not drawn early, then those (startEarlyFigures), in the list's order.
     const auto start = Clock::now();
-    ctx.report.figures = makeFigures(ctx.options, ctx.out, ctx.report.warnings);
+    std::vector<std::string>& figures = ctx.report.figures;
+    if (const std::optional<fs::path>& script = ctx.figures()) {
+      const bool early = ctx.early_figures.valid();
+      std::vector<std::string> arguments;
+      if (early) arguments = {"--skip", kEarlyFigures};
+      addFigures(runScript(ctx.options.python, *script, ctx.out, "run", arguments),
+                 ctx.options.python, figures, ctx.report.warnings);
+      if (early)
+        addFigures(ctx.early_figures.get(), ctx.options.python, figures, ctx.report.warnings);
+      std::sort(figures.begin(), figures.end());
+    }
     ctx.run.timings.emplace_back("figures", secondsSince(start));
     // The report reads the summary with its figures, then is named in it.
     io::writeFileAtomically(ctx.out / "summary.json",
@@ -645,7 +744,7 @@ void finishRun(RunContext& ctx) {
 
 int runScene(const RunOptions& options, io::Scene scene_in) {
   const std::string& scene_path = options.common.scene;
-  RunContext ctx{options, std::move(scene_in), {}, {}, {}, {}, {}, 0.0};
+  RunContext ctx{options, std::move(scene_in), {}, {}, {}, {}, {}, 0.0, {}, {}};
   io::Scene& scene = ctx.scene;
   const geometry::Box full_domain = scene.dfn.domain;
   ctx.report.quick = options.quick;
@@ -674,9 +773,16 @@ int runScene(const RunOptions& options, io::Scene scene_in) {
 
   const DfnStage dfn = dfnStage(ctx);
   std::optional<scene_model::SceneBlocks> cut;
-  if (plan.cut) cut = cutStage(ctx, dfn.network, section);
+  WritesBeside writes(allowedThreads() > 1);  // after what the writes read (see its comment)
+  const std::shared_future<double> fractures_written =
+      writes.add(ctx, [&] { writeDfnFiles(ctx.out, ctx.scene, dfn.network); });
+  if (plan.cut) {
+    cut = cutStage(ctx, dfn.network, section);
+    writes.add(ctx, [&] { writeBlocksFiles(ctx.out, ctx.scene, cut->model, dfn.network); });
+  }
   if (plan.rqd) rqdStage(ctx, dfn.network, std::move(*rqd_plan), rqd_overrides);
   const bool stability = plan.overload || plan.strength_reduction;
+  if (stability) startEarlyFigures(ctx, fractures_written);
   if (plan.dda || stability) {
     io::Scene dda_scene = scene_model::ddaScene(scene);
     std::optional<blocks::MergeReport> glued;
@@ -720,6 +826,7 @@ int runScene(const RunOptions& options, io::Scene scene_in) {
     if (stability_error) std::rethrow_exception(stability_error);
     if (stability) recordStability(ctx, *stability_runs, glued, dda_scene);
   }
+  writes.wait(ctx);
   finishRun(ctx);
   return 0;
 }

@@ -61,6 +61,7 @@ dda3d::FactorRunCallback progress(const char* label, const dda3d::FactorSearch& 
                  e.reached            ? "at rest"
                  : !e.stalled.empty() ? "NOT at rest (failing: cannot progress)"
                  : e.steady           ? "NOT at rest (failing: moving steadily)"
+                 : e.drifting         ? "NOT at rest (failing: drifting)"
                  : e.failing          ? "NOT at rest (failing: stopped early)"
                                       : "NOT at rest",
                  e.steps, e.unbalanced_ratio, e.all_blocks_ratio, e.min_time_step,

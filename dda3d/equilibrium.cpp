@@ -26,6 +26,11 @@ MovedBlock movedBlock(const Simulation& sim, int b) {
 
 /// Two steps' motions go "the same way" when their directions are within this angle (deg).
 constexpr double kSameWayDegrees = 8.0;
+/// The drift rule's net displacement over the path of a window (EquilibriumSettings::
+/// drift_steps): 0.9 lets a sliding block rock (its step directions 30-55 degrees apart at
+/// times, as the Xiangjiaba dam's in stick-slip) while a block going back and forth stays well
+/// below it.
+constexpr double kDriftStraightness = 0.9;
 
 /// Block `b`'s last step displacement as the steady-motion rule compares it: translation
 /// and rotation times the block's size (m).
@@ -56,6 +61,32 @@ bool SteadyMotion::add(int block, double ratio, const Motion& motion) {
     high = std::max(high, s.ratio);
   }
   return high > 0.0 && high - low <= spread_ * high;
+}
+
+bool DriftingMotion::add(std::size_t k, double ratio, const Motion& motion) {
+  if (steps_ <= 0 || k >= windows_.size()) return false;
+  std::deque<Step>& window = windows_[k];
+  window.push_back({ratio, motion});
+  if (static_cast<int>(window.size()) > steps_) window.pop_front();
+  if (static_cast<int>(window.size()) < steps_) return false;
+  Motion sum = Motion::Zero();
+  double path = 0.0, ratios = 0.0;
+  for (const Step& s : window) {
+    sum += s.motion;
+    path += s.motion.norm();
+    ratios += s.ratio;
+  }
+  const double net = sum.norm();
+  if (!(path > 0.0) || net < kDriftStraightness * path) return false;
+  if (ratios / static_cast<double>(steps_) < calm_ratio_) return false;
+  // The mean step along the net displacement, in the window's first and second half.
+  const Motion way = sum / net;
+  const std::size_t half = window.size() / 2;
+  double first = 0.0, second = 0.0;
+  for (std::size_t i = 0; i < window.size(); ++i) {
+    (i < half ? first : second) += window[i].motion.dot(way);
+  }
+  return second / static_cast<double>(window.size() - half) >= first / static_cast<double>(half);
 }
 
 std::vector<int> monitoredMovableBlocks(const DdaModel& model) {
@@ -104,6 +135,12 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
                         settings.failure_ratio > 0.0 && settings.failure_steps > 0;
   const bool can_steady = sim.settings().mode == AnalysisMode::Static && settings.steady_steps > 0;
   SteadyMotion steady(settings.steady_steps, settings.steady_spread);
+  // The drift rule tracks every watched block (every movable one when all are watched).
+  const bool can_drift = sim.settings().mode == AnalysisMode::Static && settings.drift_steps > 0;
+  const std::vector<int> tracked =
+      !can_drift ? std::vector<int>{}
+                 : (every_block ? watchedBlocks(sim, EquilibriumWatch::All) : watched);
+  DriftingMotion drift(tracked.size(), settings.drift_steps, settings.unbalanced_ratio);
   while (result.steps < settings.max_steps) {
     StepReport report;
     try {
@@ -189,6 +226,22 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
       result.failing = true;
       result.steady = true;
       break;
+    }
+    if (still) {
+      drift.clear();
+    } else if (can_drift) {
+      bool drifting = false;
+      for (std::size_t k = 0; k < tracked.size(); ++k) {
+        // Every window takes its step (no early exit), so that each holds the same steps.
+        drifting =
+            drift.add(k, weighedMotion(tracked[k]) / free_fall, stepMotion(sim, tracked[k])) ||
+            drifting;
+      }
+      if (drifting) {
+        result.failing = true;
+        result.drifting = true;
+        break;
+      }
     }
   }
   result.time = sim.time();

@@ -47,6 +47,16 @@ struct EquilibriumSettings {
   /// 0 turns the rule off.
   int steady_steps = 10;
   double steady_spread = 0.01;  ///< (largest - smallest) / largest ratio of the window (-)
+  /// Static runs only: a run in which some watched block drifts for `drift_steps` steps in a
+  /// row is not at rest, and stops there: every step not calm, and over the window the
+  /// block's step displacements (translation and rotation times the block's size) add up to
+  /// at least 0.9 of their path (it keeps one way), those of the window's second half carry
+  /// it along that way at least as far a step as those of its first half (it does not slow
+  /// down), and its unbalanced ratio averages at least `unbalanced_ratio` (it moves faster
+  /// than rest allows). A block that slides in stick-slip, its speed and direction wobbling
+  /// from step to step, escapes the steady-motion rule but not this one; a run that is
+  /// coming to rest slows down, or goes back and forth. 0 turns the rule off (at least 4).
+  int drift_steps = 0;
   /// The blocks whose unbalanced ratio, kinetic energy and failure decide the run. With
   /// Monitors, a block elsewhere that keeps moving (a loose block under a free face) does not
   /// keep the run from being at rest, nor stop it early; it is still reported
@@ -90,6 +100,8 @@ struct EquilibriumResult {
   bool failing = false;
   /// Stopped early by the steady-motion rule (EquilibriumSettings::steady_steps); failing too.
   bool steady = false;
+  /// Stopped early by the drift rule (EquilibriumSettings::drift_steps); failing too.
+  bool drifting = false;
   /// Why the run could not go on (StepFailure's message), empty when it could: such a run is
   /// failing and not at rest (a step that fails its checks at the smallest time step).
   std::string stalled;
@@ -130,6 +142,33 @@ class SteadyMotion {
   int steps_;
   double spread_;
   std::deque<Step> window_;
+};
+
+/// The drift rule's windows (EquilibriumSettings::drift_steps): for each tracked block, its
+/// last `steps` step displacements (translation and rotation times the block's size, m) and
+/// unbalanced ratios; clear() at every calm step.
+class DriftingMotion {
+ public:
+  using Motion = SteadyMotion::Motion;
+  /// `blocks` windows of `steps` steps; `calm_ratio` is the rest rule's unbalanced ratio.
+  DriftingMotion(std::size_t blocks, int steps, double calm_ratio)
+      : steps_(steps), calm_ratio_(calm_ratio), windows_(blocks) {}
+  /// Adds a step of the block in window `k`; true when its window is full and it drifts: the
+  /// displacements add up to at least 0.9 of their path, the second half's mean step along
+  /// their sum at least the first half's, the mean ratio at least `calm_ratio`.
+  bool add(std::size_t k, double ratio, const Motion& motion);
+  void clear() {
+    for (std::deque<Step>& window : windows_) window.clear();
+  }
+
+ private:
+  struct Step {
+    double ratio;
+    Motion motion;
+  };
+  int steps_;
+  double calm_ratio_;
+  std::vector<std::deque<Step>> windows_;
 };
 
 /// Called after each step with the result so far (progress output).

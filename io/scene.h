@@ -273,6 +273,9 @@ struct EquilibriumAnalysis {
   /// dda3d::EquilibriumSettings::steady_steps)
   int steady_steps = 10;
   double steady_spread = 0.01;  ///< ... their ratios within this share of the largest
+  /// static runs: early stop after this many steps of a watched block drifting (0: none;
+  /// dda3d::EquilibriumSettings::drift_steps)
+  int drift_steps = 0;
   /// watch: all | monitors. monitors: only the blocks that carry a monitor decide whether a
   /// run is at rest (or failing); needs a monitor in a movable block.
   bool watch_monitors = false;

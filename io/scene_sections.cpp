@@ -475,7 +475,7 @@ StrengthReductionAnalysis readStrengthReductionAnalysis(const Cursor& c) {
 EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) {
   const Cursor m = c.map({"max_steps", "unbalanced_ratio", "kinetic_ratio", "settle_steps",
                           "dynamic_ratio", "start", "start_steps", "failure_ratio", "failure_steps",
-                          "steady_steps", "steady_spread", "watch"});
+                          "steady_steps", "steady_spread", "drift_steps", "watch"});
   EquilibriumAnalysis e;
   if (const auto watch = m.get("watch")) {
     e.watch_monitors = watch->choice("watch", {"all", "monitors"}) == 1;
@@ -508,6 +508,13 @@ EquilibriumAnalysis readEquilibriumAnalysis(const Cursor& c, bool has_monitors) 
   }
   e.steady_spread = m.numberOr("steady_spread", e.steady_spread,
                                {.low = 0, .high = 1, .low_open = true, .high_open = true});
+  if (const auto steps = m.get("drift_steps")) {
+    e.drift_steps = steps->integer(kNonNegative);
+    // The rule compares the window's two halves: fewer than 2 steps each have no trend.
+    if (e.drift_steps > 0 && e.drift_steps < 4) {
+      steps->fail("0 (no drift stop) or at least 4 steps");
+    }
+  }
   e.settle_steps = m.integerOr("settle_steps", e.settle_steps, above(0));
   e.dynamic_ratio = m.numberOr("dynamic_ratio", e.dynamic_ratio,
                                {.low = 0, .high = 1, .low_open = false, .high_open = false});

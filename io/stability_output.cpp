@@ -23,7 +23,11 @@ constexpr const char* kSearchRule =
     "tolerance; a static run whose unbalanced ratio is at least failure_ratio in failure_steps "
     "steps in a row is not at rest and stops there (failing), and so is one whose fastest watched "
     "block moves the same way in steady_steps steps in a row, none calm, their unbalanced "
-    "ratios within steady_spread of the largest (failing, steady); the ratios are of the blocks "
+    "ratios within steady_spread of the largest (failing, steady), and so is one in which a "
+    "watched block drifts in drift_steps steps in a row, none calm: its step displacements "
+    "adding up to at least 0.9 of their path, its second half's steps along them at least as "
+    "long as its first half's, its mean ratio at least unbalanced_ratio (failing, drifting); "
+    "the ratios are of the blocks "
     "that equilibrium.watch names (all: every movable block; monitors: the blocks that carry "
     "a monitor)";
 
@@ -54,6 +58,7 @@ Json runsJson(const dda3d::FactorSearchResult& result) {
          {"kinetic_ratio", finiteOrNull(r.equilibrium.kinetic_ratio)},
          {"failing", r.equilibrium.failing},
          {"steady", r.equilibrium.steady},
+         {"drifting", r.equilibrium.drifting},
          {"stalled", r.equilibrium.stalled.empty() ? Json(nullptr) : Json(r.equilibrium.stalled)},
          {"all_blocks_ratio", finiteOrNull(r.equilibrium.all_blocks_ratio)},
          {"min_time_step", r.equilibrium.min_time_step},
@@ -111,6 +116,7 @@ Json equilibriumJson(const dda3d::EquilibriumSettings& settings) {
           {"failure_steps", settings.failure_steps},
           {"steady_steps", settings.steady_steps},
           {"steady_spread", settings.steady_spread},
+          {"drift_steps", settings.drift_steps},
           {"watch", settings.watch == dda3d::EquilibriumWatch::All ? "all" : "monitors"}};
 }
 

@@ -46,6 +46,7 @@ dda3d::EquilibriumSettings equilibriumSettings(const Scene& scene) {
   settings.failure_steps = e.failure_steps;
   settings.steady_steps = e.steady_steps;
   settings.steady_spread = e.steady_spread;
+  settings.drift_steps = e.drift_steps;
   settings.watch =
       e.watch_monitors ? dda3d::EquilibriumWatch::Monitors : dda3d::EquilibriumWatch::All;
   return settings;

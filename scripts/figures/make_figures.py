@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Draws every figure whose input exists in a rockmass output folder (`rockmass run` calls it).
 
-Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
+Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR [--only PNG,...] [--skip PNG,...]
+       [--scene NAME]
 
 | figure | script | input |
 |---|---|---|
@@ -15,8 +16,12 @@ Usage: /usr/bin/python3 scripts/figures/make_figures.py OUTDIR
 | damage_map.png (Figure 9) | damage_map.py | damage.csv (section.csv, summary.json) |
 
 Prints `figure: NAME` for every PNG written; a script that fails is reported and the others
-still run (exit status 1 then).
+still run (exit status 1 then). `--only` draws only the named figures (when their inputs
+exist), `--skip` all but them; `--scene` names the scene in every title (by default
+summary.json's `name`): `rockmass run` draws the figures whose inputs are final early, beside
+its stability analyses, and the others at the end.
 """
+import argparse
 import concurrent.futures
 import os
 import subprocess
@@ -66,14 +71,27 @@ def jobs(out):
     return result
 
 
+def names(text):
+    """The PNG names of a comma-separated list."""
+    return {name.strip() for name in text.split(",") if name.strip()}
+
+
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__.splitlines()[2])
-    out = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out", help="a rockmass output folder")
+    parser.add_argument("--only", type=names, help="draw only these figures (PNG names)")
+    parser.add_argument("--skip", type=names, default=set(), help="do not draw these figures")
+    parser.add_argument("--scene", help="the scene's name for the titles (default: "
+                        "summary.json's name)")
+    args = parser.parse_args()
+    out = args.out
     failed = False
-    # Every figure names the scene it is of (summary.json's name).
-    scene = read_summary(os.path.join(out, "summary.json")).get("name", "")
-    todo = jobs(out)
+    # Every figure names the scene it is of (summary.json's name unless given).
+    scene = args.scene
+    if scene is None:
+        scene = read_summary(os.path.join(out, "summary.json")).get("name", "")
+    todo = [job for job in jobs(out)
+            if (args.only is None or job[0] in args.only) and job[0] not in args.skip]
 
     def draw(job):
         png, script, arguments = job

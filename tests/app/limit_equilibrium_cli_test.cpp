@@ -491,13 +491,11 @@ TEST_F(LimitEquilibriumCli, AnIncrementalPathFindsTheLimitEquilibriumFactors) {
     }
     return scene;
   };
-  const auto check = [](const nlohmann::json& s, double expected, double tolerance,
-                        const std::string& group, const std::string& name,
+  const auto check = [](const nlohmann::json& s, const std::string& path, double expected,
+                        double tolerance, const std::string& group, const std::string& name,
                         const std::string& source) {
     ASSERT_TRUE(s["safety_factor"].is_number()) << s.dump(2);
-    EXPECT_EQ(s["strength_reduction"]["path"],
-              name.find("incremental") != std::string::npos ? "incremental" : "restart")
-        << name;
+    EXPECT_EQ(s["strength_reduction"]["path"], path) << name;
     const double measured = s["safety_factor"].get<double>();
     EXPECT_NEAR(measured, expected, tolerance * expected) << name;
     test::recordFactor(group, name, source, expected, measured, tolerance);
@@ -507,13 +505,13 @@ TEST_F(LimitEquilibriumCli, AnIncrementalPathFindsTheLimitEquilibriumFactors) {
   const double thrust = 0.5 * 9810.0 * 158.0 * 158.0 * 20.0;
   check(summaryOf("strength", "big-dam-incremental",
                   incremental(bigDamScene("{friction: 1.2, cohesion: 1.4e6}"), "0.02")),
-        (1.2 * weight + 1.4e6 * 120.0 * 20.0) / thrust, 0.03, "Dams",
+        "incremental", (1.2 * weight + 1.4e6 * 120.0 * 20.0) / thrust, 0.03, "Dams",
         "Xiangjiaba dam section on a rock box, f = 1.2, c = 1.4 MPa, incremental strength "
         "reduction: critical SRF",
         "shear friction SRF = (f W + c A) / H (USBR, Design of Small Dams, ch. 8)");
   // The wedge with c = 10 kPa, plastic joints: block theory 1.689 (within 3 %).
   check(summaryOf("strength", "wedge-incremental", incremental(wedgeScene("10.0e3"), "0.02")),
-        wedgeFactor(10.0e3), 0.03, "Wedges",
+        "incremental", wedgeFactor(10.0e3), 0.03, "Wedges",
         "tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 10 kPa, plastic, "
         "incremental strength reduction: critical SRF",
         "block theory FS = ((N_A + N_B) tan phi + c (A_A + A_B)) / |w . s| (Hoek & Bray, Rock "
@@ -543,17 +541,87 @@ TEST_F(LimitEquilibriumCli, AnIncrementalPathFindsTheLimitEquilibriumFactors) {
   ASSERT_LT(e, -length / 6.0);  // the premise: the resultant is beyond the middle third
   const double cracked = (0.6 * normal + c * width * 3.0 * (0.5 * length + e)) / water;
   ASSERT_NEAR(cracked, 1.142, 0.001);
-  check(summaryOf("strength", "dam-incremental", incremental(dam, "0.02")), cracked, 0.03, "Dams",
+  check(summaryOf("strength", "dam-incremental", incremental(dam, "0.02")), "incremental", cracked,
+        0.03, "Dams",
         "dam 8/1/6 m, f = 0.6, c = 30 kPa, full uplift, resultant 0.36 L upstream (toe lifting), "
         "incremental strength reduction: critical SRF",
         "cracked base: SRF = (f (W - U) + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM "
         "1110-2-2200, ch. 4)");
   // The same from the start of each run (restart, the default).
-  check(summaryOf("strength", "dam-restart", dam), cracked, 0.03, "Dams",
+  check(summaryOf("strength", "dam-restart", dam), "restart", cracked, 0.03, "Dams",
         "dam 8/1/6 m, f = 0.6, c = 30 kPa, full uplift, resultant 0.36 L upstream (toe lifting): "
         "critical SRF",
         "cracked base: SRF = (f (W - U) + c B L_c) / H, L_c = 3 (L/2 - e) (USACE EM "
         "1110-2-2200, ch. 4)");
+}
+
+// The drift rule (analysis.equilibrium.drift_steps) stops a run whose watched block keeps one
+// way without slowing down; a run that is coming to rest must never look so, or a factor at
+// rest would count as failing and the answer fall. With the rule on and the steady-motion rule
+// off (so that the drift rule alone stops the sliding runs), every limit-equilibrium case
+// above keeps its factor within the same tolerance: the block on a frictional base (heel
+// lifting), the four off-centre dams (overload), the massive dam with cohesion and the
+// cohesive and frictional wedges (strength reduction). And the rule did stop runs.
+TEST_F(LimitEquilibriumCli, TheDriftRuleKeepsTheLimitEquilibriumFactors) {
+  const auto drifting = [](std::string scene) {
+    const std::string key = "  equilibrium: {";
+    const std::string rules = "drift_steps: 10, steady_steps: 0";
+    const std::size_t at = scene.find(key);
+    if (at == std::string::npos) return scene + "  equilibrium: {" + rules + "}\n";
+    return scene.insert(at + key.size(), rules + ", ");
+  };
+  int stopped = 0;
+  const auto check = [&](const std::string& command, const std::string& name,
+                         const std::string& scene, double expected, double tolerance,
+                         const std::string& group, const std::string& what,
+                         const std::string& source) {
+    const nlohmann::json s = summaryOf(command, name, drifting(scene));
+    ASSERT_TRUE(s["safety_factor"].is_number()) << name << s.dump(2);
+    EXPECT_EQ(s["equilibrium"]["drift_steps"], 10) << name;
+    const double measured = s["safety_factor"].get<double>();
+    EXPECT_NEAR(measured, expected, tolerance * expected) << name;
+    for (const nlohmann::json& r :
+         s[command == "overload" ? "overload" : "strength_reduction"]["runs"]) {
+      EXPECT_FALSE(r["steady"].get<bool>()) << name;  // the steady-motion rule is off
+      if (r["drifting"].get<bool>()) ++stopped;
+    }
+    test::recordFactor(group, what + ", drift rule on (drift_steps 10, steady_steps 0)", source,
+                       expected, measured, tolerance);
+  };
+  const std::string shear_friction =
+      "shear-friction factor K = (f (W - U) + c A) / H (USBR, Design of Small Dams, ch. 8)";
+  const std::string block_theory =
+      "block theory FS = ((N_A + N_B) tan phi + c (A_A + A_B)) / |w . s| (Hoek & Bray, Rock "
+      "Slope Engineering, ch. 7)";
+  check("overload", "block", blockOnBase(),
+        0.6 * (24.0e3 * 20.0 * 20.0 * 30.0) / (10.0e3 * 25.0 * 25.0 / 2.0 * 20.0), 0.02, "Dams",
+        "block 20 x 20 x 30 m on a frictional base (f = 0.6, c = 0), water 25 m deep upstream, "
+        "heel lifting: overload factor K_s",
+        "K = f W / H (Wyllie & Mah, Rock Slope Engineering, ch. 6)");
+  int dam = 0;
+  for (const DamCase& c : {DamCase{1.0, 30.0e3, false, 0.082}, DamCase{1.0, 30.0e3, true, -0.111},
+                           DamCase{1.0, 0.0, true, -0.475}, DamCase{2.0, 30.0e3, true, -0.045}}) {
+    std::ostringstream name;
+    name << "dam 8/" << c.crest << "/6 m, f = 0.6, c = " << c.cohesion / 1e3 << " kPa, "
+         << (c.uplift ? "full uplift" : "no uplift") << ": overload factor K_s";
+    check("overload", "dam-" + std::to_string(++dam),
+          damScene(c.crest, std::to_string(c.cohesion), c.uplift), damFactor(c).first, 0.02, "Dams",
+          name.str(), shear_friction);
+  }
+  const double weight = 24.0e3 * 0.5 * (120.0 + 8.0) * 162.0 * 20.0;
+  const double thrust = 0.5 * 9810.0 * 158.0 * 158.0 * 20.0;
+  check("strength", "big-dam-c", bigDamScene("{friction: 1.2, cohesion: 1.4e6}"),
+        (1.2 * weight + 1.4e6 * 120.0 * 20.0) / thrust, 0.03, "Dams",
+        "Xiangjiaba dam section on a rock box, f = 1.2, c = 1.4 MPa: critical SRF",
+        "shear friction SRF = (f W + c A) / H (USBR, Design of Small Dams, ch. 8)");
+  check("strength", "wedge-c", wedgeScene("10.0e3"), wedgeFactor(10.0e3), 0.03, "Wedges",
+        "tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 10 kPa, plastic: "
+        "critical SRF",
+        block_theory);
+  check("strength", "wedge", wedgeScene("0"), wedgeFactor(0.0), 0.03, "Wedges",
+        "tetrahedral wedge 182 m3 (45/105, 70/235), phi = 25 deg, c = 0: critical SRF",
+        block_theory);
+  EXPECT_GT(stopped, 0) << "the drift rule stopped no run: the test checks nothing of it";
 }
 
 TEST_F(LimitEquilibriumCli, BrittleJointsUnderAnOffCentreDamFailBelowTheShearFrictionFactor) {

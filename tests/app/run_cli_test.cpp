@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -76,6 +78,50 @@ fs::path writeScene(const test::TempDir& dir, const std::string& text) {
   const fs::path scene = dir.path() / "scene.yaml";
   test::writeFile(scene, text);
   return scene;
+}
+
+// With an overload to run, `run` draws the stereonet and the section (inputs final before the
+// DDA) beside it and the other figures at the end; on one thread, all at the end. Either way
+// the same figures are drawn, named in summary.json, each PNG the same bytes (the figures read
+// only the files, which are the same), and every one names the scene (the early ones get its
+// name from the command line: summary.json is not written yet). Also: the fractures' and the
+// blocks' files, written beside the stages, are the same bytes as those written in turn.
+TEST(RunCli, FiguresDrawnBesideTheStabilityAnalysesAreThoseDrawnAtTheEnd) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "no matplotlib for /usr/bin/python3";
+  }
+  test::TempDir dir("run_cli_figures");
+  const fs::path scene = writeScene(dir, kSceneHead + kFullAnalysis);
+  std::vector<Json> summaries;
+  for (const char* threads : {"2", "1"}) {
+    const fs::path out = dir.path() / (std::string("out") + threads);
+    std::string log;
+    ASSERT_EQ(test::runRockmass(
+                  "run " + scene.string() + " -o " + out.string() + " --threads " + threads, &log),
+              0)
+        << log;
+    summaries.push_back(readJson(out / "summary.json"));
+    EXPECT_TRUE(summaries.back()["run"]["warnings"].empty()) << log;
+  }
+  const Json expected =
+      Json::array({"block_volumes.png", "histories.png", "overload_curve.png", "rqd_ball_maps.png",
+                   "rqd_threshold.png", "section.png", "stereonet.png"});
+  for (const Json& s : summaries) EXPECT_EQ(s["run"]["figures"], expected);
+  for (const Json& png : expected) {
+    const std::string name = png.get<std::string>();
+    EXPECT_EQ(test::readFile(dir.path() / "out2" / name),
+              test::readFile(dir.path() / "out1" / name))
+        << name;
+  }
+  for (const char* file : {"fractures.csv", "fractures.fab", "fractures.vtu", "blocks.csv",
+                           "blocks.vtu", "faces.vtu"}) {
+    EXPECT_EQ(test::readFile(dir.path() / "out2" / file),
+              test::readFile(dir.path() / "out1" / file))
+        << file;
+  }
+  // The early stereonet names the scene as the others do (its PNG's description, tEXt).
+  EXPECT_NE(test::readFile(dir.path() / "out2" / "stereonet.png").find("\"scene\": \"run-stack\""),
+            std::string::npos);
 }
 
 TEST(RunCli, RunsTheStagesTheSceneNamesAndListsThem) {

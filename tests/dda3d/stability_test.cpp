@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -418,6 +419,136 @@ TEST(Equilibrium, SteadyMotionWindow) {
   // Off at 0 steps.
   SteadyMotion off(0, 0.01);
   for (int k = 0; k < 20; ++k) EXPECT_FALSE(off.add(3, 0.02, east));
+}
+
+// The drift rule (drift_steps). A block on a 20 degree slope at phi = 19 degrees slides at
+// a = g (sin 20 - cos 20 tan 19) = 0.018 g every static step: with the steady-motion rule off,
+// drift_steps 10 stops it within 20 steps (10 after its contacts close), failing and drifting,
+// its ratio a / g (less the springs' share, 1e-2). The block coming to rest (phi 25) is at
+// rest as before, and dynamic runs never stop by the rule.
+TEST(Equilibrium, ADriftingStaticRunStopsEarly) {
+  const DdaSettings settings = staticRigid();
+  EquilibriumSettings equilibrium;
+  equilibrium.max_steps = 60;
+  equilibrium.steady_steps = 0;
+  equilibrium.drift_steps = 10;
+  Simulation slow(blockOnSlope(20.0, 19.0), settings);
+  const EquilibriumResult sliding = runToEquilibrium(slow, equilibrium);
+  EXPECT_FALSE(sliding.reached);
+  EXPECT_TRUE(sliding.failing);
+  EXPECT_TRUE(sliding.drifting);
+  EXPECT_FALSE(sliding.steady);
+  EXPECT_LE(sliding.steps, 20);
+  const double a = std::sin(radians(20.0)) - std::cos(radians(20.0)) * std::tan(radians(19.0));
+  EXPECT_NEAR(sliding.unbalanced_ratio, a, 1e-2 * a);
+
+  Simulation held(blockOnSlope(20.0, 25.0), settings);
+  const EquilibriumResult rest = runToEquilibrium(held, equilibrium);
+  EXPECT_TRUE(rest.reached);
+  EXPECT_FALSE(rest.drifting);
+
+  Simulation dynamic(blockOnSlope(20.0, 19.0), dampedRigid());
+  const EquilibriumResult moving = runToEquilibrium(dynamic, equilibrium);
+  EXPECT_FALSE(moving.drifting);
+  EXPECT_FALSE(moving.failing);
+}
+
+// The drift window on its own, on step displacements (translation and rotation times the
+// block's size, m) and unbalanced ratios traced from the Xiangjiaba scene's runs
+// (examples/xiangjiaba/scene.yaml, ATLAS, 3 significant digits).
+// - The dam at overload K = 2, steps 41-50: it slides downstream 10-72 um a step, rocking (its
+//   steps up to 60 degrees apart), ratios 0.02-0.075: neither steady (SteadyMotion) nor calm,
+//   its net displacement 0.977 of its path, its second half faster than its first: drifting.
+// - A foundation block at SRF 2, steps 1-10 of a run that came to rest 91 steps later: it keeps
+//   one way (0.90 of its path) at ratios of 1.2e-3 to 4e-3, but its second half moves half as
+//   far as its first: not drifting. Nor is the dam in that run (0.65 of its path, ratios
+//   below 1e-3).
+TEST(Equilibrium, DriftingMotionWindow) {
+  using Motion = DriftingMotion::Motion;
+  struct Step {
+    double ratio;
+    std::array<double, 6> motion;
+  };
+  const auto drifts = [](const std::vector<Step>& steps) {
+    DriftingMotion drift(2, 10, 1e-3);
+    bool last = false;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      last = drift.add(1, steps[k].ratio, Motion(steps[k].motion.data()));
+      if (k + 1 < steps.size()) {
+        EXPECT_FALSE(last) << k;  // the window is not full
+      }
+    }
+    return last;
+  };
+  const std::vector<Step> dam_k2 = {
+      {0.0203, {1.64e-05, -7.47e-07, 3.21e-06, -3.05e-07, 2.67e-06, 8.97e-07}},
+      {0.0751, {7.22e-05, -2.93e-06, -8.77e-06, -2.17e-07, -7.3e-06, 2.88e-06}},
+      {0.0377, {3.2e-05, -3.04e-06, 4.9e-06, -3e-07, 4.05e-06, 3.07e-06}},
+      {0.0686, {6.93e-05, -4.45e-07, -5.25e-06, 1.08e-06, -4.35e-06, -4.86e-07}},
+      {0.0297, {1.9e-05, -1.13e-06, 7.32e-06, -3.26e-07, 6.05e-06, 1.15e-06}},
+      {0.0709, {6.9e-05, -4.8e-06, -6.76e-06, -9.32e-07, -5.56e-06, 5.26e-06}},
+      {0.069, {7.21e-05, -2.86e-06, -2.34e-06, 7.72e-07, -1.94e-06, 2.05e-06}},
+      {0.0256, {1.03e-05, 4.1e-07, 9.12e-06, 3.57e-07, 7.52e-06, -7.92e-07}},
+      {0.0708, {6.97e-05, 1.03e-06, -7.08e-06, 6.77e-07, -5.87e-06, -9.58e-07}},
+      {0.069, {7.25e-05, 2.15e-07, -2.37e-06, 2.17e-08, -1.94e-06, -2.09e-07}}};
+  EXPECT_TRUE(drifts(dam_k2));
+  // The steady-motion rule does not see it: its steps turn by more than 8 degrees.
+  SteadyMotion steady(10, 0.01);
+  for (const Step& s : dam_k2) EXPECT_FALSE(steady.add(1, s.ratio, Motion(s.motion.data())));
+
+  const std::vector<Step> block_srf2 = {
+      {0.00187, {3.31e-08, 5.42e-10, -1.19e-08, 8.01e-10, 3.65e-09, -3.14e-10}},
+      {0.00353, {5.83e-08, -4.01e-09, -2.91e-08, 6.11e-09, 3.39e-10, -1.76e-10}},
+      {0.00398, {7.16e-08, 5.24e-09, -1.25e-08, -3.8e-09, 9.99e-09, -1.37e-09}},
+      {0.00299, {3.98e-08, 9.49e-09, -2.81e-08, -1e-08, -1.25e-09, -4.59e-09}},
+      {0.00259, {4.21e-08, 5.34e-10, -1.1e-08, 2.33e-09, 1.23e-08, 1.39e-09}},
+      {0.00163, {-4.5e-09, -8.23e-09, -1.15e-08, 1.04e-08, -9.66e-09, 2.53e-09}},
+      {0.00158, {2.45e-08, 4.45e-09, -8.41e-09, 2.2e-10, 2.16e-09, -5.01e-09}},
+      {0.00122, {1.35e-08, 1.03e-08, -4.39e-09, -9.78e-09, 1.39e-09, -1.2e-09}},
+      {0.00244, {4.11e-08, -1.88e-09, 2.21e-09, 6.11e-09, 6.39e-09, -2.58e-09}},
+      {0.00283, {4.95e-08, -4.32e-10, 7.06e-11, -1.05e-09, 9.18e-09, 6.33e-10}}};
+  EXPECT_FALSE(drifts(block_srf2));
+  // Its first five steps alone, repeated, do not slow down: that window drifts (the test
+  // above fails on the slowing, not on the path or the ratio).
+  std::vector<Step> steady_part(block_srf2.begin(), block_srf2.begin() + 5);
+  steady_part.insert(steady_part.end(), block_srf2.begin(), block_srf2.begin() + 5);
+  EXPECT_TRUE(drifts(steady_part));
+  const std::vector<Step> dam_srf2 = {
+      {0.000133, {1.28e-07, -1.11e-08, -8.85e-09, 6.31e-09, 6.35e-09, 7.59e-09}},
+      {0.000295, {1.32e-07, -2.77e-08, -3.93e-08, 2.48e-08, 2.55e-09, -1.98e-07}},
+      {0.000225, {2.13e-07, 4.58e-08, -8.91e-09, -3.5e-09, 1.3e-08, 2.16e-08}},
+      {0.00055, {2.56e-07, -2.34e-07, -7.4e-09, -2.35e-08, 1.51e-08, 3.74e-07}},
+      {0.000413, {2.86e-07, -2.33e-07, 1.59e-08, -4.7e-09, 5.65e-08, -2.52e-08}},
+      {0.000292, {-3.14e-08, -1.39e-08, -2.06e-08, 3.48e-08, -2.98e-08, -2.46e-07}},
+      {8.71e-05, {4.09e-08, -2.91e-08, -4.18e-09, -4.04e-09, -1.51e-11, -3.58e-08}},
+      {9.4e-05, {4.35e-08, -4.2e-08, 1.04e-09, -2.41e-09, 2.73e-09, -3.39e-08}},
+      {0.000435, {1.16e-07, -2.17e-08, 1.13e-09, -2.39e-09, 9.4e-09, -3.1e-07}},
+      {0.000268, {2.31e-07, 7.18e-08, -8.06e-09, -9.53e-09, -1.66e-08, -8.66e-08}}};
+  EXPECT_FALSE(drifts(dam_srf2));
+  // The same motions, each step the same way: the ratio alone (below 1e-3 on average) keeps
+  // it from drifting.
+  std::vector<Step> dam_one_way = dam_srf2;
+  for (Step& s : dam_one_way) s.motion = {std::abs(s.motion[0]), 0, 0, 0, 0, 0};
+  dam_one_way[9].motion[0] = 1e-6;  // faster at the end: not slowing
+  EXPECT_FALSE(drifts(dam_one_way));
+
+  // Back and forth at a constant speed: the path is long, the net displacement nil.
+  std::vector<Step> turning;
+  for (int k = 0; k < 10; ++k) turning.push_back({0.05, {k % 2 ? 1e-5 : -1e-5, 0, 0, 0, 0, 0}});
+  EXPECT_FALSE(drifts(turning));
+  // Each window is its block's; clear() empties them all; off at 0 steps.
+  DriftingMotion two(2, 4, 1e-3);
+  const Motion east = (Motion() << 1e-5, 0, 0, 0, 0, 0).finished();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_FALSE(two.add(0, 0.05, east));
+    EXPECT_FALSE(two.add(1, 0.05, east));
+  }
+  two.clear();
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(two.add(0, 0.05, east));
+  EXPECT_FALSE(two.add(1, 0.05, east));  // block 1's window holds one step
+  EXPECT_TRUE(two.add(0, 0.05, east));
+  DriftingMotion off(1, 0, 1e-3);
+  for (int k = 0; k < 20; ++k) EXPECT_FALSE(off.add(0, 0.05, east));
 }
 
 // Equilibrium judged on the monitored blocks (watch: monitors). Two 1 m cubes on one fixed

@@ -227,6 +227,21 @@ def main():
                 info = description(os.path.join(d, png))
                 assert info["facts"].get("scene") == "smoke-scene", (png, info["facts"])
                 assert info["suptitle"].startswith("smoke-scene"), (png, info["suptitle"])
+            # `rockmass run` draws two figures early (--only, the scene's name given, as
+            # summary.json is not written yet) and the others at the end (--skip): together
+            # the same figures.
+            early = "stereonet.png,section.png"
+            parts = []
+            for arguments in (["--only", early, "--scene", "early-scene"], ["--skip", early]):
+                done = subprocess.run([sys.executable, os.path.join(scripts, "make_figures.py"), d,
+                                       *arguments], capture_output=True, text=True)
+                assert done.returncode == 0, done.stdout + done.stderr
+                parts.append([line[8:] for line in done.stdout.splitlines()
+                              if line.startswith("figure: ")])
+            assert sorted(parts[0]) == ["section.png", "stereonet.png"], parts[0]
+            assert sorted(parts[0] + parts[1]) == sorted(reported), parts
+            info = description(os.path.join(d, "stereonet.png"))
+            assert info["facts"].get("scene") == "early-scene", info["facts"]
             return
         out = os.path.join(d, name + ".png")
         done = subprocess.run([sys.executable, os.path.join(scripts, name + ".py"),

@@ -417,7 +417,7 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
                                      "  equilibrium: {max_steps: 50, unbalanced_ratio: 1e-4, "
                                      "kinetic_ratio: 1e-7, settle_steps: 3, dynamic_ratio: 0.9, "
                                      "start: settled, start_steps: 90, failure_ratio: 2, "
-                                     "failure_steps: 7, watch: monitors}\n",
+                                     "failure_steps: 7, drift_steps: 12, watch: monitors}\n",
                                  "ok.yaml");
   EXPECT_EQ(scene.monitors.at(0).line, 4);  // the monitor's line, for messages
   EXPECT_EQ(scene.analysis.overload->tolerance, 0.05);
@@ -452,6 +452,13 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
             "bad.yaml:4:47" + no_start);
   EXPECT_EQ(scene.analysis.equilibrium->failure_ratio, 2.0);
   EXPECT_EQ(scene.analysis.equilibrium->failure_steps, 7);
+  EXPECT_EQ(scene.analysis.equilibrium->drift_steps, 12);
+  // The drift rule compares the window's halves: 1-3 steps have no trend.
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {drift_steps: 3}\n"),
+            "bad.yaml:4:30: analysis.equilibrium.drift_steps: 0 (no drift stop) or at least 4 "
+            "steps");
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  equilibrium: {drift_steps: -1}\n"),
+            "bad.yaml:4:30: analysis.equilibrium.drift_steps: expected an integer >= 0, got -1");
   EXPECT_TRUE(scene.analysis.equilibrium->watch_monitors);
   EXPECT_EQ(scene.analysis.equilibrium->watch_line, 8);
   // watch: monitors without a monitor to watch.
@@ -472,6 +479,7 @@ TEST(SceneStability, ReadsTheEquilibriumAndSearchExtensions) {
   EXPECT_EQ(plain.analysis.strength_reduction->tolerance, 0.02);
   EXPECT_FALSE(plain.analysis.strength_reduction->incremental);  // restart
   EXPECT_FALSE(plain.analysis.equilibrium.has_value());
+  EXPECT_EQ(EquilibriumAnalysis{}.drift_steps, 0);  // the drift rule is off unless asked for
   EXPECT_FALSE(EquilibriumAnalysis{}.watch_monitors);
 }
 
