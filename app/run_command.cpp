@@ -296,37 +296,36 @@ StagePlan planStages(const io::Scene& scene, const RunOptions& options) {
   return plan;
 }
 
-/// scripts/figures/make_figures.py, or nothing with a warning when it or a python with
-/// matplotlib is missing (the figures are then not drawn; not a failure).
-std::optional<fs::path> figureScript(const RunOptions& options,
-                                     std::vector<std::string>& warnings) {
+/// scripts/figures/make_figures.py, or nothing with the reason (the warning finishRun gives)
+/// when it or a python with matplotlib is missing (the figures are then not drawn; not a
+/// failure).
+struct FigureScript {
+  std::optional<fs::path> script;
+  std::string missing;  ///< why there is none
+};
+
+FigureScript figureScript(const RunOptions& options) {
   const std::string check = shellQuote(options.python) + " -c 'import matplotlib' >/dev/null 2>&1";
   if (std::system(check.c_str()) != 0) {
-    warnings.push_back("figures: " + options.python +
-                       " with matplotlib is not available; no figures were drawn");
-    std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
-    return std::nullopt;
+    return {std::nullopt, "figures: " + options.python +
+                              " with matplotlib is not available; no figures were drawn"};
   }
   const fs::path script = fs::path(options.figure_scripts) / "make_figures.py";
   if (!fs::exists(script)) {
-    warnings.push_back("figures: " + script.string() + " not found; no figures were drawn");
-    std::fprintf(stderr, "run: warning: %s\n", warnings.back().c_str());
-    return std::nullopt;
+    return {std::nullopt, "figures: " + script.string() + " not found; no figures were drawn"};
   }
-  return script;
+  return {script, ""};
 }
 
-/// Adds the PNG names a make_figures.py run reports ("figure: NAME" lines) to `figures`, and
-/// a warning when it failed.
-void addFigures(const ScriptRun& run, const std::string& python, std::vector<std::string>& figures,
-                std::vector<std::string>& warnings) {
+/// Adds the PNG names a make_figures.py run reports ("figure: NAME" lines) to `figures`;
+/// false when it failed.
+bool addFigures(const ScriptRun& run, const std::string& python,
+                std::vector<std::string>& figures) {
   if (!run.started) throw std::runtime_error("figures: cannot start " + python);
   for (const std::string& line : run.lines) {
     if (line.rfind("figure: ", 0) == 0) figures.push_back(line.substr(8));
   }
-  if (!run.succeeded) {
-    warnings.push_back("figures: make_figures.py failed (see the messages above)");
-  }
+  return run.succeeded;
 }
 
 /// The figures whose inputs are final before the DDA's stages (fractures.csv, section.csv),
@@ -375,14 +374,15 @@ struct RunContext {
   io::RunReport report;
   std::vector<io::StageSummary> parts;
   double write_seconds = 0.0;
-  /// make_figures.py once checked (figureScript; nothing when it cannot run), and the run of
-  /// the figures drawn early (startEarlyFigures), if started.
-  std::optional<std::optional<fs::path>> figure_script;
+  /// make_figures.py once checked (figureScript), and the run of the figures drawn early
+  /// (startEarlyFigures), if started.
+  std::optional<FigureScript> figure_script;
   std::future<ScriptRun> early_figures;
 
-  /// make_figures.py, checked on the first call.
-  const std::optional<fs::path>& figures() {
-    if (!figure_script) figure_script = figureScript(options, report.warnings);
+  /// make_figures.py (nothing when it cannot run: figureScript's reason), checked on the
+  /// first call.
+  const FigureScript& figures() {
+    if (!figure_script) figure_script = figureScript(options);
     return *figure_script;
   }
 
@@ -462,8 +462,8 @@ class WritesBeside {
 /// thread and a stability analysis follows (else they are drawn with the others).
 void startEarlyFigures(RunContext& ctx, std::shared_future<double> fractures_written) {
   if (ctx.options.no_figures || allowedThreads() < 2 || !fractures_written.valid()) return;
-  const std::optional<fs::path>& script = ctx.figures();
-  if (!script) return;
+  const std::optional<fs::path>& script = ctx.figures().script;
+  if (!script) return;  // finishRun says why
   ctx.early_figures =
       std::async(std::launch::async, [&options = ctx.options, script = *script, out = ctx.out,
                                       scene = ctx.scene.name, fractures_written] {
@@ -712,14 +712,21 @@ void finishRun(RunContext& ctx) {
     // The figures not drawn early, then those (startEarlyFigures), in the list's order.
     const auto start = Clock::now();
     std::vector<std::string>& figures = ctx.report.figures;
-    if (const std::optional<fs::path>& script = ctx.figures()) {
+    const FigureScript& figures_script = ctx.figures();
+    if (!figures_script.missing.empty()) {
+      ctx.report.warnings.push_back(figures_script.missing);
+      std::fprintf(stderr, "run: warning: %s\n", figures_script.missing.c_str());
+    }
+    if (const std::optional<fs::path>& script = figures_script.script) {
       const bool early = ctx.early_figures.valid();
       std::vector<std::string> arguments;
       if (early) arguments = {"--skip", kEarlyFigures};
-      addFigures(runScript(ctx.options.python, *script, ctx.out, "run", arguments),
-                 ctx.options.python, figures, ctx.report.warnings);
-      if (early)
-        addFigures(ctx.early_figures.get(), ctx.options.python, figures, ctx.report.warnings);
+      bool drawn = addFigures(runScript(ctx.options.python, *script, ctx.out, "run", arguments),
+                              ctx.options.python, figures);
+      if (early) drawn = addFigures(ctx.early_figures.get(), ctx.options.python, figures) && drawn;
+      if (!drawn) {
+        ctx.report.warnings.push_back("figures: make_figures.py failed (see the messages above)");
+      }
       std::sort(figures.begin(), figures.end());
     }
     ctx.run.timings.emplace_back("figures", secondsSince(start));
@@ -782,13 +789,14 @@ int runScene(const RunOptions& options, io::Scene scene_in) {
   }
   if (plan.rqd) rqdStage(ctx, dfn.network, std::move(*rqd_plan), rqd_overrides);
   const bool stability = plan.overload || plan.strength_reduction;
-  if (stability) startEarlyFigures(ctx, fractures_written);
   if (plan.dda || stability) {
     io::Scene dda_scene = scene_model::ddaScene(scene);
     std::optional<blocks::MergeReport> glued;
     const blocks::BlockModel dda_blocks = ddaStageBlocks(ctx, dda_scene, dfn.network, cut, glued);
     std::optional<dda3d::DdaModel> stability_model;
     if (stability) stability_model = stabilityModel(ctx, dda_scene, dda_blocks, dfn.network);
+    // Once the inputs are checked, the figures whose inputs are final go beside the analyses.
+    if (stability) startEarlyFigures(ctx, fractures_written);
     // The DDA stage and the stability analyses share nothing but their inputs: with both,
     // the DDA stage runs on a thread of its own beside them (computeStability), and both are
     // recorded in this order afterwards; an error of the DDA stage is reported first (and

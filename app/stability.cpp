@@ -115,6 +115,11 @@ StabilityStart stabilityStart(const io::Scene& scene, const dda3d::DdaModel& mod
   dda3d::Simulation sim(model, settings);
   dda3d::EquilibriumSettings rest = scene_model::equilibriumSettings(scene);
   rest.max_steps = scene.analysis.equilibrium->start_steps.value_or(rest.max_steps);
+  // The start settles for all its steps: it decides no factor, and a foundation that is slow
+  // to settle (the deformable variant's blocks slow down, then speed up again for a while)
+  // would otherwise hand every factor a less settled state (docs/stability.md, "Early stop
+  // of a drifting run").
+  rest.drift_steps = 0;
   const dda3d::EquilibriumResult settled = dda3d::runToEquilibrium(sim, rest);
   std::fprintf(stderr,
                "stability: start state %s after %d steps (unbalanced ratio %.3g); every factor "

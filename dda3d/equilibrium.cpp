@@ -27,7 +27,7 @@ MovedBlock movedBlock(const Simulation& sim, int b) {
 /// Two steps' motions go "the same way" when their directions are within this angle (deg).
 constexpr double kSameWayDegrees = 8.0;
 /// The drift rule's net displacement over the path of a window (EquilibriumSettings::
-/// drift_steps): 0.9 lets a sliding block rock (its step directions 30-55 degrees apart at
+/// drift_steps): 0.9 lets a sliding block rock (its step directions up to 56 degrees apart at
 /// times, as the Xiangjiaba dam's in stick-slip) while a block going back and forth stays well
 /// below it.
 constexpr double kDriftStraightness = 0.9;
@@ -61,6 +61,14 @@ bool SteadyMotion::add(int block, double ratio, const Motion& motion) {
     high = std::max(high, s.ratio);
   }
   return high > 0.0 && high - low <= spread_ * high;
+}
+
+DriftingMotion::DriftingMotion(std::size_t blocks, int steps, double calm_ratio)
+    : steps_(steps), calm_ratio_(calm_ratio), windows_(blocks) {
+  // The window's halves need two steps each to show a trend.
+  if (steps_ > 0 && steps_ < 4) {
+    throw std::invalid_argument("the drift rule needs 0 (off) or at least 4 steps");
+  }
 }
 
 bool DriftingMotion::add(std::size_t k, double ratio, const Motion& motion) {
@@ -232,10 +240,12 @@ EquilibriumResult runToEquilibrium(Simulation& sim, const EquilibriumSettings& s
     } else if (can_drift) {
       bool drifting = false;
       for (std::size_t k = 0; k < tracked.size(); ++k) {
-        // Every window takes its step (no early exit), so that each holds the same steps.
+        // Every window takes its step (no early exit), so that each holds the same steps. The
+        // motions over g dt^2 / 2, as the ratios: a step cut or grown back within the window
+        // does not read as the block slowing down or speeding up.
+        const int b = tracked[k];
         drifting =
-            drift.add(k, weighedMotion(tracked[k]) / free_fall, stepMotion(sim, tracked[k])) ||
-            drifting;
+            drift.add(k, weighedMotion(b) / free_fall, stepMotion(sim, b) / free_fall) || drifting;
       }
       if (drifting) {
         result.failing = true;

@@ -49,7 +49,8 @@ struct EquilibriumSettings {
   double steady_spread = 0.01;  ///< (largest - smallest) / largest ratio of the window (-)
   /// Static runs only: a run in which some watched block drifts for `drift_steps` steps in a
   /// row is not at rest, and stops there: every step not calm, and over the window the
-  /// block's step displacements (translation and rotation times the block's size) add up to
+  /// block's step displacements (translation and rotation times the block's size, over
+  /// g dt^2 / 2) add up to
   /// at least 0.9 of their path (it keeps one way), those of the window's second half carry
   /// it along that way at least as far a step as those of its first half (it does not slow
   /// down), and its unbalanced ratio averages at least `unbalanced_ratio` (it moves faster
@@ -145,14 +146,15 @@ class SteadyMotion {
 };
 
 /// The drift rule's windows (EquilibriumSettings::drift_steps): for each tracked block, its
-/// last `steps` step displacements (translation and rotation times the block's size, m) and
-/// unbalanced ratios; clear() at every calm step.
+/// last `steps` step displacements (translation and rotation times the block's size, over
+/// g dt^2 / 2 as the ratios, so that a change of dt is not a change of pace) and unbalanced
+/// ratios; clear() at every calm step.
 class DriftingMotion {
  public:
   using Motion = SteadyMotion::Motion;
-  /// `blocks` windows of `steps` steps; `calm_ratio` is the rest rule's unbalanced ratio.
-  DriftingMotion(std::size_t blocks, int steps, double calm_ratio)
-      : steps_(steps), calm_ratio_(calm_ratio), windows_(blocks) {}
+  /// `blocks` windows of `steps` steps (0: off; else at least 4, std::invalid_argument);
+  /// `calm_ratio` is the rest rule's unbalanced ratio.
+  DriftingMotion(std::size_t blocks, int steps, double calm_ratio);
   /// Adds a step of the block in window `k`; true when its window is full and it drifts: the
   /// displacements add up to at least 0.9 of their path, the second half's mean step along
   /// their sum at least the first half's, the mean ratio at least `calm_ratio`.

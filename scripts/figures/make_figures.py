@@ -32,6 +32,11 @@ from figure_io import read_summary
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+# Every figure this script can draw (jobs() draws those whose inputs are present).
+FIGURES = ("stereonet.png", "rqd_threshold.png", "rqd_ball_maps.png", "block_volumes.png",
+           "histories.png", "overload_curve.png", "section.png", "damage_map.png")
+
+
 def jobs(out):
     """(png, script, arguments) for the inputs present in `out`."""
     has = lambda name: os.path.exists(os.path.join(out, name))  # noqa: E731
@@ -90,6 +95,12 @@ def main():
     scene = args.scene
     if scene is None:
         scene = read_summary(os.path.join(out, "summary.json")).get("name", "")
+    # A name that is no figure's would silently leave a figure out (or draw none).
+    known = set(FIGURES)
+    unknown = sorted(((args.only or set()) | args.skip) - known)
+    if unknown:
+        parser.error(f"unknown figure {', '.join(unknown)}; expected one of: "
+                     f"{', '.join(sorted(known))}")
     todo = [job for job in jobs(out)
             if (args.only is None or job[0] in args.only) and job[0] not in args.skip]
 

@@ -81,12 +81,12 @@ def frame_boxes(path, boxes=True):
     u = np.linalg.norm(displacement[first], axis=1)
     if not boxes:
         return ids, None, u
+    if len(ids) == 0:
+        return ids, np.empty((0, 6)), u
     points = vtu_array(arrays["Points"][0], header).reshape(-1, 3)
     connectivity = vtu_array(arrays["connectivity"][0], header).astype(np.int64)
     offsets = vtu_array(arrays["offsets"][0], header).astype(np.int64)
     cell = np.repeat(np.arange(len(offsets)), np.diff(offsets, prepend=0))
-    if len(ids) == 0:
-        return ids, np.empty((0, 6)), u
     # Each block's points together (a stable sort by block), then the least and largest
     # coordinates of each run; reduceat needs every block to own a point (a run per block).
     per_point_block = cell_block[cell]
@@ -111,10 +111,14 @@ def dda_frames(out):
     if len(entries) > MAX_FRAMES:  # evenly, the first and the last kept
         keep = np.linspace(0, len(entries) - 1, MAX_FRAMES).round().astype(int)
         entries = [entries[k] for k in sorted(set(keep))]
-    ids, boxes, _ = frame_boxes(os.path.join(out, entries[0][1]))
+    # The first frame gives the boxes and its displacements; the others their displacements.
+    ids, boxes, first_u = frame_boxes(os.path.join(out, entries[0][1]))
     times, magnitudes = [], []
-    for t, name in entries:
-        frame_ids, _, u = frame_boxes(os.path.join(out, name), boxes=False)
+    for k, (t, name) in enumerate(entries):
+        if k == 0:
+            frame_ids, u = ids, first_u
+        else:
+            frame_ids, _, u = frame_boxes(os.path.join(out, name), boxes=False)
         if not np.array_equal(frame_ids, ids):
             sys.exit(f"{name}: the frames hold different blocks")
         times.append(t)

@@ -558,10 +558,11 @@ TEST_F(LimitEquilibriumCli, AnIncrementalPathFindsTheLimitEquilibriumFactors) {
 // The drift rule (analysis.equilibrium.drift_steps) stops a run whose watched block keeps one
 // way without slowing down; a run that is coming to rest must never look so, or a factor at
 // rest would count as failing and the answer fall. With the rule on and the steady-motion rule
-// off (so that the drift rule alone stops the sliding runs), every limit-equilibrium case
-// above keeps its factor within the same tolerance: the block on a frictional base (heel
-// lifting), the four off-centre dams (overload), the massive dam with cohesion and the
-// cohesive and frictional wedges (strength reduction). And the rule did stop runs.
+// off (so that the drift rule alone stops the sliding runs), eight of the limit-equilibrium
+// cases above keep their factors within the same tolerances: the block on a frictional base
+// (heel lifting), the four off-centre dams (overload), the massive dam with cohesion and the
+// cohesive and frictional wedges (strength reduction, restarting). And the rule did stop
+// runs (counted over the eight).
 TEST_F(LimitEquilibriumCli, TheDriftRuleKeepsTheLimitEquilibriumFactors) {
   const auto drifting = [](std::string scene) {
     const std::string key = "  equilibrium: {";

@@ -81,28 +81,49 @@ fs::path writeScene(const test::TempDir& dir, const std::string& text) {
 }
 
 // With an overload to run, `run` draws the stereonet and the section (inputs final before the
-// DDA) beside it and the other figures at the end; on one thread, all at the end. Either way
-// the same figures are drawn, named in summary.json, each PNG the same bytes (the figures read
-// only the files, which are the same), and every one names the scene (the early ones get its
-// name from the command line: summary.json is not written yet). Also: the fractures' and the
-// blocks' files, written beside the stages, are the same bytes as those written in turn.
+// DDA) beside it and the other figures at the end; on one thread, all at the end. The python
+// is a wrapper that logs each call, so the test sees which path each run took. Either way the
+// same figures are drawn, named in summary.json, each PNG the same bytes (the figures read
+// only the files, which are the same), and the early stereonet names the scene (from the
+// command line: summary.json is not written yet). Also: the fractures' and the blocks' files,
+// written beside the stages, are the same bytes as those written in turn.
 TEST(RunCli, FiguresDrawnBesideTheStabilityAnalysesAreThoseDrawnAtTheEnd) {
   if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {
     GTEST_SKIP() << "no matplotlib for /usr/bin/python3";
   }
   test::TempDir dir("run_cli_figures");
   const fs::path scene = writeScene(dir, kSceneHead + kFullAnalysis);
+  const fs::path python = dir.path() / "python";
+  test::writeFile(python, "#!/bin/sh\necho \"$*\" >> \"$0.log\"\nexec /usr/bin/python3 \"$@\"\n");
+  fs::permissions(python, fs::perms::owner_all);
   std::vector<Json> summaries;
+  std::vector<std::vector<std::string>> calls;  // the make_figures.py calls of each run
   for (const char* threads : {"2", "1"}) {
     const fs::path out = dir.path() / (std::string("out") + threads);
     std::string log;
-    ASSERT_EQ(test::runRockmass(
-                  "run " + scene.string() + " -o " + out.string() + " --threads " + threads, &log),
+    fs::remove(python.string() + ".log");
+    ASSERT_EQ(test::runRockmass("run " + scene.string() + " -o " + out.string() + " --threads " +
+                                    threads + " --python " + python.string(),
+                                &log),
               0)
         << log;
     summaries.push_back(readJson(out / "summary.json"));
     EXPECT_TRUE(summaries.back()["run"]["warnings"].empty()) << log;
+    std::istringstream called(test::readFile(python.string() + ".log"));
+    calls.emplace_back();
+    for (std::string line; std::getline(called, line);) {
+      const std::size_t at = line.find("make_figures.py ");
+      if (at == std::string::npos) continue;
+      const std::size_t space = line.find(' ', at + 16);  // after OUTDIR
+      calls.back().push_back(space == std::string::npos ? "" : line.substr(space + 1));
+    }
   }
+  std::sort(calls[0].begin(), calls[0].end());
+  EXPECT_EQ(calls[0],
+            (std::vector<std::string>{"--only stereonet.png,section.png --scene run-stack",
+                                      "--skip stereonet.png,section.png"}));
+  // One thread: all at the end, no arguments after OUTDIR.
+  EXPECT_EQ(calls[1], std::vector<std::string>{""});
   const Json expected =
       Json::array({"block_volumes.png", "histories.png", "overload_curve.png", "rqd_ball_maps.png",
                    "rqd_threshold.png", "section.png", "stereonet.png"});

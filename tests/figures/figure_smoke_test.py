@@ -242,6 +242,10 @@ def main():
             assert sorted(parts[0] + parts[1]) == sorted(reported), parts
             info = description(os.path.join(d, "stereonet.png"))
             assert info["facts"].get("scene") == "early-scene", info["facts"]
+            # A misspelt name is refused (it would leave a figure out without a word).
+            done = subprocess.run([sys.executable, os.path.join(scripts, "make_figures.py"), d,
+                                   "--skip", "stereonet.pn"], capture_output=True, text=True)
+            assert done.returncode == 2 and "unknown figure stereonet.pn" in done.stderr, done
             return
         out = os.path.join(d, name + ".png")
         done = subprocess.run([sys.executable, os.path.join(scripts, name + ".py"),
