@@ -221,6 +221,11 @@ def main():
             reported = [line[8:] for line in done.stdout.splitlines()
                         if line.startswith("figure: ")]
             assert len(reported) == len(COMMANDS), f"expected {len(COMMANDS)} figures: {reported}"
+            # make_figures.FIGURES (the names --only and --skip accept) lists every figure it
+            # draws: one left out of it could not be drawn early or skipped.
+            sys.path.insert(0, scripts)
+            import make_figures
+            assert set(reported) <= set(make_figures.FIGURES), (reported, make_figures.FIGURES)
             for png in reported:
                 print(png, check_png(os.path.join(d, png)))
                 # Every figure names the scene it is of, in its title.
