@@ -77,6 +77,8 @@ class BlockSystem {
 
   /// K as a sparse matrix (values refreshed from the blocks, pattern kept).
   const SparseMatrix& matrix();
+  /// K as the last matrix() filled it (the blocks' terms added since are not in it).
+  const SparseMatrix& filledMatrix() const { return matrix_; }
   /// F stacked.
   Eigen::VectorXd rhs() const;
   /// Unknowns of movable block i from a stacked solution (zero-padded to 12).

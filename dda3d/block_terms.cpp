@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <boost/container/small_vector.hpp>
+
 #include "geometry/disc.h"
 
 namespace rockmass::dda3d {
@@ -73,9 +75,13 @@ BlockVector pointLoad(const BlockState& block, const Vec3& point, const Vec3& fo
 
 namespace {
 
+/// A face's polygon, clipped or not: most faces of a cut rock mass have a few corners, kept
+/// on the stack (the region's 10 000 wet faces are clipped every step).
+using Polygon = boost::container::small_vector<Vec3, 12>;
+
 /// Keeps the part of a convex polygon with normal . x <= offset (Sutherland-Hodgman).
-std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Vec3& normal, double offset) {
-  std::vector<Vec3> out;
+Polygon clipPolygon(const Polygon& polygon, const Vec3& normal, double offset) {
+  Polygon out;
   for (std::size_t k = 0; k < polygon.size(); ++k) {
     const Vec3& a = polygon[k];
     const Vec3& b = polygon[(k + 1) % polygon.size()];
@@ -88,8 +94,8 @@ std::vector<Vec3> clipPolygon(const std::vector<Vec3>& polygon, const Vec3& norm
   return out;
 }
 
-std::vector<Vec3> facePolygon(const geometry::Polyhedron& piece, int face) {
-  std::vector<Vec3> out;
+Polygon facePolygon(const geometry::Polyhedron& piece, int face) {
+  Polygon out;
   for (const int v : piece.faces[static_cast<std::size_t>(face)]) out.push_back(piece.vertices[v]);
   return out;
 }
@@ -97,8 +103,8 @@ std::vector<Vec3> facePolygon(const geometry::Polyhedron& piece, int face) {
 /// Integral of T(x)^T (-p(x) n) over a convex polygon, p quadratic at most in x: fanned into
 /// triangles, each by the edge-midpoint rule (exact for quadratic integrands).
 template <class Pressure>
-BlockVector integratePressure(const BlockState& block, const std::vector<Vec3>& polygon,
-                              const Vec3& normal, const Pressure& p) {
+BlockVector integratePressure(const BlockState& block, const Polygon& polygon, const Vec3& normal,
+                              const Pressure& p) {
   BlockVector f = BlockVector::Zero();
   const auto integrand = [&](const Vec3& x) -> BlockVector {
     return displacementMatrix(x, block.centroid).transpose() * (-p(x) * normal);
@@ -118,10 +124,10 @@ BlockVector integratePressure(const BlockState& block, const std::vector<Vec3>& 
 
 /// The part of the face the pressure wets: below its water line (h(x) - z >= 0, i.e.
 /// (e_z - grad h) . x <= level) and inside its half-spaces.
-static std::vector<Vec3> wetPolygon(const geometry::Polyhedron& piece, int face,
-                                    const DdaPressure& pressure) {
+static Polygon wetPolygon(const geometry::Polyhedron& piece, int face,
+                          const DdaPressure& pressure) {
   const Vec3 wet_normal = Vec3::UnitZ() - pressure.head_gradient;
-  std::vector<Vec3> wet = clipPolygon(facePolygon(piece, face), wet_normal, pressure.level);
+  Polygon wet = clipPolygon(facePolygon(piece, face), wet_normal, pressure.level);
   for (const HalfSpace& h : pressure.within) {
     if (wet.size() < 3) break;
     wet = clipPolygon(wet, h.normal, h.offset);
@@ -135,8 +141,8 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
   const auto p = [&](const Vec3& x) {
     return pressure.unit_weight * (pressure.level + pressure.head_gradient.dot(x) - x.z());
   };
-  const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
-  if (wetted_area != nullptr) *wetted_area = geometry::polygonArea(wet);
+  const Polygon wet = wetPolygon(piece, face, pressure);
+  if (wetted_area != nullptr) *wetted_area = geometry::polygonArea({wet.begin(), wet.end()});
   return integratePressure(block, wet, normal, p);
 }
 
@@ -153,7 +159,7 @@ bool pressureApplies(const DdaPressure& pressure, const Vec3& x) {
 }
 
 Vec3 pressureResultant(const geometry::Polyhedron& piece, int face, const DdaPressure& pressure) {
-  const std::vector<Vec3> wet = wetPolygon(piece, face, pressure);
+  const Polygon wet = wetPolygon(piece, face, pressure);
   Vec3 force = Vec3::Zero();
   if (wet.size() < 3) return force;
   const Vec3 normal = geometry::faceNormal(piece, face);
@@ -179,7 +185,7 @@ BlockVector pressureLoad(const BlockState& block, const geometry::Polyhedron& pi
 BlockVector hydrodynamicLoad(const BlockState& block, const geometry::Polyhedron& piece, int face,
                              const DdaHydrodynamicPressure& pressure) {
   const Vec3 normal = geometry::faceNormal(piece, face);
-  std::vector<Vec3> wet = clipPolygon(facePolygon(piece, face), Vec3::UnitZ(), pressure.level);
+  Polygon wet = clipPolygon(facePolygon(piece, face), Vec3::UnitZ(), pressure.level);
   if (wet.size() >= 3) {
     wet = clipPolygon(wet, -Vec3::UnitZ(), -(pressure.level - pressure.depth));
   }

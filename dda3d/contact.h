@@ -26,7 +26,8 @@ enum class ContactState : std::uint8_t {
 /// One point-to-face entry (formulation doc, "Point-to-face contact"): point P of block i
 /// against a plane of block j through P0 with outward unit normal n (out of j).
 struct Contact {
-  ContactKind kind = ContactKind::VertexFace;
+  // The integers and flags first, then the doubles: 240 bytes an entry, without padding
+  // between them (the passes over the region's 200 000 entries are bound by memory).
   int block_i = -1;  ///< block of the point
   int piece_i = -1;  ///< piece of block_i
   int block_j = -1;  ///< block of the face
@@ -38,6 +39,23 @@ struct Contact {
   /// EdgeEdge: the face of piece_j whose normal the entry takes (a corner of two faces that
   /// touch face to face), -1 when the normal is across the two edges.
   int normal_face = -1;
+  /// Joint of the contact (index into DdaModel::joints), from the faces it lies on; -1: the
+  /// model's default joint.
+  int joint = -1;
+  std::int16_t flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
+  /// Open <-> closed changes in the current step (reset every step); after two, the contact
+  /// stays closed for the rest of the step while its pull is below Simulation::holdLimit
+  /// (docs/dda3d.md, "Open-close iteration").
+  std::int16_t toggles = 0;
+  ContactKind kind = ContactKind::VertexFace;
+  ContactState state = ContactState::Open;
+  bool bonded = true;  ///< cohesion and tensile strength intact (lost once slid or opened)
+  /// Closed (locked or sliding) at the end of some accepted step: a contact open now that
+  /// was closed has opened (the damage map's "opened").
+  bool was_closed = false;
+  /// Stuck for the rest of the step: a contact frozen sliding whose friction drove its slip
+  /// backwards (reset every step).
+  bool held = false;
 
   geometry::Vec3 point = geometry::Vec3::Zero();    ///< P at the start of the step (m)
   geometry::Vec3 foot = geometry::Vec3::Zero();     ///< P', projection of P on the plane (m)
@@ -54,12 +72,6 @@ struct Contact {
   /// further penetration; carried over while the entry lasts, it shrinks as the blocks part
   /// (Simulation::detectContacts).
   double overlap = 0.0;
-  /// Joint of the contact (index into DdaModel::joints), from the faces it lies on; -1: the
-  /// model's default joint.
-  int joint = -1;
-
-  ContactState state = ContactState::Open;
-  bool bonded = true;  ///< cohesion and tensile strength intact (lost once slid or opened)
   /// Accumulated shear offset of P relative to j while locked (m), in the tangent plane.
   geometry::Vec3 shear = geometry::Vec3::Zero();
   /// Unit direction of i's motion relative to j while sliding.
@@ -69,21 +81,11 @@ struct Contact {
   /// Length of the rigid part of the slip in the last solve while sliding (m); 0 unknown.
   /// Sets the friction's transverse tangent stiffness f N / slip (docs/dda3d.md).
   double slip_length = 0.0;
-  /// Closed (locked or sliding) at the end of some accepted step: a contact open now that
-  /// was closed has opened (the damage map's "opened").
-  bool was_closed = false;
   /// Sliding distance accumulated over the accepted steps the contact ended sliding (m): the
   /// length of its tangential relative displacement in those steps.
   double slipped = 0.0;
-  int flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
-  /// Open <-> closed changes in the current step (reset every step); after two, the contact
-  /// stays closed for the rest of the step while its pull is below Simulation::holdLimit
-  /// (docs/dda3d.md, "Open-close iteration").
-  int toggles = 0;
-  /// Stuck for the rest of the step: a contact frozen sliding whose friction drove its slip
-  /// backwards (reset every step).
-  bool held = false;
 };
+static_assert(sizeof(Contact) == 240, "a contact's fields are packed without padding");
 
 /// The fields of a contact that an attempt at a step changes (the open-close iteration's
 /// Simulation::updateContactStates): what a redone attempt restores. Everything else of the
@@ -120,8 +122,8 @@ struct ContactStepState {
   double normal_force = 0.0;
   double gap = 0.0;
   double slip_length = 0.0;
-  int flips = 0;
-  int toggles = 0;
+  std::int16_t flips = 0;
+  std::int16_t toggles = 0;
   ContactState state = ContactState::Open;
   bool bonded = true;
   bool held = false;

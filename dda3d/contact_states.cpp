@@ -4,9 +4,11 @@
 // iteration settle.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
 
+#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
 #include "dda3d/block_terms.h"
@@ -274,6 +276,9 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // Every block's unknowns, read once (not twice per contact).
   const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   std::vector<char> how(contacts_.size(), 0);
+  // The deepest penetration after the update, in the same pass (a largest value: the same in
+  // any order), for the step's check.
+  tbb::combinable<double> deepest([] { return 0.0; });
   tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
     Contact& c = contacts_[k];
     const Vec3 relative = relativeDisplacement(c, unknowns);
@@ -303,8 +308,11 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       updateClosedContact(c, d, slip, rigid_slip, holds, jointOf(c), rules);
     }
     if (c.state != before) how[k] = before == ContactState::Open ? 2 : 1;
+    double& local = deepest.local();
+    local = std::max(local, -d);
   });
   StateChanges changes;
+  changes.deepest = deepest.combine([](double x, double y) { return std::max(x, y); });
   const double shallow =
       settings_.mode == AnalysisMode::Static ? kStaticClosingShare * rules.allowed : -1.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
@@ -324,39 +332,70 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
 
 void Simulation::finishContacts(const Eigen::VectorXd& solution) {
   // One pass over the contacts (each changes only its own): the history, the locked
-  // contacts' shear, and each spring's energy after the step, summed by acceptStep.
+  // contacts' shear, each spring's energy after the step, summed by acceptStep, the friction
+  // work of the last assembly's friction, summed by accountDissipation, and the counts by
+  // state (integer sums: the same in any order).
   const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   const bool solved = solution.size() > 0;
   springs_after_.resize(contacts_.size());
   springs_start_.resize(contacts_.size());
-  tbb::parallel_for(std::size_t{0}, contacts_.size(), [&](std::size_t k) {
-    Contact& c = contacts_[k];
-    SpringEnergyTerms& t = springs_after_[k];
-    SpringEnergyTerms& start = springs_start_[k];
-    t = SpringEnergyTerms{};
-    start = SpringEnergyTerms{};
-    if (c.state == ContactState::Open) {
-      c.shear.setZero();
-      return;
+  const std::size_t applied = solved ? std::min(contacts_.size(), applied_friction_.size()) : 0;
+  friction_terms_.assign(applied, FrictionTerms{});
+  const std::function<void(std::size_t)> finish = [&](std::size_t k) {
+    finishContact(k, unknowns, solved, k < applied);
+  };
+  finished_counts_ = countContacts(&finish);
+}
+
+void Simulation::finishContact(std::size_t k, const std::vector<BlockVector>& unknowns, bool solved,
+                               bool friction) {
+  Contact& c = contacts_[k];
+  SpringEnergyTerms& t = springs_after_[k];
+  SpringEnergyTerms& start = springs_start_[k];
+  t = SpringEnergyTerms{};
+  start = SpringEnergyTerms{};
+  // The relative displacement of the step's solve, computed once for the friction work
+  // and the contact's history.
+  Vec3 relative = Vec3::Zero();
+  if (solved) {
+    const AppliedFriction* f = friction ? &applied_friction_[k] : nullptr;
+    const bool works = f != nullptr && (!f->force.isZero(0.0) || f->transverse_stiffness != 0.0);
+    if (works || c.state != ContactState::Open) relative = relativeDisplacement(c, unknowns);
+    if (works) {
+      // The friction of the last solve, -f N s on i and +f N s on j, did the work
+      // -f N s . (u_i - u_j) (accountDissipation).
+      FrictionTerms& w = friction_terms_[k];
+      w.work = f->force.dot(relative);
+      w.counts = kFrictionWork;
+      if (f->transverse_stiffness > 0.0) {
+        // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
+        const double x =
+            f->across.dot(dofs_ == 6 ? relative : relativeDisplacement(c, unknowns, true));
+        w.transverse = f->transverse_stiffness * x * x;
+        w.counts |= kTransverseWork;
+      }
     }
-    // The springs at the start of the step, in the state it ended with: the gap and, locked,
-    // the shear it started with (accountDissipation).
-    start = springTerms(
-        c.state, c.gap0,
-        c.state == ContactState::Locked ? tangential(c.shear, c.normal) : Vec3(Vec3::Zero()));
-    // Closed at the end of an accepted step; a sliding one adds its slip.
-    c.was_closed = true;
-    const Vec3 relative = solved ? relativeDisplacement(c, unknowns) : Vec3(Vec3::Zero());
-    if (c.state == ContactState::Sliding) {
-      if (solved) c.slipped += tangential(relative, c.normal).norm();
-      c.shear.setZero();
-    } else {
-      // A locked contact's shear spring carries the step's relative motion.
-      c.shear = tangential(c.shear + relative, c.normal);
-    }
-    // The springs after the step (springEnergy).
-    t = springTerms(c.state, c.gap, c.shear);
-  });
+  }
+  if (c.state == ContactState::Open) {
+    c.shear.setZero();
+    return;
+  }
+  // The springs at the start of the step, in the state it ended with: the gap and, locked,
+  // the shear it started with (accountDissipation).
+  start = springTerms(
+      c.state, c.gap0,
+      c.state == ContactState::Locked ? tangential(c.shear, c.normal) : Vec3(Vec3::Zero()));
+  // Closed at the end of an accepted step; a sliding one adds its slip.
+  c.was_closed = true;
+  if (c.state == ContactState::Sliding) {
+    if (solved) c.slipped += tangential(relative, c.normal).norm();
+    c.shear.setZero();
+  } else {
+    // A locked contact's shear spring carries the step's relative motion.
+    c.shear = tangential(c.shear + relative, c.normal);
+  }
+  // The springs after the step (springEnergy).
+  t = springTerms(c.state, c.gap, c.shear);
 }
 
 Simulation::SpringEnergyTerms Simulation::springTerms(ContactState state, double gap,

@@ -14,51 +14,21 @@ namespace rockmass::dda3d {
 
 using geometry::Vec3;
 
-namespace {
-
-/// One contact's terms of a sum, and which of them the sum takes (the `counts` bits): they
-/// are computed in parallel, then summed in contact order reading only these.
-struct ContactTerms {
-  double first = 0.0;
-  double second = 0.0;
-  std::uint8_t counts = 0;
-};
-constexpr std::uint8_t kFirst = 1, kSecond = 2;
-
-}  // namespace
-
 void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) {
   // Friction: the forces applied in the last solve, -f N s on i and +f N s on j, did the work
   // -f N s . (u_i - u_j); the blocks lost that much.
   // The transverse tangent springs of sliding contacts are friction too: the work against
   // them, k x^2 (x the rigid slip across the direction), is dissipated, not stored; the
   // numerical term below dots the whole matrix, so their 1/2 k x^2 is taken out of it.
-  // Each contact's terms in parallel, summed in contact order as one loop would.
-  const std::size_t applied = std::min(contacts_.size(), applied_friction_.size());
-  std::vector<ContactTerms> terms(applied);
-  const std::vector<BlockVector> unknowns = blockUnknowns(solution);
-  tbb::parallel_for(std::size_t{0}, applied, [&](std::size_t k) {
-    const AppliedFriction& f = applied_friction_[k];
-    if (f.force.isZero(0.0) && f.transverse_stiffness == 0.0) return;
-    ContactTerms& t = terms[k];
-    const Vec3 relative = relativeDisplacement(contacts_[k], unknowns);
-    t.first = f.force.dot(relative);
-    t.counts = kFirst;
-    if (f.transverse_stiffness > 0.0) {
-      // (Rigid blocks have no strain unknowns: their rigid part is the whole motion.)
-      const double x =
-          f.across.dot(dofs_ == 6 ? relative : relativeDisplacement(contacts_[k], unknowns, true));
-      t.second = f.transverse_stiffness * x * x;
-      t.counts |= kSecond;
-    }
-  });
+  // Each contact's terms from finishContacts' pass (in parallel, before this), summed in
+  // contact order as one loop would.
   double transverse = 0.0;
-  for (const ContactTerms& t : terms) {
-    if (!(t.counts & kFirst)) continue;
-    friction_work_ -= t.first;
-    if (t.counts & kSecond) {
-      friction_work_ += t.second;
-      transverse += 0.5 * t.second;
+  for (const FrictionTerms& t : friction_terms_) {
+    if (!(t.counts & kFrictionWork)) continue;
+    friction_work_ -= t.work;
+    if (t.counts & kTransverseWork) {
+      friction_work_ += t.transverse;
+      transverse += 0.5 * t.transverse;
     }
   }
   // Springs at the start of the step, in the states the step ended with: the energy
@@ -83,7 +53,8 @@ void Simulation::accountDissipation(const Eigen::VectorXd& solution, double dt) 
   // of that did not become kinetic energy: 1/2 d^T K d + d^T M a_b - (T1 - T0).
   const double ratio = settings_.mode == AnalysisMode::Static ? 0.0 : settings_.dynamic_ratio;
   const double c0 = inertiaCoefficient(scheme_, dt);
-  double removed = 0.5 * solution.dot(system_->matrix() * solution);
+  // K as the last open-close iteration factorized it (its values are not filled again).
+  double removed = 0.5 * solution.dot(system_->filledMatrix() * solution);
   for (const BlockState& block : blocks_) {
     if (block.fixed) continue;
     const BlockVector d = system_->unknowns(solution, block.dof_offset);

@@ -291,15 +291,17 @@ std::vector<char> Simulation::blocksToSearch() const {
 }
 
 bool Simulation::keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched,
-                             double depth, bool creep) {
+                             double depth, bool creep, std::vector<ContactStepState>* start) {
   // In place: a search that follows (an entry deeper than `depth`) only reads the entries'
   // keys and states (PreviousContacts), which the refresh leaves as they were.
   if (refreshContacts(blocks_, entries) > depth) return false;
+  if (start != nullptr) start->resize(entries.size());
   tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t k) {
     Contact& c = entries[k];
     carryOver(c, c);
     startStep(c);
     if (creep) startFromCreep(c);
+    if (start != nullptr) (*start)[k] = ContactStepState(c);
   });
   // A gap the search left out was wider than the two blocks' reaches then, and has narrowed
   // by at most how far they moved since: a step that moves no block farther than its reach
@@ -331,9 +333,14 @@ int Simulation::detectContacts() {
   // did searched while they are at most half of them (a search of all beyond).
   const std::vector<char> only = blocksToSearch();
   const auto to_search = static_cast<std::size_t>(std::count(only.begin(), only.end(), 1));
-  // The same contacts, each started from its creep (startFromCreep) in the same pass: the
-  // search's split of the assembly holds.
-  if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth, true)) return 0;
+  // The same contacts, each started from its creep (startFromCreep) and its step's start
+  // saved (the state the step's attempts start from: nothing changes it before the first
+  // solve) in the same pass: the search's split of the assembly holds.
+  step_start_saved_ = false;
+  if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth, true, &step_start_)) {
+    step_start_saved_ = true;
+    return 0;
+  }
   if (to_search > 0 && 2 * to_search <= blocks_.size()) {
     int late = 0;
     if (searchPartly(only, depth, late)) return late;
@@ -1027,7 +1034,9 @@ Simulation::StepCheck Simulation::checkStep(const Eigen::VectorXd& solution, boo
     PhaseTimer timer(step_profile_, StepPhase::UpdateStates);
     report.displacement_ratio = maxDisplacementRatio(solution, &report.fastest_block,
                                                      &report.unbalanced_displacement, &reach_ratio);
-    report.max_penetration = maxPenetration();
+    // A solution's contacts were updated from it (their deepest penetration found in that
+    // pass); without movable blocks there was no solve.
+    report.max_penetration = solution.size() > 0 ? last_changes_.deepest : maxPenetration();
   }
   const bool too_far = report.displacement_ratio > kAcceptedDisplacementRatio || reach_ratio > 1.0;
   if (too_far && !last_chance && can_shrink) {
@@ -1108,8 +1117,9 @@ StepReport Simulation::step() {
     report.contacts_searched = searches_ > searches_before;
     report.contacts_searched_partly = partial_searches_ > partial_before;
   }
-  // Saved beside the first factorization (openCloseIterate), before any state changes.
-  step_start_pending_ = true;
+  // Saved by a detection that kept every entry, else beside the first factorization
+  // (openCloseIterate), before any state changes.
+  step_start_pending_ = !step_start_saved_;
   double dt = dt_;
   Eigen::VectorXd solution;
   for (int attempt = 1;; ++attempt) {
@@ -1133,7 +1143,7 @@ StepReport Simulation::step() {
   acceptStep(solution, dt, report);
   report.pattern_changes = pattern_changes_ - patterns_before;
   report.solver_iterations = solver_iterations_;
-  report.contacts = contactCounts();
+  report.contacts = finished_counts_;  // counted in acceptStep's pass (finishContacts)
   report.profile = step_profile_;
   timings_ += step_profile_;
   return report;
@@ -1154,11 +1164,16 @@ Vec3 Simulation::centroidDisplacement(int b) const {
 }
 
 ContactCounts Simulation::contactCounts() const {
+  return countContacts(nullptr);
+}
+
+ContactCounts Simulation::countContacts(const std::function<void(std::size_t)>* each) const {
   // Counted in parallel (integer sums: the same in any order).
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, contacts_.size(), 8192), ContactCounts{},
+      tbb::blocked_range<std::size_t>(0, contacts_.size(), 1024), ContactCounts{},
       [&](const tbb::blocked_range<std::size_t>& range, ContactCounts counts) {
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          if (each != nullptr) (*each)(k);
           const Contact& c = contacts_[k];
           ++counts.total;
           counts.edge_edge += c.kind == ContactKind::EdgeEdge;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -179,9 +180,10 @@ class Simulation {
   /// `entries` moved to the blocks' geometry, their states carried on, and the reach of the
   /// blocks `searched` does not flag cut by their motion since their search; false (nothing
   /// else changed) when one is deeper than `depth` (m; the step searches instead). With
-  /// `creep`, each entry is also started from its creep (startFromCreep) in the same pass.
+  /// `creep`, each entry is also started from its creep (startFromCreep) in the same pass;
+  /// with `start`, its step's start is saved there too (saveStepStart), `start` resized.
   bool keepEntries(std::vector<Contact>& entries, const std::vector<char>& searched, double depth,
-                   bool creep = false);
+                   bool creep = false, std::vector<ContactStepState>* start = nullptr);
   /// Contacts that crept in the last step start this one stuck (an elastic predictor).
   void startFromCreep();
   /// startFromCreep of one contact.
@@ -224,8 +226,17 @@ class Simulation {
   /// closed ones as having been closed and adds the slip of the sliding ones
   /// (Contact::was_closed, slipped), carries the locked ones' shear by the step's relative
   /// motion (others: none), and keeps each spring's energy at the start of the step in its
-  /// end state (springs_start_, for accountDissipation) and after the step (springs_after_).
+  /// end state (springs_start_, for accountDissipation) and after the step (springs_after_),
+  /// each contact's friction work in the step (friction_terms_, for accountDissipation), and
+  /// counts the contacts in their end states (finished_counts_, the step's report).
   void finishContacts(const Eigen::VectorXd& solution);
+  /// finishContacts of contact k; `friction`: it has a friction term (k is below the last
+  /// assembly's count).
+  void finishContact(std::size_t k, const std::vector<BlockVector>& unknowns, bool solved,
+                     bool friction);
+  /// The contacts counted by state, in parallel; `each` (when given) is called on each
+  /// contact first, in the same pass.
+  ContactCounts countContacts(const std::function<void(std::size_t)>* each) const;
   /// A contact's terms of springEnergy() (its normal spring when closed, its shear spring
   /// when locked), summed in contact order by sumSprings.
   struct SpringEnergyTerms {
@@ -247,6 +258,19 @@ class Simulation {
   /// The springs at the start of the step in the states it ended with (accountDissipation's
   /// terms: gap0 and the shear before the step's motion), from finishContacts' pass.
   std::vector<SpringEnergyTerms> springs_start_;
+  /// A contact's friction work in the step (accountDissipation): f N s . (u_i - u_j) and, with
+  /// a transverse tangent spring, k x^2; `counts` says which apply (kFrictionWork,
+  /// kTransverseWork), so that the sum takes the contacts' terms in contact order.
+  struct FrictionTerms {
+    double work = 0.0;
+    double transverse = 0.0;
+    std::uint8_t counts = 0;
+  };
+  static constexpr std::uint8_t kFrictionWork = 1, kTransverseWork = 2;
+  /// finishContacts' friction terms of the contacts that had a friction in the last assembly.
+  std::vector<FrictionTerms> friction_terms_;
+  /// The contacts counted by state in finishContacts' pass (their states at the step's end).
+  ContactCounts finished_counts_;
   /// The system of one open-close iteration: the block terms, every contact's springs or
   /// friction, the bolts.
   void assembleSystem();
@@ -300,6 +324,8 @@ class Simulation {
     /// Of those, the contacts that closed deeper than a static step may leave them
     /// (kStaticClosingShare of the allowed penetration; all of them in a dynamic run).
     int closed_deep = 0;
+    /// The deepest penetration after the update (m, -gap; 0 when none penetrates).
+    double deepest = 0.0;
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
   };
   /// Largest pull (N) of a contact held closed for the rest of the step.
@@ -413,6 +439,8 @@ class Simulation {
   /// The step's start of the contacts (step_start_) is still to be saved: the first
   /// factorization of the step saves it beside it.
   bool step_start_pending_ = false;
+  /// The step's detection kept every entry and saved their step's start in the same pass.
+  bool step_start_saved_ = false;
   ActiveTerms active_;
   StepProfile timings_;       ///< summed over the steps
   StepProfile step_profile_;  ///< of the step being run
