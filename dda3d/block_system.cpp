@@ -218,8 +218,10 @@ const SparseMatrix& BlockSystem::matrix() {
     for (int c = 0; c < dofs_; ++c) {
       for (const Source& s : columns_[static_cast<std::size_t>(b)]) {
         if (s.pair < 0) {
+          // The lower triangle mirrored: K_ii's sums of T^T S T are symmetric but for their
+          // round-off, and both triangles of K must be equal (the solvers read either).
           const BlockMatrix& m = diagonal_[static_cast<std::size_t>(b)];
-          for (int r = 0; r < dofs_; ++r) values[at++] = m(r, c);
+          for (int r = 0; r < dofs_; ++r) values[at++] = r >= c ? m(r, c) : m(c, r);
         } else {
           const BlockMatrix& m = off_diagonal_[static_cast<std::size_t>(s.pair)];
           if (s.transposed) {

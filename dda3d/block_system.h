@@ -75,7 +75,8 @@ class BlockSystem {
     if (i >= 0) rhs_[static_cast<std::size_t>(i)] += f;
   }
 
-  /// K as a sparse matrix (values refreshed from the blocks, pattern kept).
+  /// K as a sparse matrix (values refreshed from the blocks, pattern kept), its two
+  /// triangles equal: each diagonal block's upper triangle is its lower one.
   const SparseMatrix& matrix();
   /// K as the last matrix() filled it (the blocks' terms added since are not in it).
   const SparseMatrix& filledMatrix() const { return matrix_; }

@@ -51,10 +51,13 @@ class HeldOnThisCpu {
   bool held_ = false;
 };
 
-/// CHOLMOD supernodal LL^T of the lower triangle, analysis reused while the pattern holds.
+/// CHOLMOD supernodal LL^T of the upper triangle, analysis reused while the pattern holds.
+/// K comes with both triangles, equal (BlockSystem::matrix); CHOLMOD factorizes the permuted
+/// lower triangle, which it makes from an upper one in one transpose and from a lower one in
+/// two (cholmod_factorize_p): the same values, one pass fewer over K.
 class CholmodSolver final : public LinearSolver {
  public:
-  CholmodSolver() {
+  explicit CholmodSolver(bool report_residual) : report_residual_(report_residual) {
     // A matrix that is not positive definite is an expected outcome reported through
     // factorize()'s result, not a message on stderr.
     llt_.cholmod().print = 0;
@@ -63,10 +66,9 @@ class CholmodSolver final : public LinearSolver {
   /// The symbolic analysis of K's pattern (kept for the factorizations that follow while
   /// the pattern holds); returns CHOLMOD's count of the factorization's flops.
   double analyze(const SparseMatrix& k) {
-    k_ = k;
-    k_.makeCompressed();
-    llt_.analyzePattern(k_);
-    pattern_.remember(k_);
+    const SparseMatrix& a = compressed(k);
+    llt_.analyzePattern(a);
+    pattern_.remember(a);
     analyzed_ahead_ = true;
     return llt_.cholmod().fl;
   }
@@ -76,16 +78,15 @@ class CholmodSolver final : public LinearSolver {
     // An analysis done by analyze() counts as this factorization's.
     stats_.analyzed = analyzed_ahead_;
     analyzed_ahead_ = false;
-    k_ = k;
-    k_.makeCompressed();
-    if (!pattern_.matches(k_)) {
-      llt_.analyzePattern(k_);
-      pattern_.remember(k_);
+    const SparseMatrix& a = compressed(k);
+    if (!pattern_.matches(a)) {
+      llt_.analyzePattern(a);
+      pattern_.remember(a);
       stats_.analyzed = true;
     }
     {
       const HeldOnThisCpu held;
-      llt_.factorize(k_);
+      llt_.factorize(a);
     }
     stats_.converged = llt_.info() == Eigen::Success;
     // After a failed factorization CHOLMOD may leave the factor in a partial state: analyse
@@ -95,28 +96,39 @@ class CholmodSolver final : public LinearSolver {
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& f) override {
     Eigen::VectorXd x = llt_.solve(f);
-    stats_.residual = relativeResidual(k_, x, f);
+    if (report_residual_) stats_.residual = relativeResidual(k_, x, f);
     return x;
   }
   SolveStats stats() const override { return stats_; }
   std::string name() const override { return "cholmod"; }
 
  private:
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  /// K itself when it is compressed and no residual is reported, else its compressed copy
+  /// (k_, kept for the residual).
+  const SparseMatrix& compressed(const SparseMatrix& k) {
+    if (!report_residual_ && k.isCompressed()) return k;
+    k_ = k;
+    k_.makeCompressed();
+    return k_;
+  }
+
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt_;
   SparsityPattern pattern_;
   SparseMatrix k_;  ///< the factorized matrix, for the residual
   SolveStats stats_;
+  bool report_residual_ = true;
   bool analyzed_ahead_ = false;  ///< analyze() ran since the last factorize
 };
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> makeCholmodSolver() {
-  return std::make_unique<CholmodSolver>();
+std::unique_ptr<LinearSolver> makeCholmodSolver(bool report_residual) {
+  return std::make_unique<CholmodSolver>(report_residual);
 }
 
-std::unique_ptr<LinearSolver> makeAnalyzedCholmodSolver(const SparseMatrix& k, double& flops) {
-  auto solver = std::make_unique<CholmodSolver>();
+std::unique_ptr<LinearSolver> makeAnalyzedCholmodSolver(const SparseMatrix& k, double& flops,
+                                                        bool report_residual) {
+  auto solver = std::make_unique<CholmodSolver>(report_residual);
   flops = solver->analyze(k);
   return solver;
 }

@@ -26,7 +26,8 @@ class AutoSolver final : public LinearSolver {
     if (!chosen_) {
       // The analysis that counts CHOLMOD's flops is the one it keeps when it is chosen.
       double direct = 0.0;
-      std::unique_ptr<LinearSolver> cholmod = makeAnalyzedCholmodSolver(k, direct);
+      std::unique_ptr<LinearSolver> cholmod =
+          makeAnalyzedCholmodSolver(k, direct, options_.report_residual);
       const double iterative = 2.0 * static_cast<double>(k.nonZeros()) *
                                static_cast<double>(options_.auto_pcg_iterations);
       SolverOptions pcg = options_;
@@ -57,7 +58,7 @@ std::unique_ptr<LinearSolver> makeAutoSolver(const SolverOptions& options) {
 std::unique_ptr<LinearSolver> makeLinearSolver(const SolverOptions& options) {
   switch (options.kind) {
     case SolverKind::Cholmod:
-      return makeCholmodSolver();
+      return makeCholmodSolver(options.report_residual);
     case SolverKind::Eigen:
       return makeEigenLdltSolver();
     case SolverKind::Pcg:

@@ -49,13 +49,19 @@ struct SolverOptions {
   /// PCG solves it (docs/performance.md, "DDA linear solvers").
   double auto_cholmod_flop_ratio = 1.0;
   int auto_pcg_iterations = 400;  ///< PCG iterations a solve is reckoned at (Auto's choice)
+  /// Direct backends: each solve's relative residual in SolveStats (a copy of K kept at each
+  /// factorization and a product with it at each solve). The DDA engine does not read it, and
+  /// turns it off.
+  bool report_residual = true;
 };
 
 /// One solve's account, for the step statistics.
 struct SolveStats {
-  bool analyzed = false;   ///< the symbolic analysis was redone (pattern changed)
-  int iterations = 0;      ///< Pcg iterations (0 for direct solvers)
-  double residual = 0.0;   ///< relative residual |K d - F| / |F| reached by the last solve
+  bool analyzed = false;  ///< the symbolic analysis was redone (pattern changed)
+  int iterations = 0;     ///< Pcg iterations (0 for direct solvers)
+  /// Relative residual |K d - F| / |F| reached by the last solve (0 when a direct backend
+  /// does not report it: SolverOptions::report_residual).
+  double residual = 0.0;
   bool converged = false;  ///< factorization succeeded (direct) / tolerance reached (Pcg)
 };
 

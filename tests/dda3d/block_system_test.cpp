@@ -93,5 +93,39 @@ TEST(BlockSystem, PointSpringsAgainstAFixedBodyLoadOnlyTheMovableBlock) {
   expectSameSystems(6, -1, 1);
 }
 
+TEST(BlockSystem, BothTrianglesOfKAreEqualToTheBit) {
+  // The CHOLMOD backend factorizes K's upper triangle and the residuals and the energy
+  // account read both: they must be the same matrix. A rigid block's T^T S T sums R^T S R,
+  // whose two triangles differ in round-off; K's diagonal blocks take their lower one.
+  for (const int dofs : {6, 12}) {
+    BlockSystem system(2, dofs);
+    system.setPairs({{0, 1}});
+    const Vec3 ci(1.0, 2.0, -3.0), cj(2.5, 1.0, -2.0);
+    const PointSprings springs = testSprings();
+    bool asymmetric_sums = false;
+    for (int p = 0; p < 40; ++p) {
+      // Contact points spread over the joint between the blocks, with arms of every length.
+      const Vec3 point(1.0 + 0.037 * p, 1.1 + 0.071 * (p % 7), -2.9 + 0.013 * (p % 11));
+      const Vec3 foot = point - Vec3(0.0, 0.0, 2e-4);
+      const Eigen::Matrix3d r = rotationColumns(point - ci);
+      const Eigen::Matrix3d sr = springs.stiffness() * r;
+      const Eigen::Matrix3d rsr = r.transpose() * sr;
+      asymmetric_sums = asymmetric_sums || rsr != rsr.transpose();
+      if (dofs == 6) {
+        system.addRigidPointSprings(0, r, 1, rotationColumns(foot - cj), springs.stiffness(),
+                                    springs.offsets(), BlockSystem::Parts{});
+      } else {
+        system.addPointSprings(0, displacementMatrix(point, ci), 1, displacementMatrix(foot, cj),
+                               springs.stiffness(), springs.offsets(), BlockSystem::Parts{});
+      }
+    }
+    EXPECT_TRUE(asymmetric_sums) << "no round-off to mirror: the test would not see it";
+    const Eigen::MatrixXd k = Eigen::MatrixXd(system.matrix());
+    ASSERT_EQ(k.rows(), 2 * dofs);
+    EXPECT_GT(k.cwiseAbs().maxCoeff(), 1e9);  // the springs did land in K
+    EXPECT_TRUE(k == k.transpose()) << "dofs " << dofs;
+  }
+}
+
 }  // namespace
 }  // namespace rockmass::dda3d
