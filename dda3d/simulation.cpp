@@ -338,9 +338,8 @@ int Simulation::detectContacts() {
   // The same contacts, each started from its creep (startFromCreep) and its step's start
   // saved (the state the step's attempts start from: nothing changes it before the first
   // solve) in the same pass: the search's split of the assembly holds.
-  step_start_saved_ = false;
   if (!only.empty() && to_search == 0 && keepEntries(contacts_, only, depth, true, &step_start_)) {
-    step_start_saved_ = true;
+    step_start_pending_ = false;
     return 0;
   }
   if (to_search > 0 && 2 * to_search <= blocks_.size()) {
@@ -1111,6 +1110,9 @@ StepReport Simulation::step() {
   step_profile_ = StepProfile{};
   const int patterns_before = pattern_changes_;
   solver_iterations_ = 0;
+  // Saved by a detection that keeps every entry, else beside the first factorization
+  // (openCloseIterate), before any state changes.
+  step_start_pending_ = true;
   {
     PhaseTimer timer(step_profile_, StepPhase::DetectContacts);
     const int searches_before = searches_;
@@ -1119,9 +1121,6 @@ StepReport Simulation::step() {
     report.contacts_searched = searches_ > searches_before;
     report.contacts_searched_partly = partial_searches_ > partial_before;
   }
-  // Saved by a detection that kept every entry, else beside the first factorization
-  // (openCloseIterate), before any state changes.
-  step_start_pending_ = !step_start_saved_;
   double dt = dt_;
   Eigen::VectorXd solution;
   for (int attempt = 1;; ++attempt) {

@@ -437,10 +437,9 @@ class Simulation {
   DeferredWater water_ = DeferredWater::None;
   std::vector<BlockVector> water_f_;
   /// The step's start of the contacts (step_start_) is still to be saved: the first
-  /// factorization of the step saves it beside it.
+  /// factorization of the step saves it beside it (a detection that keeps every entry saves
+  /// it in its carry-over pass and clears this).
   bool step_start_pending_ = false;
-  /// The step's detection kept every entry and saved their step's start in the same pass.
-  bool step_start_saved_ = false;
   ActiveTerms active_;
   StepProfile timings_;       ///< summed over the steps
   StepProfile step_profile_;  ///< of the step being run
