@@ -140,16 +140,15 @@ void BlockSystem::addSpring(int i, const BlockVector& a, int j, const BlockVecto
 
 namespace {
 
-/// T^T S T of a rigid block's T = [I | R] (its first six columns), S symmetric, by its 3 x 3
-/// parts: [[S, S R], [R^T S, R^T S R]].
+/// T_l^T S T_r of rigid blocks' T = [I | R] (their first six columns), S symmetric, by its
+/// 3 x 3 parts: [[S, S R_r], [R_l^T S, R_l^T S R_r]], given S R_l, S R_r and R_l^T S R_r.
 void addRigidBlock(BlockMatrix& m, double sign, const Eigen::Matrix3d& s,
-                   const Eigen::Matrix3d& sr_left, const Eigen::Matrix3d& r_left,
-                   const Eigen::Matrix3d& sr_right) {
-  // m += sign * T_l^T S T_r with S R_l = sr_left, S R_r = sr_right.
+                   const Eigen::Matrix3d& sr_left, const Eigen::Matrix3d& sr_right,
+                   const Eigen::Matrix3d& rsr) {
   m.topLeftCorner<3, 3>() += sign * s;
   m.block<3, 3>(0, 3) += sign * sr_right;
   m.block<3, 3>(3, 0) += sign * sr_left.transpose();
-  m.block<3, 3>(3, 3).noalias() += sign * (r_left.transpose() * sr_right);
+  m.block<3, 3>(3, 3) += sign * rsr;
 }
 
 }  // namespace
@@ -187,13 +186,13 @@ void BlockSystem::addRigidPointSprings(int i, const Eigen::Matrix3d& ri, int j,
                                        const geometry::Vec3& offsets, const Parts& parts) {
   const Eigen::Matrix3d sri = s * ri, srj = s * rj;
   if (i >= 0 && parts.i) {
-    addRigidBlock(diagonal_[static_cast<std::size_t>(i)], 1.0, s, sri, ri, sri);
+    addRigidBlock(diagonal_[static_cast<std::size_t>(i)], 1.0, s, sri, sri, ri.transpose() * sri);
     BlockVector& f = rhs_[static_cast<std::size_t>(i)];
     f.head<3>() -= offsets;
     f.segment<3>(3) -= ri.transpose() * offsets;
   }
   if (j >= 0 && parts.j) {
-    addRigidBlock(diagonal_[static_cast<std::size_t>(j)], 1.0, s, srj, rj, srj);
+    addRigidBlock(diagonal_[static_cast<std::size_t>(j)], 1.0, s, srj, srj, rj.transpose() * srj);
     BlockVector& f = rhs_[static_cast<std::size_t>(j)];
     f.head<3>() += offsets;
     f.segment<3>(3) += rj.transpose() * offsets;
@@ -202,9 +201,37 @@ void BlockSystem::addRigidPointSprings(int i, const Eigen::Matrix3d& ri, int j,
     bool transposed = parts.transposed;
     BlockMatrix& m = parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
     if (transposed) {
-      addRigidBlock(m, -1.0, s, srj, rj, sri);  // stored K_ji = -T_j^T S T_i
+      addRigidBlock(m, -1.0, s, srj, sri, rj.transpose() * sri);  // stored K_ji = -T_j^T S T_i
     } else {
-      addRigidBlock(m, -1.0, s, sri, ri, srj);
+      addRigidBlock(m, -1.0, s, sri, srj, ri.transpose() * srj);
+    }
+  }
+}
+
+void BlockSystem::addRigidSpringSums(int i, int j, const RigidSpringSums& sums,
+                                     const Parts& parts) {
+  if (i >= 0 && parts.i) {
+    addRigidBlock(diagonal_[static_cast<std::size_t>(i)], 1.0, sums.s, sums.sr_i, sums.sr_i,
+                  sums.rsr_ii);
+    BlockVector& f = rhs_[static_cast<std::size_t>(i)];
+    f.head<3>() -= sums.offsets;
+    f.segment<3>(3) -= sums.moment_i;
+  }
+  if (j >= 0 && parts.j) {
+    addRigidBlock(diagonal_[static_cast<std::size_t>(j)], 1.0, sums.s, sums.sr_j, sums.sr_j,
+                  sums.rsr_jj);
+    BlockVector& f = rhs_[static_cast<std::size_t>(j)];
+    f.head<3>() += sums.offsets;
+    f.segment<3>(3) += sums.moment_j;
+  }
+  if (i >= 0 && j >= 0 && parts.pair) {
+    bool transposed = parts.transposed;
+    BlockMatrix& m = parts.pair_block ? *parts.pair_block : pairBlock(i, j, transposed);
+    if (transposed) {
+      // stored K_ji = -sum T_j^T S T_i: [[S, S R_i], [R_j^T S, R_j^T S R_i]]
+      addRigidBlock(m, -1.0, sums.s, sums.sr_j, sums.sr_i, sums.rsr_ij.transpose());
+    } else {
+      addRigidBlock(m, -1.0, sums.s, sums.sr_i, sums.sr_j, sums.rsr_ij);
     }
   }
 }

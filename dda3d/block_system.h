@@ -68,6 +68,50 @@ class BlockSystem {
   void addRigidPointSprings(int i, const Eigen::Matrix3d& ri, int j, const Eigen::Matrix3d& rj,
                             const Eigen::Matrix3d& s, const geometry::Vec3& offsets,
                             const Parts& parts);
+  /// The springs of several points between one pair of rigid blocks, summed before they are
+  /// added to K and F (addRigidSpringSums): for each point, S and s as addPointSprings takes
+  /// them and the rotation columns R_i, R_j of its arms (rotationColumns). The blocks' terms
+  /// are linear in S, so their sums are the sums of the points' terms (addRigidPointSprings of
+  /// each), in another order of the additions.
+  struct RigidSpringSums {
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();       ///< sum of S
+    Eigen::Matrix3d sr_i = Eigen::Matrix3d::Zero();    ///< sum of S R_i
+    Eigen::Matrix3d sr_j = Eigen::Matrix3d::Zero();    ///< sum of S R_j
+    Eigen::Matrix3d rsr_ii = Eigen::Matrix3d::Zero();  ///< sum of R_i^T S R_i
+    Eigen::Matrix3d rsr_jj = Eigen::Matrix3d::Zero();  ///< sum of R_j^T S R_j
+    Eigen::Matrix3d rsr_ij = Eigen::Matrix3d::Zero();  ///< sum of R_i^T S R_j
+    geometry::Vec3 offsets = geometry::Vec3::Zero();   ///< sum of s
+    geometry::Vec3 moment_i = geometry::Vec3::Zero();  ///< sum of R_i^T s
+    geometry::Vec3 moment_j = geometry::Vec3::Zero();  ///< sum of R_j^T s
+    /// Which sums are kept: K_ii and F_i's, K_jj and F_j's, K_ij's (the others stay zero).
+    bool with_i = true, with_j = true, with_pair = true;
+
+    void add(const Eigen::Matrix3d& ri, const Eigen::Matrix3d& rj, const Eigen::Matrix3d& springs,
+             const geometry::Vec3& spring_offsets) {
+      s += springs;
+      offsets += spring_offsets;
+      if (with_i || with_pair) {
+        const Eigen::Matrix3d sri = springs * ri;
+        sr_i += sri;
+        if (with_i) {
+          rsr_ii.noalias() += ri.transpose() * sri;
+          moment_i.noalias() += ri.transpose() * spring_offsets;
+        }
+      }
+      if (with_j || with_pair) {
+        const Eigen::Matrix3d srj = springs * rj;
+        sr_j += srj;
+        if (with_j) {
+          rsr_jj.noalias() += rj.transpose() * srj;
+          moment_j.noalias() += rj.transpose() * spring_offsets;
+        }
+        if (with_pair) rsr_ij.noalias() += ri.transpose() * srj;
+      }
+    }
+  };
+  /// Adds the sums' terms that `parts` names, as addRigidPointSprings adds one point's; the
+  /// sums must have been kept for them (RigidSpringSums::with_i, with_j, with_pair).
+  void addRigidSpringSums(int i, int j, const RigidSpringSums& sums, const Parts& parts);
   /// K_ii += m.
   void addDiagonal(int i, const BlockMatrix& m) { diagonal_[static_cast<std::size_t>(i)] += m; }
   /// F_i += f (no-op for i = -1).

@@ -13,6 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -35,6 +36,18 @@ constexpr std::uint8_t kAddsI = 1;
 constexpr std::uint8_t kAddsJ = 2;
 constexpr std::uint8_t kAddsPair = 4;
 constexpr std::uint8_t kRecords = 8;
+
+/// A locked contact's springs as one point's (BlockSystem::addPointSprings): the normal spring
+/// (k_n along n, offset gap0) and the two shear springs (k_s along the tangents t_1, t_2,
+/// offsets the shear's components). t_1 t_1^T + t_2 t_2^T = I - n n^T, so S = k_s I +
+/// (k_n - k_s) n n^T, and the shear's offsets are k_s times its part across n.
+inline void lockedSprings(const Contact& c, double kn, double ks, Eigen::Matrix3d& s,
+                          Vec3& offsets) {
+  const Vec3& n = c.normal;
+  s.noalias() = (kn - ks) * (n * n.transpose());
+  s.diagonal().array() += ks;
+  offsets = (kn * c.gap0 - ks * c.shear.dot(n)) * n + ks * c.shear;
+}
 
 Eigen::Matrix3d voigtToTensor(const VoigtVector& v, double shear_scale) {
   Eigen::Matrix3d t;
@@ -425,6 +438,26 @@ std::vector<Contact> Simulation::searchContacts(const std::vector<Contact>& befo
 }
 
 void Simulation::useContacts(std::vector<Contact> contacts) {
+  // By pairs of blocks, in the order found within a pair: the assembly sums a pair's entries
+  // before it adds them to K (assembleSystem), and reads them one after the other. Found,
+  // the entries of a pair of blocks are interleaved with the other pairs of their pieces
+  // (about 2 in a row on the Xiangjiaba region, 17 a pair).
+  const auto byPair = [](const Contact& a, const Contact& b) {
+    return std::tie(a.block_i, a.block_j) < std::tie(b.block_i, b.block_j);
+  };
+  if (!std::is_sorted(contacts.begin(), contacts.end(), byPair)) {
+    std::vector<std::uint32_t> order(contacts.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<std::uint32_t>(k);
+    tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const Contact& ca = contacts[a];
+      const Contact& cb = contacts[b];
+      return std::tie(ca.block_i, ca.block_j, a) < std::tie(cb.block_i, cb.block_j, b);
+    });
+    std::vector<Contact> sorted(contacts.size());
+    tbb::parallel_for(std::size_t{0}, order.size(),
+                      [&](std::size_t k) { sorted[k] = std::move(contacts[order[k]]); });
+    contacts = std::move(sorted);
+  }
   // The coupled pairs of movable blocks (and the bolts'), in entry order.
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(contacts.size());
@@ -574,57 +607,27 @@ void Simulation::addWaterLoads() {
   water_ = DeferredWater::Ready;
 }
 
-Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
-                                                        const BlockSystem::Parts& parts,
-                                                        ActiveTerms& active) {
-  if (c.state == ContactState::Open) return {};
-  const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
-  const BlockState& bi = blocks_[static_cast<std::size_t>(c.block_i)];
-  const BlockState& bj = blocks_[static_cast<std::size_t>(c.block_j)];
+bool Simulation::contactSprings(const Contact& c, ContactSprings& springs,
+                                ActiveTerms& active) const {
+  if (c.state == ContactState::Open) return false;
   active.contact_normal = true;
-  if (c.state == ContactState::Locked && i != j) {
-    // The normal spring (k_n along n, offset gap0) and the two shear springs (k_s along the
-    // tangents, offsets the shear's components) in one product (BlockSystem::addPointSprings).
-    const double ks = penalty_ / settings_.shear_penalty_ratio;
-    Vec3 t[2];
-    tangents(c.normal, t[0], t[1]);
-    const Eigen::Matrix3d s = penalty_ * c.normal * c.normal.transpose() +
-                              ks * (t[0] * t[0].transpose() + t[1] * t[1].transpose());
-    const Vec3 offsets = penalty_ * c.gap0 * c.normal + ks * c.shear.dot(t[0]) * t[0] +
-                         ks * c.shear.dot(t[1]) * t[1];
-    if (dofs_ == 6) {
-      system_->addRigidPointSprings(i, rotationColumns(c.point - bi.centroid), j,
-                                    rotationColumns(c.foot - bj.centroid), s, offsets, parts);
-    } else {
-      system_->addPointSprings(i, displacementMatrix(c.point, bi.centroid), j,
-                               displacementMatrix(c.foot, bj.centroid), s, offsets, parts);
-    }
-    active.contact_shear = true;
-    return {};
-  }
-  const DisplacementMatrix ti = displacementMatrix(c.point, bi.centroid);
-  const DisplacementMatrix tj = displacementMatrix(c.foot, bj.centroid);
-  system_->addSpring(i, ti.transpose() * c.normal, j, -tj.transpose() * c.normal, penalty_, c.gap0,
-                     parts);
   if (c.state == ContactState::Locked) {
-    const double ks = penalty_ / settings_.shear_penalty_ratio;
-    Vec3 t[2];
-    tangents(c.normal, t[0], t[1]);
-    for (const Vec3& tk : t) {
-      system_->addSpring(i, ti.transpose() * tk, j, -tj.transpose() * tk, ks, c.shear.dot(tk),
-                         parts);
-    }
+    lockedSprings(c, penalty_, penalty_ / settings_.shear_penalty_ratio, springs.s,
+                  springs.offsets);
     active.contact_shear = true;
-    return {};
+    return true;
   }
+  // The normal spring.
+  const Vec3& n = c.normal;
+  springs.s.noalias() = penalty_ * (n * n.transpose());
+  springs.offsets = penalty_ * c.gap0 * n;
   // The shear strength resists the slip: f N, plus c A while a plastic joint's contact keeps
-  // its cohesion (a brittle one lost it when it started to slide).
+  // its cohesion (a brittle one lost it when it started to slide). As a load it is an offset:
+  // F_i -= T_i^T s takes -f N s on block i, F_j += T_j^T s its reaction.
   const double friction = shearStrength(c, jointOf(c));
-  if (parts.i) system_->addForce(i, -friction * (ti.transpose() * c.slide_direction));
-  if (parts.j) system_->addForce(j, friction * (tj.transpose() * c.slide_direction));
+  springs.offsets += friction * c.slide_direction;
   active.friction = true;
-  AppliedFriction applied;
-  applied.force = -friction * c.slide_direction;
+  springs.applied.force = -friction * c.slide_direction;
   if (friction > 0.0 && c.slip_length > 0.0 && c.slide_direction.squaredNorm() > 0.0) {
     // Consistent tangent of F = -f N s / |s| about the last slip s*: -f N / |s*| times the
     // slip across s*. Without it the direction is explicit, and a slip across it (a yaw of a
@@ -632,16 +635,50 @@ Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
     // slips of a static step that over-corrects and grows by ~ -3 per step. Capped at the
     // shear spring (a locked contact resists no more); rigid parts, as the direction. Only
     // once a slip is known: a tangent about a guessed direction would hold a wrong one.
-    applied.transverse_stiffness =
+    springs.applied.transverse_stiffness =
         std::min(penalty_ / settings_.shear_penalty_ratio, friction / c.slip_length);
-    applied.across = c.normal.cross(c.slide_direction).normalized();
-    DisplacementMatrix ri = ti, rj = tj;
-    ri.rightCols<kVoigtSize>().setZero();
-    rj.rightCols<kVoigtSize>().setZero();
-    system_->addSpring(i, ri.transpose() * applied.across, j, -rj.transpose() * applied.across,
-                       applied.transverse_stiffness, 0.0, parts);
+    springs.applied.across = c.normal.cross(c.slide_direction).normalized();
+    // A rigid block's unknowns are all rigid-body ones: the tangent joins the normal spring.
+    Eigen::Matrix3d& rigid = dofs_ == 6 ? springs.s : springs.s_rigid;
+    rigid.noalias() += springs.applied.transverse_stiffness *
+                       (springs.applied.across * springs.applied.across.transpose());
   }
-  return applied;
+  return true;
+}
+
+Simulation::AppliedFriction Simulation::addContactTerms(const Contact& c,
+                                                        const BlockSystem::Parts& parts,
+                                                        ActiveTerms& active) {
+  ContactSprings springs;
+  if (!contactSprings(c, springs, active)) return {};
+  const int i = movableIndex(c.block_i), j = movableIndex(c.block_j);
+  DisplacementMatrix ti =
+      displacementMatrix(c.point, blocks_[static_cast<std::size_t>(c.block_i)].centroid);
+  DisplacementMatrix tj =
+      displacementMatrix(c.foot, blocks_[static_cast<std::size_t>(c.block_j)].centroid);
+  // The rigid-body parts of T (a rigid block has no others).
+  DisplacementMatrix ri = ti, rj = tj;
+  ri.rightCols<kVoigtSize>().setZero();
+  rj.rightCols<kVoigtSize>().setZero();
+  if (dofs_ == 6) {
+    ti = ri;
+    tj = rj;
+  }
+  const bool transverse = !springs.s_rigid.isZero(0.0);
+  if (i == j) {
+    // Both ends on one block: its displacement difference T_i - T_j against nothing.
+    if (i < 0 || !parts.i) return springs.applied;
+    BlockSystem::Parts own = parts;
+    own.j = own.pair = false;
+    system_->addPointSprings(i, ti - tj, -1, tj, springs.s, springs.offsets, own);
+    if (transverse) {
+      system_->addPointSprings(i, ri - rj, -1, rj, springs.s_rigid, Vec3::Zero(), own);
+    }
+    return springs.applied;
+  }
+  system_->addPointSprings(i, ti, j, tj, springs.s, springs.offsets, parts);
+  if (transverse) system_->addPointSprings(i, ri, j, rj, springs.s_rigid, Vec3::Zero(), parts);
+  return springs.applied;
 }
 
 void Simulation::assembleSystem() {
@@ -663,18 +700,55 @@ void Simulation::assembleSystem() {
     listAssembly();
   }
   applied_friction_.resize(contacts_.size());
+  const double shear_penalty = penalty_ / settings_.shear_penalty_ratio;
   std::vector<ActiveTerms> active(static_cast<std::size_t>(assembly_parts_));
   tbb::parallel_for(0, assembly_parts_, [&](int part) {
-    for (const AssemblyEntry& entry : assembly_lists_[static_cast<std::size_t>(part)]) {
-      const Contact& c = contacts_[entry.contact];
+    const std::vector<AssemblyEntry>& list = assembly_lists_[static_cast<std::size_t>(part)];
+    ActiveTerms& terms = active[static_cast<std::size_t>(part)];
+    for (std::size_t k = 0; k < list.size();) {
+      const AssemblyEntry& entry = list[k];
+      const Contact& first = contacts_[entry.contact];
       BlockSystem::Parts mine;
       mine.i = (entry.adds & kAddsI) != 0;
       mine.j = (entry.adds & kAddsJ) != 0;
       mine.pair = (entry.adds & kAddsPair) != 0;
-      const AppliedFriction applied =
-          addContactTerms(c, system_->withSlot(entry.pair, entry.transposed, mine),
-                          active[static_cast<std::size_t>(part)]);
-      if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
+      mine = system_->withSlot(entry.pair, entry.transposed, mine);
+      const int i = movableIndex(first.block_i), j = movableIndex(first.block_j);
+      if (dofs_ != 6 || i == j) {
+        const AppliedFriction applied = addContactTerms(first, mine, terms);
+        if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
+        ++k;
+        continue;
+      }
+      // Rigid blocks: the run of this pair's entries (listAssembly puts them one after the
+      // other) summed first, then added to the blocks once (BlockSystem::RigidSpringSums).
+      BlockSystem::RigidSpringSums sums;
+      sums.with_i = i >= 0 && mine.i;
+      sums.with_j = j >= 0 && mine.j;
+      sums.with_pair = i >= 0 && j >= 0 && mine.pair;
+      const Vec3& ci = blocks_[static_cast<std::size_t>(first.block_i)].centroid;
+      const Vec3& cj = blocks_[static_cast<std::size_t>(first.block_j)].centroid;
+      for (; k < list.size(); ++k) {
+        const AssemblyEntry& e = list[k];
+        const Contact& c = contacts_[e.contact];
+        if (c.block_i != first.block_i || c.block_j != first.block_j || e.adds != entry.adds) break;
+        const Eigen::Matrix3d ri = rotationColumns(c.point - ci);
+        const Eigen::Matrix3d rj = rotationColumns(c.foot - cj);
+        if (c.state == ContactState::Locked) {
+          // Most entries: contactSprings' locked springs, in line.
+          Eigen::Matrix3d s;
+          Vec3 offsets;
+          lockedSprings(c, penalty_, shear_penalty, s, offsets);
+          sums.add(ri, rj, s, offsets);
+          terms.contact_normal = terms.contact_shear = true;
+          if (e.adds & kRecords) applied_friction_[e.contact] = {};
+          continue;
+        }
+        ContactSprings springs;
+        if (contactSprings(c, springs, terms)) sums.add(ri, rj, springs.s, springs.offsets);
+        if (e.adds & kRecords) applied_friction_[e.contact] = springs.applied;
+      }
+      system_->addRigidSpringSums(i, j, sums, mine);
     }
   });
   for (const ActiveTerms& terms : active) active_ |= terms;

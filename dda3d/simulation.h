@@ -298,8 +298,23 @@ class Simulation {
     double transverse_stiffness = 0.0;
     geometry::Vec3 across = geometry::Vec3::Zero();
   };
+  /// A contact's terms in the step's system, as one point's springs (BlockSystem's
+  /// addPointSprings): S and s on all of its blocks' unknowns (the normal spring and, while
+  /// locked, the two shear springs; while sliding, the friction force as a load in s), and
+  /// S_rigid on their rigid-body unknowns only (a sliding contact's transverse tangent; in S
+  /// for rigid blocks, whose unknowns are all rigid-body ones).
+  struct ContactSprings {
+    Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
+    geometry::Vec3 offsets = geometry::Vec3::Zero();
+    Eigen::Matrix3d s_rigid = Eigen::Matrix3d::Zero();
+    AppliedFriction applied;
+  };
+  /// c's springs (ContactSprings), marking the terms they add in `active`; false when it adds
+  /// none (open).
+  bool contactSprings(const Contact& c, ContactSprings& springs, ActiveTerms& active) const;
   /// Adds the terms of c's springs or friction that `parts` names (BlockSystem::Parts),
   /// marking those it adds in `active`; returns the friction applied (zero unless sliding).
+  /// Rigid blocks' contacts between two blocks are added by runs instead (assembleSystem).
   AppliedFriction addContactTerms(const Contact& c, const BlockSystem::Parts& parts,
                                   ActiveTerms& active);
   /// Splits the movable blocks among the assembly's threads (assembly_owner_): slabs along x
@@ -411,7 +426,7 @@ class Simulation {
   std::vector<MaterialPoint> monitor_points_, load_points_, fixed_points_;
   std::vector<MaterialPoint> bolt_a_, bolt_b_;
   std::vector<BoltState> bolt_state_;
-  std::vector<Contact> contacts_;
+  std::vector<Contact> contacts_;  ///< by (block_i, block_j), found order within (useContacts)
   /// The contacts as a step found them, for a redone attempt; its buffer is kept between
   /// steps (a fresh copy of the region's 214 000 entries, 56 MB, faulted its pages in anew
   /// every step: 0.04 s, more than the solve).

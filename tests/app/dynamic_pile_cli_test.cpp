@@ -98,7 +98,11 @@ class DynamicPile : public ::testing::TestWithParam<PileCase> {
 };
 
 TEST_P(DynamicPile, LandsAndComesToRestWithEveryCubeInThePile) {
-  constexpr int kSteps = 600;  // 1.2 s of 2 ms steps at most
+  // 2 s of 2 ms steps at most. The top layer's edge cubes, landing 0.3 m over the edge of the
+  // staggered layer below, rock on it for a while: on the 7 x 7 x 5 pile the last came to rest
+  // at 1.2 s, 1.43 s or 1.5 s when the springs' sums changed only in their round-off (the
+  // order of the contacts' terms, k_s I + (k_n - k_s) n n^T for the tangents' sum; measured).
+  constexpr int kSteps = 1000;
   const PileCase& param = GetParam();
   const int side = param.side, layers = param.layers;
   const fs::path scene =
