@@ -49,6 +49,32 @@ inline void lockedSprings(const Contact& c, double kn, double ks, Eigen::Matrix3
   offsets = (kn * c.gap0 - ks * c.shear.dot(n)) * n + ks * c.shear;
 }
 
+/// A contact's pair of blocks, the lower first (either may hold its point).
+inline std::pair<int, int> blockPair(const Contact& c) {
+  return std::minmax(c.block_i, c.block_j);
+}
+
+/// The frame of a contact's pair in the assembly: its lower and upper block and what the
+/// thread adds of them (kAddsI for the lower block's terms, kAddsJ for the upper's, kAddsPair),
+/// and whether the pair's block of K stores K_upper,lower.
+struct PairFrame {
+  int lower = -1, upper = -1;
+  std::uint8_t adds = 0;
+  bool transposed = false;
+};
+
+template <class Entry>
+PairFrame pairFrame(const Contact& c, const Entry& e) {
+  PairFrame f;
+  const bool swapped = c.block_i > c.block_j;
+  std::tie(f.lower, f.upper) = blockPair(c);
+  f.adds = e.adds & kAddsPair;
+  if (e.adds & kAddsI) f.adds |= swapped ? kAddsJ : kAddsI;
+  if (e.adds & kAddsJ) f.adds |= swapped ? kAddsI : kAddsJ;
+  f.transposed = e.transposed != swapped;
+  return f;
+}
+
 Eigen::Matrix3d voigtToTensor(const VoigtVector& v, double shear_scale) {
   Eigen::Matrix3d t;
   // clang-format off
@@ -438,12 +464,13 @@ std::vector<Contact> Simulation::searchContacts(const std::vector<Contact>& befo
 }
 
 void Simulation::useContacts(std::vector<Contact> contacts) {
-  // By pairs of blocks, in the order found within a pair: the assembly sums a pair's entries
-  // before it adds them to K (assembleSystem), and reads them one after the other. Found,
-  // the entries of a pair of blocks are interleaved with the other pairs of their pieces
-  // (about 2 in a row on the Xiangjiaba region, 17 a pair).
+  // By pairs of blocks (either holding the point), in the order found within a pair: the
+  // assembly sums a pair's entries before it adds them to K (assembleSystem), and reads them
+  // one after the other. Found, the entries of a pair of blocks are interleaved with the
+  // other pairs of their pieces (about 2 in a row on the Xiangjiaba region, 17 a pair); a
+  // pair of pieces' entries both ways stay together, for the passes that read the pieces.
   const auto byPair = [](const Contact& a, const Contact& b) {
-    return std::tie(a.block_i, a.block_j) < std::tie(b.block_i, b.block_j);
+    return blockPair(a) < blockPair(b);
   };
   if (!std::is_sorted(contacts.begin(), contacts.end(), byPair)) {
     std::vector<std::uint32_t> order(contacts.size());
@@ -451,7 +478,7 @@ void Simulation::useContacts(std::vector<Contact> contacts) {
     tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
       const Contact& ca = contacts[a];
       const Contact& cb = contacts[b];
-      return std::tie(ca.block_i, ca.block_j, a) < std::tie(cb.block_i, cb.block_j, b);
+      return std::make_pair(blockPair(ca), a) < std::make_pair(blockPair(cb), b);
     });
     std::vector<Contact> sorted(contacts.size());
     tbb::parallel_for(std::size_t{0}, order.size(),
@@ -708,44 +735,56 @@ void Simulation::assembleSystem() {
     for (std::size_t k = 0; k < list.size();) {
       const AssemblyEntry& entry = list[k];
       const Contact& first = contacts_[entry.contact];
-      BlockSystem::Parts mine;
-      mine.i = (entry.adds & kAddsI) != 0;
-      mine.j = (entry.adds & kAddsJ) != 0;
-      mine.pair = (entry.adds & kAddsPair) != 0;
-      mine = system_->withSlot(entry.pair, entry.transposed, mine);
-      const int i = movableIndex(first.block_i), j = movableIndex(first.block_j);
-      if (dofs_ != 6 || i == j) {
-        const AppliedFriction applied = addContactTerms(first, mine, terms);
+      if (dofs_ != 6 || movableIndex(first.block_i) == movableIndex(first.block_j)) {
+        BlockSystem::Parts mine;
+        mine.i = (entry.adds & kAddsI) != 0;
+        mine.j = (entry.adds & kAddsJ) != 0;
+        mine.pair = (entry.adds & kAddsPair) != 0;
+        const AppliedFriction applied =
+            addContactTerms(first, system_->withSlot(entry.pair, entry.transposed, mine), terms);
         if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
         ++k;
         continue;
       }
-      // Rigid blocks: the run of this pair's entries (listAssembly puts them one after the
-      // other) summed first, then added to the blocks once (BlockSystem::RigidSpringSums).
+      // Rigid blocks: the run of this pair's entries (useContacts keeps them one after the
+      // other) summed first, then added to the blocks once (BlockSystem::RigidSpringSums), in
+      // the frame of the pair's lower block: an entry whose point is on the upper block adds
+      // its spring with its ends swapped (T_i - T_j and its offsets change sign together).
+      const PairFrame frame = pairFrame(first, entry);
+      const int i = movableIndex(frame.lower), j = movableIndex(frame.upper);
+      BlockSystem::Parts mine;
+      mine.i = (frame.adds & kAddsI) != 0;
+      mine.j = (frame.adds & kAddsJ) != 0;
+      mine.pair = (frame.adds & kAddsPair) != 0;
+      mine = system_->withSlot(entry.pair, frame.transposed, mine);
       BlockSystem::RigidSpringSums sums;
       sums.with_i = i >= 0 && mine.i;
       sums.with_j = j >= 0 && mine.j;
       sums.with_pair = i >= 0 && j >= 0 && mine.pair;
-      const Vec3& ci = blocks_[static_cast<std::size_t>(first.block_i)].centroid;
-      const Vec3& cj = blocks_[static_cast<std::size_t>(first.block_j)].centroid;
+      const Vec3& ci = blocks_[static_cast<std::size_t>(frame.lower)].centroid;
+      const Vec3& cj = blocks_[static_cast<std::size_t>(frame.upper)].centroid;
       for (; k < list.size(); ++k) {
         const AssemblyEntry& e = list[k];
         const Contact& c = contacts_[e.contact];
-        if (c.block_i != first.block_i || c.block_j != first.block_j || e.adds != entry.adds) break;
-        const Eigen::Matrix3d ri = rotationColumns(c.point - ci);
-        const Eigen::Matrix3d rj = rotationColumns(c.foot - cj);
+        const PairFrame f = pairFrame(c, e);
+        if (f.lower != frame.lower || f.upper != frame.upper || f.adds != frame.adds) break;
+        const bool swapped = c.block_i != frame.lower;
+        const Eigen::Matrix3d ri = rotationColumns((swapped ? c.foot : c.point) - ci);
+        const Eigen::Matrix3d rj = rotationColumns((swapped ? c.point : c.foot) - cj);
         if (c.state == ContactState::Locked) {
           // Most entries: contactSprings' locked springs, in line.
           Eigen::Matrix3d s;
           Vec3 offsets;
           lockedSprings(c, penalty_, shear_penalty, s, offsets);
-          sums.add(ri, rj, s, offsets);
+          sums.add(ri, rj, s, swapped ? Vec3(-offsets) : offsets);
           terms.contact_normal = terms.contact_shear = true;
           if (e.adds & kRecords) applied_friction_[e.contact] = {};
           continue;
         }
         ContactSprings springs;
-        if (contactSprings(c, springs, terms)) sums.add(ri, rj, springs.s, springs.offsets);
+        if (contactSprings(c, springs, terms)) {
+          sums.add(ri, rj, springs.s, swapped ? Vec3(-springs.offsets) : springs.offsets);
+        }
         if (e.adds & kRecords) applied_friction_[e.contact] = springs.applied;
       }
       system_->addRigidSpringSums(i, j, sums, mine);

@@ -426,7 +426,7 @@ class Simulation {
   std::vector<MaterialPoint> monitor_points_, load_points_, fixed_points_;
   std::vector<MaterialPoint> bolt_a_, bolt_b_;
   std::vector<BoltState> bolt_state_;
-  std::vector<Contact> contacts_;  ///< by (block_i, block_j), found order within (useContacts)
+  std::vector<Contact> contacts_;  ///< by pairs of blocks, found order within (useContacts)
   /// The contacts as a step found them, for a redone attempt; its buffer is kept between
   /// steps (a fresh copy of the region's 214 000 entries, 56 MB, faulted its pages in anew
   /// every step: 0.04 s, more than the solve).
