@@ -37,6 +37,15 @@ constexpr std::uint8_t kAddsJ = 2;
 constexpr std::uint8_t kAddsPair = 4;
 constexpr std::uint8_t kRecords = 8;
 
+/// The terms an assembly thread adds of a contact (kAdds* bits) as BlockSystem::Parts.
+BlockSystem::Parts partsOf(std::uint8_t adds) {
+  BlockSystem::Parts parts;
+  parts.i = (adds & kAddsI) != 0;
+  parts.j = (adds & kAddsJ) != 0;
+  parts.pair = (adds & kAddsPair) != 0;
+  return parts;
+}
+
 /// A locked contact's springs as one point's (BlockSystem::addPointSprings): the normal spring
 /// (k_n along n, offset gap0) and the two shear springs (k_s along the tangents t_1, t_2,
 /// offsets the shear's components). t_1 t_1^T + t_2 t_2^T = I - n n^T, so S = k_s I +
@@ -736,12 +745,8 @@ void Simulation::assembleSystem() {
       const AssemblyEntry& entry = list[k];
       const Contact& first = contacts_[entry.contact];
       if (dofs_ != 6 || movableIndex(first.block_i) == movableIndex(first.block_j)) {
-        BlockSystem::Parts mine;
-        mine.i = (entry.adds & kAddsI) != 0;
-        mine.j = (entry.adds & kAddsJ) != 0;
-        mine.pair = (entry.adds & kAddsPair) != 0;
-        const AppliedFriction applied =
-            addContactTerms(first, system_->withSlot(entry.pair, entry.transposed, mine), terms);
+        const AppliedFriction applied = addContactTerms(
+            first, system_->withSlot(entry.pair, entry.transposed, partsOf(entry.adds)), terms);
         if (entry.adds & kRecords) applied_friction_[entry.contact] = applied;
         ++k;
         continue;
@@ -752,11 +757,8 @@ void Simulation::assembleSystem() {
       // its spring with its ends swapped (T_i - T_j and its offsets change sign together).
       const PairFrame frame = pairFrame(first, entry);
       const int i = movableIndex(frame.lower), j = movableIndex(frame.upper);
-      BlockSystem::Parts mine;
-      mine.i = (frame.adds & kAddsI) != 0;
-      mine.j = (frame.adds & kAddsJ) != 0;
-      mine.pair = (frame.adds & kAddsPair) != 0;
-      mine = system_->withSlot(entry.pair, frame.transposed, mine);
+      const BlockSystem::Parts mine =
+          system_->withSlot(entry.pair, frame.transposed, partsOf(frame.adds));
       BlockSystem::RigidSpringSums sums;
       sums.with_i = i >= 0 && mine.i;
       sums.with_j = j >= 0 && mine.j;
