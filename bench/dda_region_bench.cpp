@@ -13,6 +13,8 @@
 //   as_run        the engine as every run uses it (contacts kept between searches while the
 //                 blocks move less than DdaSettings::detection.search_margin, kept pairs,
 //                 every piece face searched)
+//   hull_corners  as_run with a face on a face carried by the corners of its hull, the pieces'
+//                 vertices inside it and along its edges dropped (detection.hull_corners on)
 //   every_step    contacts searched every step (detection.search_margin 0)
 //   fresh_pairs   every_step with the broad phase every step (detection.keep_pairs off)
 //   surface_only  every_step with only the blocks' surface faces (detection.surface_only on)
@@ -148,6 +150,9 @@ int main(int argc, char** argv) {
   std::vector<std::pair<std::string, dda3d::DdaSettings>> variants;
   dda3d::DdaSettings s = loaded.settings;
   variants.emplace_back("as_run", s);
+  s.detection.hull_corners = true;
+  variants.emplace_back("hull_corners", s);
+  s.detection.hull_corners = false;
   s.detection.search_margin = 0.0;
   variants.emplace_back("every_step", s);
   s.detection.keep_pairs = false;

@@ -42,6 +42,11 @@ struct Contact {
   /// Joint of the contact (index into DdaModel::joints), from the faces it lies on; -1: the
   /// model's default joint.
   int joint = -1;
+  /// VertexFace: the face of piece_i around the vertex that faces the face of piece_j
+  /// (opposite normals within 10 deg, the most opposite), -1 when none does: the entry is
+  /// then a corner or edge of block i against the face, not a point of two faces in contact
+  /// (keepHullCorners).
+  int facing_face = -1;
   std::int16_t flips = 0;  ///< locked <-> sliding changes in the current step (reset every step)
   /// Open <-> closed changes in the current step (reset every step); after two, the contact
   /// stays closed for the rest of the step while its pull is below Simulation::holdLimit

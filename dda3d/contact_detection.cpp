@@ -1,4 +1,5 @@
 #include "dda3d/contact_detection.h"
+#include "dda3d/contact_hull.h"
 
 #include "dda3d/piece_view.h"
 #include "dda3d/polygon2d.h"
@@ -191,12 +192,24 @@ bool overlaps(const Box& x, const Box& y) {
   return (x.min.array() <= y.max.array()).all() && (y.min.array() <= x.max.array()).all();
 }
 
+/// The face of `a` around vertex v that faces the direction -normal (face to face), the most
+/// opposite of them (the first among equals); -1 when none does.
+int facingFace(const PieceView& a, std::size_t v, const Vec3& normal) {
+  int facing = -1;
+  double most = -kFaceToFaceCosine;
+  for (int f : a.topology->vertex_faces[v]) {
+    const double cosine = a.planes[static_cast<std::size_t>(f)].normal.dot(normal);
+    if (cosine < most) {
+      most = cosine;
+      facing = f;
+    }
+  }
+  return facing;
+}
+
 /// True when a face of `a` around vertex v faces the direction -normal (face to face).
 bool facesAt(const PieceView& a, std::size_t v, const Vec3& normal) {
-  for (int f : a.topology->vertex_faces[v]) {
-    if (a.planes[static_cast<std::size_t>(f)].normal.dot(normal) < -kFaceToFaceCosine) return true;
-  }
-  return false;
+  return facingFace(a, v, normal) >= 0;
 }
 
 /// Vertices of `a` against faces of `b`.
@@ -291,6 +304,7 @@ void vertexToFace(const PieceView& a, const PieceView& b, const Range& range, do
     Contact c = pairContact(ContactKind::VertexFace, a, b);
     c.vertex = static_cast<int>(v);
     c.face = best;
+    c.facing_face = facingFace(a, v, plane.normal);
     c.point = p;
     c.normal = plane.normal;
     c.gap0 = plane.normal.dot(p) - plane.offset;
@@ -679,7 +693,9 @@ std::vector<std::size_t> firstPieces(const std::vector<BlockState>& blocks) {
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face, CandidatePairs* candidates,
-                                  const std::vector<char>* only) {
+                                  const std::vector<char>* only,
+                                  const std::function<int(const Contact&)>& joint_of,
+                                  bool hull_corners) {
   // Per-piece data, built once for the pieces that take part in some pair.
   const std::vector<std::size_t> first_piece = firstPieces(blocks);
   std::vector<PiecePair> pairs;
@@ -769,6 +785,11 @@ std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
     }
   });
   std::vector<Contact> contacts = withoutDuplicates(std::move(found), blocks);
+  if (joint_of) {
+    tbb::parallel_for(std::size_t{0}, contacts.size(),
+                      [&](std::size_t k) { contacts[k].joint = joint_of(contacts[k]); });
+  }
+  if (hull_corners) keepHullCorners(contacts, blocks);
   assignAreas(contacts, joined(std::move(areas)));
   return contacts;
 }

@@ -124,11 +124,17 @@ using PreviousFace =
 /// With `candidates`, the broad phase's pairs come from it (the same pairs, kept between
 /// steps). With `only`, a flag per block, only the pairs of blocks of which at least one is
 /// flagged are searched: every entry between those blocks, as a search of all would find it.
+/// With `joint_of`, each entry's joint (Contact::joint) is set by it; with `hull_corners`, a
+/// face lying on a face of the other block keeps only the corners of the convex hull of its
+/// vertex entries (keepHullCorners, per joint), before the contact area is shared among the
+/// entries.
 std::vector<Contact> findContacts(const std::vector<BlockState>& blocks,
                                   const std::vector<double>& reach, double depth,
                                   const PreviousFace& previous_face,
                                   CandidatePairs* candidates = nullptr,
-                                  const std::vector<char>* only = nullptr);
+                                  const std::vector<char>* only = nullptr,
+                                  const std::function<int(const Contact&)>& joint_of = {},
+                                  bool hull_corners = false);
 
 /// Sets the geometry of kept entries (point, foot, normal, gap0 without any overlap) from the
 /// blocks' current geometry, each as the narrow phase computes it for the same vertex and

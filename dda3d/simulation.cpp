@@ -437,9 +437,11 @@ std::vector<Contact> Simulation::searchContacts(const std::vector<Contact>& befo
   const PreviousFace previous_face = [&](int bi, int pi, int v, int bj, int pj) {
     return previous.face(bi, pi, v, bj, pj);
   };
+  const auto joint_of = [&](const Contact& c) { return contactJoint(model_, blocks_, c); };
   std::vector<Contact> detected =
       findContacts(blocks_, reach_, depth, previous_face,
-                   settings_.detection.keep_pairs ? &candidates_ : nullptr, only);
+                   settings_.detection.keep_pairs ? &candidates_ : nullptr, only, joint_of,
+                   settings_.detection.hull_corners);
   // Each entry carries its last step's state over on its own (in parallel); the late ones
   // are counted after.
   std::vector<char> is_late(detected.size(), 0);
@@ -466,7 +468,6 @@ std::vector<Contact> Simulation::searchContacts(const std::vector<Contact>& befo
       c.state = c.gap0 <= settings_.open_threshold_ratio * half_domain_ ? ContactState::Locked
                                                                         : ContactState::Open;
     }
-    c.joint = contactJoint(model_, blocks_, c);
   });
   late = static_cast<int>(std::count(is_late.begin(), is_late.end(), 1));
   return detected;

@@ -353,11 +353,26 @@ RqdAnalysis readRqdAnalysis(const Cursor& c, const std::vector<std::string>& joi
 
 /// analysis.dda
 DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool mesh_domain) {
-  const Cursor m =
-      c.map({"mode", "kinematics", "steps", "time_step", "max_displacement_ratio", "penalty",
-             "time_integration", "min_block_volume", "open_close_tolerance", "region",
-             "min_time_step", "contact_point_spacing", "damage_map", "settle", "dynamic_ratio",
-             "biot_coefficient", "glue_across_materials", "surface_only", "contact_search_margin"});
+  const Cursor m = c.map({"mode",
+                          "kinematics",
+                          "steps",
+                          "time_step",
+                          "max_displacement_ratio",
+                          "penalty",
+                          "time_integration",
+                          "min_block_volume",
+                          "open_close_tolerance",
+                          "region",
+                          "min_time_step",
+                          "contact_point_spacing",
+                          "damage_map",
+                          "settle",
+                          "dynamic_ratio",
+                          "biot_coefficient",
+                          "glue_across_materials",
+                          "surface_only",
+                          "contact_search_margin",
+                          "contact_hull_corners"});
   DdaAnalysis dda;
   dda3d::DdaSettings& e = dda.engine;
   e.mode = m.valueOr("mode", e.mode, [](const Cursor& v) {
@@ -417,6 +432,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
   e.detection.surface_only = m.valueOr("surface_only", e.detection.surface_only, &Cursor::boolean);
   e.detection.search_margin = m.numberOr("contact_search_margin", e.detection.search_margin,
                                          {.low = 0, .high = dda3d::kMaxSearchMargin});
+  e.detection.hull_corners =
+      m.valueOr("contact_hull_corners", e.detection.hull_corners, &Cursor::boolean);
   if (const auto damage = m.get("damage_map")) {
     const Cursor d = damage->map({"every"});
     dda.damage_every = d.integerOr("every", std::max(1, dda.steps / 10), closed(1, 1e7));
