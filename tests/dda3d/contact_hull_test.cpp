@@ -230,9 +230,10 @@ TEST(ContactHull, ACubeCutIntoPiecesSlidesAsTheWholeCube) {
                           (std::sin(scenes::radians(35.0)) -
                            std::cos(scenes::radians(35.0)) * std::tan(scenes::radians(30.0))) *
                           0.1 * 0.1;
-  // Limit equilibrium of a block on a plane (the slide's acceleration), within 3 % for the
-  // penalty springs' compliance and the implicit step's lag.
-  EXPECT_NEAR(whole.x(), expected, 0.03 * expected);
+  // Limit equilibrium of a block on a plane (the slide's acceleration), within 1 % as the
+  // incline's sliding test (InclineSliding: the springs taking the load in the first steps;
+  // measured 0.2 %).
+  EXPECT_NEAR(whole.x(), expected, 0.01 * expected);
   double largest_without = 0.0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     const Vec3 cut = slide(seed, 4, true);
