@@ -14,12 +14,14 @@
 // u(t) (of the front block) and what the step control did.
 //
 // Sweeps, one setting changed at a time from the reference (dt 1 ms, automatic penalty
-// 40 E l, CHOLMOD, Bossak rho_inf = 0, the engine's defaults):
+// 40 E l, CHOLMOD, Bossak rho_inf = 0, friction tolerance 1e-2, the engine's defaults):
 //   dt       0.5, 1, 2, 4 ms, with the Bossak scheme and with Shi's scheme;
 //   penalty  0.1, 1, 10 x the automatic penalty;
 //   solver   CHOLMOD, Eigen LDLT, PCG with relative residual 1e-4, 1e-6, 4e-7 (what
 //            SolverKind::Auto uses above 500 blocks, autoPcgTolerance()), 1e-8, 1e-10;
-//   scheme   Bossak rho_inf = 0, 0.5, 1, and Shi's scheme (beta = 1/2, gamma = 1).
+//   scheme   Bossak rho_inf = 0, 0.5, 1, and Shi's scheme (beta = 1/2, gamma = 1);
+//   friction friction_tolerance 1e-3 and 1 (the friction of the iteration before accepted)
+//            against the default 1e-2.
 // Prints Google Benchmark's table, then per kinematics a table of errors and of CPU and wall
 // time ratios against the reference measured in the same run.
 #include <benchmark/benchmark.h>
@@ -105,7 +107,8 @@ Incline incline(Scene scene) {
 /// One setting of the sweeps.
 struct Case {
   Scene scene = Scene::Block;
-  std::string sweep;    ///< "dt", "dt shi", "penalty", "solver", "scheme"
+  std::string sweep;    ///< "dt", "dt shi", "penalty", "solver", "scheme",
+                        ///< "friction"
   std::string setting;  ///< the value changed, as printed
   Kinematics kinematics = Kinematics::Rigid;
   double dt = 1e-3;            ///< s
@@ -113,6 +116,7 @@ struct Case {
   SolverOptions solver{.kind = SolverKind::Cholmod};
   TimeIntegration integration = TimeIntegration::Bossak;
   double rho = 0.0;  ///< Bossak spectral radius
+  double friction_tolerance = DdaSettings{}.friction_tolerance;
   /// Benchmark name, e.g. "Slide/block/rigid/solver/pcg 1e-6".
   std::string name() const { return std::string("Slide/") + group() + "/" + sweep + "/" + setting; }
   /// "block/rigid", "train/deformable", ...
@@ -133,6 +137,7 @@ DdaSettings settingsOf(const Case& c) {
   s.solver = c.solver;
   s.integration = c.integration;
   s.spectral_radius = c.rho;
+  s.friction_tolerance = c.friction_tolerance;
   return s;
 }
 
@@ -258,6 +263,15 @@ std::vector<Case> cases() {
         c.rho = rho;
         char text[32];
         std::snprintf(text, sizeof text, "bossak rho %g", rho);
+        c.setting = text;
+        all.push_back(c);
+      }
+      for (double tolerance : {1e-3, 1.0}) {
+        Case c = ref;
+        c.sweep = "friction";
+        c.friction_tolerance = tolerance;
+        char text[32];
+        std::snprintf(text, sizeof text, "friction tol %g", tolerance);
         c.setting = text;
         all.push_back(c);
       }

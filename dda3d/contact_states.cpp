@@ -106,12 +106,25 @@ struct StateRules {
   double open_tolerance = 0.0;     ///< a closed one opens past this gap (m), T A / k_n aside
   double reverse_tolerance = 0.0;  ///< a slip reversal below this is round-off (m)
   double allowed = 0.0;            ///< the allowed penetration g3 l0 (m)
+  double friction_share = 0.0;     ///< DdaSettings::friction_tolerance
 };
 
 /// f N, plus c A while the contact keeps its cohesion.
 double strengthOf(const Contact& c, const DdaJoint& joint) {
   return joint.friction * std::max(0.0, c.normal_force) +
          (c.bonded ? joint.cohesion * c.area : 0.0);
+}
+
+/// True when a contact that slid in the solve and still slides had its strength `used`
+/// there and has `now` with the solve's normal force, and the two differ by more than the
+/// friction tolerance's share of the larger and by more than the friction of a round-off gap
+/// (k_n times the opening margin, a sub-contact point its share of it): between blocks that
+/// slide side by side, N wanders about zero by round-off, and every such change is a large
+/// share of it (a train of four cubes took 31 iterations a step).
+bool frictionChanged(const Contact& c, double used, double now, const DdaJoint& joint,
+                     const StateRules& rules) {
+  const double round_off = joint.friction * rules.penalty * c.share * rules.open_tolerance;
+  return std::abs(now - used) > std::max(rules.friction_share * std::max(now, used), round_off);
 }
 
 /// An open contact at gap `d` after the solve: closes (locked, no shear) past the threshold.
@@ -271,8 +284,13 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // the iteration never settled at any time step.
   rules.reverse_tolerance = settings_.open_threshold_ratio * half_domain_;
   rules.allowed = settings_.allowed_penetration_ratio * half_domain_;
+  // Dynamic runs only: a static step starts from rest, so the friction of its path carries no
+  // impulse to the next, and at rest N and so f N hold from one iteration to the next.
+  rules.friction_share =
+      settings_.mode == AnalysisMode::Dynamic ? settings_.friction_tolerance : 1.0;
   // Each contact's update reads the solution and changes that contact only: in parallel,
-  // each recording how it changed (1 changed, 2 closed), then counted in order.
+  // each recording how it changed (1 changed, 2 closed, 3 slid on with another strength),
+  // then counted in order.
   // Every block's unknowns, read once (not twice per contact).
   const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   std::vector<char> how(contacts_.size(), 0);
@@ -292,6 +310,9 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
         dofs_ == 6 ? slip : tangential(relativeDisplacement(c, unknowns, true), c.normal);
     c.gap = d;
     const ContactState before = c.state;
+    const DdaJoint& joint = jointOf(c);
+    // The strength the solve's friction load was (contactSprings), from the last N.
+    const double used = before == ContactState::Sliding ? strengthOf(c, joint) : 0.0;
     if (c.state == ContactState::Open) {
       updateOpenContact(c, d, rules);
     } else {
@@ -305,9 +326,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       // a neighbouring contact with forces of 100 weights, and their work created energy
       // (random piles, docs/dda3d.md "Robustness tests"; none at 12 weights in 200 piles).
       const double holds = c.toggles >= 2 ? penalty_ * d / holdLimit(c) : kNeverHeld;
-      updateClosedContact(c, d, slip, rigid_slip, holds, jointOf(c), rules);
+      updateClosedContact(c, d, slip, rigid_slip, holds, joint, rules);
     }
-    if (c.state != before) how[k] = before == ContactState::Open ? 2 : 1;
+    if (c.state != before) {
+      how[k] = before == ContactState::Open ? 2 : 1;
+    } else if (rules.friction_share < 1.0 && c.state == ContactState::Sliding &&
+               frictionChanged(c, used, strengthOf(c, joint), joint, rules)) {
+      how[k] = 3;
+    }
     double& local = deepest.local();
     local = std::max(local, -d);
   });
@@ -317,6 +343,10 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       settings_.mode == AnalysisMode::Static ? kStaticClosingShare * rules.allowed : -1.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     if (how[k] == 0) continue;
+    if (how[k] == 3) {
+      ++changes.friction_changed;
+      continue;
+    }
     ++changes.changed;
     const bool closed = how[k] == 2;
     changes.closed += closed;

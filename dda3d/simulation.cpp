@@ -937,7 +937,12 @@ int Simulation::openCloseIterate(double dt, Eigen::VectorXd& solution, bool& set
     // was solved open and may sit deep in the other block.
     const auto allowed =
         static_cast<int>(settings_.open_close_tolerance * static_cast<double>(contacts_.size()));
-    if (changes.closed_deep == 0 && changes.changed <= allowed) {
+    // A sliding contact whose friction was solved with another normal force than its own
+    // counts as a change (DdaSettings::friction_tolerance); once the states hold, the last
+    // iteration takes the friction it has.
+    const bool states_hold = changes.closed_deep == 0 && changes.changed <= allowed;
+    if (states_hold && (changes.changed + changes.friction_changed <= allowed ||
+                        iteration == settings_.max_open_close_iterations)) {
       settled = true;
       return iteration;
     }

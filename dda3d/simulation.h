@@ -342,6 +342,9 @@ class Simulation {
     /// The deepest penetration after the update (m, -gap; 0 when none penetrates).
     double deepest = 0.0;
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
+    /// Sliding contacts that kept their state but whose strength f N (+ c A) with this
+    /// solution's N differs from the one the solve used by more than friction_tolerance.
+    int friction_changed = 0;
   };
   /// Largest pull (N) of a contact held closed for the rest of the step.
   double holdLimit(const Contact& c) const;

@@ -65,6 +65,17 @@ struct DdaSettings {
   /// down to 1e-8 s on the Xiangjiaba foundation. The contacts that changed last keep their
   /// new state for the next step; one that closed always takes another iteration.
   double open_close_tolerance = 1e-4;
+  /// A sliding contact's friction f N (+ c A) is a load on the iteration's solve, taken with
+  /// the normal force N of the iteration before. In a dynamic run the iteration has settled
+  /// only when, for every sliding contact (beyond open_close_tolerance's allowance, counted
+  /// with the state changes), that strength differs from the one of this solution's N by at
+  /// most this share of the larger, or by the friction of a round-off gap: the friction then
+  /// pairs with the normal force of the same step, and a block's friction impulse is f times
+  /// its normal impulse. 1: the friction of the iteration before is accepted, one iteration
+  /// late: a cube cut into pieces sliding from rest slid up to 8.5 % farther than limit
+  /// equilibrium in 0.1 s (docs/dda3d.md, "Friction with the step's normal force"). Static
+  /// runs (velocities reset every step) always take the friction of the iteration before.
+  double friction_tolerance = 0.01;
   /// Deformable rock blocks in water (docs/dda3d.md, "Water in deformable blocks"): the share
   /// of the water pressure around a block that its pores carry (Biot's coefficient). 0: the
   /// block is impermeable, and the water on its faces compresses it as any surface load does;

@@ -204,8 +204,9 @@ struct RqdAnalysis {
 struct DdaAnalysis {
   /// The engine's settings as the scene gives them: mode, kinematics, time_step,
   /// min_time_step, max_displacement_ratio, penalty (0: auto), time_integration,
-  /// open_close_tolerance, contact_point_spacing. Keys the scene omits keep the engine's
-  /// defaults (dda3d::DdaSettings), which are the scene contract's (docs/scene-reference.md).
+  /// open_close_tolerance, friction_tolerance, contact_point_spacing. Keys the scene omits
+  /// keep the engine's defaults (dda3d::DdaSettings), which are the scene contract's
+  /// (docs/scene-reference.md).
   dda3d::DdaSettings engine;
   int steps = 1000;  ///< number of steps of size time_step
   /// m3: blocks smaller than this are glued to the same-material neighbour they share the

@@ -362,6 +362,7 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
                           "time_integration",
                           "min_block_volume",
                           "open_close_tolerance",
+                          "friction_tolerance",
                           "region",
                           "min_time_step",
                           "contact_point_spacing",
@@ -410,6 +411,8 @@ DdaAnalysis readDdaAnalysis(const Cursor& c, const geometry::Box& domain, bool m
       m.valueOr("glue_across_materials", dda.glue_across_materials, &Cursor::boolean);
   e.open_close_tolerance = m.numberOr("open_close_tolerance", e.open_close_tolerance,
                                       {.low = 0, .high = 1, .high_open = true});
+  e.friction_tolerance =
+      m.numberOr("friction_tolerance", e.friction_tolerance, {.low = 0, .high = 1});
   if (const auto spacing = m.get("contact_point_spacing")) {
     e.contact_point_spacing = spacing->number(kNonNegative);
     dda.contact_point_spacing_line = spacing->line();

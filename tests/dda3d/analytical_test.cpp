@@ -133,12 +133,16 @@ TEST_P(InclineSliding, FollowsTheFrictionalAcceleration) {
   Simulation sim(scene.model, settingsFor(c.kinematics, 1e-3));
   const double a =
       kG * (std::sin(radians(c.theta)) - std::cos(radians(c.theta)) * std::tan(radians(c.phi)));
-  for (double t : {0.1, 0.2, 0.3}) {
+  for (double t : {0.01, 0.1, 0.2, 0.3}) {
     sim.runUntil(t);
     const double expected = 0.5 * a * sim.time() * sim.time();
     const double along = sim.centroidDisplacement(1).dot(scene.downslope);
-    // Issue 5: within 1% after the first 0.1 s.
-    EXPECT_NEAR(along, expected, 0.01 * expected) << "t = " << sim.time();
+    // Within 1 % from the tenth step (t = 0.01 s) and 0.2 % from 0.1 s: the friction pairs
+    // with the normal force of its step (DdaSettings::friction_tolerance), so the springs
+    // taking the block's weight in the first steps do not change its slide (measured at most
+    // 0.84 % at 0.01 s and 0.09 % at 0.1 s, deformable; 0.03 % rigid). With the friction of
+    // the iteration before it was 1.8 % (rigid) and 10 % (deformable) at 0.01 s, 0.9 % at 0.1 s.
+    EXPECT_NEAR(along, expected, (t < 0.1 ? 0.01 : 0.002) * expected) << "t = " << sim.time();
     EXPECT_GT(sim.contactCounts().sliding, 0);
     if (t == 0.3) {
       // The acceleration 2 d / t^2 that the displacement at 0.3 s gives (same relative error).
@@ -151,7 +155,7 @@ TEST_P(InclineSliding, FollowsTheFrictionalAcceleration) {
            .source = "Coulomb: a = g (sin theta - cos theta tan phi) (Goodman & Shi 1985, ch. 1)",
            .expected = a,
            .measured = 2.0 * along / (sim.time() * sim.time()),
-           .tolerance = 0.01,
+           .tolerance = 0.002,
            .relative = true,
            .unit = "m/s2"});
     }

@@ -1137,5 +1137,17 @@ TEST(SceneDdaBlocks, ContactSearchMargin) {
             "got 0.1");
 }
 
+TEST(SceneDdaBlocks, FrictionTolerance) {
+  const Scene scene =
+      parseScene(valid_head + "analysis:\n  dda:\n    friction_tolerance: 1\n", "lagged.yaml");
+  EXPECT_EQ(scene.analysis.dda->engine.friction_tolerance, 1.0);
+  // Absent: the engine's default, 1 % of a sliding contact's strength.
+  const Scene plain = parseScene(valid_head + "analysis:\n  dda: {}\n", "plain.yaml");
+  EXPECT_EQ(plain.analysis.dda->engine.friction_tolerance, 0.01);
+  EXPECT_EQ(errorOf(valid_head + "analysis:\n  dda:\n    friction_tolerance: -0.1\n"),
+            "bad.yaml:5:25: analysis.dda.friction_tolerance: expected a number in [0, 1], "
+            "got -0.1");
+}
+
 }  // namespace
 }  // namespace rockmass::io

@@ -167,9 +167,11 @@ def test_loads_can_change_between_steps(small):
     weightless.run(10)
     # Without gravity nothing loads the blocks: they move only by the acceleration the time
     # integration started with (gravity's, at t = 0: a change acts from the next step on),
-    # nanometres against the free blocks' fall.
+    # 3e-10 m against the free blocks' 4.8e-6 m, their settling on their contact springs in
+    # 0.02 s (none slides yet: one block at its limit starts after 10-30 steps, when depends
+    # on the friction tolerance).
     moved = np.abs(free.blocks()["displacement"]).max()
-    assert moved > 1e-5
+    assert moved > 1e-6
     assert np.abs(weightless.blocks()["displacement"]).max() < 1e-3 * moved
     with pytest.raises(ValueError):
         free.set_gravity([0, 0])
