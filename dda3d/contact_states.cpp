@@ -311,8 +311,10 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     c.gap = d;
     const ContactState before = c.state;
     const DdaJoint& joint = jointOf(c);
-    // The strength the solve's friction load was (contactSprings), from the last N.
-    const double used = before == ContactState::Sliding ? strengthOf(c, joint) : 0.0;
+    // A sliding contact's friction is checked against its new N (a static run's never): the
+    // strength the solve's friction load was (contactSprings), from the last N.
+    const bool checks_friction = rules.friction_share < 1.0 && before == ContactState::Sliding;
+    const double used = checks_friction ? strengthOf(c, joint) : 0.0;
     if (c.state == ContactState::Open) {
       updateOpenContact(c, d, rules);
     } else {
@@ -330,8 +332,7 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     }
     if (c.state != before) {
       how[k] = before == ContactState::Open ? 2 : 1;
-    } else if (rules.friction_share < 1.0 && c.state == ContactState::Sliding &&
-               frictionChanged(c, used, strengthOf(c, joint), joint, rules)) {
+    } else if (checks_friction && frictionChanged(c, used, strengthOf(c, joint), joint, rules)) {
       how[k] = 3;
     }
     double& local = deepest.local();

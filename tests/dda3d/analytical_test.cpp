@@ -180,27 +180,31 @@ INSTANTIATE_TEST_SUITE_P(Cases, InclineSliding,
 // iterations were redone too (measured 9 steps redone against 4).
 TEST(FrictionTolerance, AStepWhoseStatesHoldIsNotRedoneForItsFriction) {
   const Incline scene = incline(30, 20);
-  const auto run = [&](double tolerance, double& along, double& time) {
+  struct Run {
+    int redone = 0;      ///< step attempts redone in the first 0.1 s
+    double along = 0.0;  ///< m, the block's slide
+    double time = 0.0;   ///< s
+  };
+  const auto run = [&](double tolerance) {
     DdaSettings settings = settingsFor(Kinematics::Rigid, 1e-3);
     settings.max_open_close_iterations = 2;
     settings.friction_tolerance = tolerance;
     Simulation sim(scene.model, settings);
-    int redone = 0;
+    Run out;
     while (sim.time() < 0.1 - 1e-12) {
       const StepReport r = sim.time() + sim.timeStep() >= 0.1 ? sim.runUntil(0.1) : sim.step();
-      redone += r.attempts - 1;
+      out.redone += r.attempts - 1;
     }
-    along = sim.centroidDisplacement(1).dot(scene.downslope);
-    time = sim.time();
-    return redone;
+    out.along = sim.centroidDisplacement(1).dot(scene.downslope);
+    out.time = sim.time();
+    return out;
   };
-  double along = 0.0, time = 0.0, lagged_along = 0.0, lagged_time = 0.0;
-  const int redone = run(0.0, along, time);
-  const int lagged_redone = run(1.0, lagged_along, lagged_time);
-  EXPECT_EQ(redone, lagged_redone);
+  const Run paired = run(0.0);
+  EXPECT_EQ(paired.redone, run(1.0).redone);
   const double a =
       kG * (std::sin(radians(30.0)) - std::cos(radians(30.0)) * std::tan(radians(20.0)));
-  EXPECT_NEAR(along, 0.5 * a * time * time, 0.01 * 0.5 * a * time * time);
+  const double expected = 0.5 * a * paired.time * paired.time;
+  EXPECT_NEAR(paired.along, expected, 0.01 * expected);
 }
 
 class InclineStable : public ::testing::TestWithParam<SlideCase> {};
