@@ -117,14 +117,11 @@ double strengthOf(const Contact& c, const DdaJoint& joint) {
 
 /// True when a contact that slid in the solve and still slides had its strength `used`
 /// there and has `now` with the solve's normal force, and the two differ by more than the
-/// friction tolerance's share of the larger and by more than the friction of a round-off gap
-/// (k_n times the opening margin, a sub-contact point its share of it): between blocks that
-/// slide side by side, N wanders about zero by round-off, and every such change is a large
-/// share of it (a train of four cubes took 31 iterations a step).
-bool frictionChanged(const Contact& c, double used, double now, const DdaJoint& joint,
-                     const StateRules& rules) {
-  const double round_off = joint.friction * rules.penalty * c.share * rules.open_tolerance;
-  return std::abs(now - used) > std::max(rules.friction_share * std::max(now, used), round_off);
+/// friction tolerance's share of the larger. Whether it counts is its blocks' question
+/// (Simulation::updateContactStates): between blocks that slide side by side, N wanders about
+/// zero by round-off, and every such change is a large share of it.
+bool frictionChanged(double used, double now, const StateRules& rules) {
+  return std::abs(now - used) > rules.friction_share * std::max(now, used);
 }
 
 /// An open contact at gap `d` after the solve: closes (locked, no shear) past the threshold.
@@ -294,6 +291,11 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
   // Every block's unknowns, read once (not twice per contact).
   const std::vector<BlockVector> unknowns = blockUnknowns(solution);
   std::vector<char> how(contacts_.size(), 0);
+  // In a dynamic run, each closed contact's strength after the update and each sliding one's
+  // change of strength, summed by block below.
+  const bool checks_any_friction = rules.friction_share < 1.0;
+  std::vector<double> strength(checks_any_friction ? contacts_.size() : 0, 0.0);
+  std::vector<double> friction_change(strength.size(), 0.0);
   // The deepest penetration after the update, in the same pass (a largest value: the same in
   // any order), for the step's check.
   tbb::combinable<double> deepest([] { return 0.0; });
@@ -332,20 +334,46 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
     }
     if (c.state != before) {
       how[k] = before == ContactState::Open ? 2 : 1;
-    } else if (checks_friction && frictionChanged(c, used, strengthOf(c, joint), joint, rules)) {
-      how[k] = 3;
+    } else if (checks_friction) {
+      const double now = strengthOf(c, joint);
+      if (frictionChanged(used, now, rules)) how[k] = 3;
+      friction_change[k] = now - used;
     }
+    if (checks_any_friction && c.state != ContactState::Open) strength[k] = strengthOf(c, joint);
     double& local = deepest.local();
     local = std::max(local, -d);
   });
   StateChanges changes;
   changes.deepest = deepest.combine([](double x, double y) { return std::max(x, y); });
+  // A sliding contact's change of friction counts where it changes its block's: a movable
+  // block whose sliding contacts' strengths moved, in sum, by more than the friction
+  // tolerance's share of the strength of all its closed contacts (summed in contact order:
+  // the same sums with any number of threads). The friction a solve was off by is then at
+  // most that share of what holds the block; the side contacts of cubes sliding in a train,
+  // whose N wanders about zero by round-off, change their blocks' friction by 1e-12 of it.
+  std::vector<char> friction_moved;
+  if (checks_any_friction) {
+    std::vector<double> held(blocks_.size(), 0.0), moved(blocks_.size(), 0.0);
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      const Contact& c = contacts_[k];
+      for (const int b : {c.block_i, c.block_j}) {
+        held[static_cast<std::size_t>(b)] += strength[k];
+        moved[static_cast<std::size_t>(b)] += std::abs(friction_change[k]);
+      }
+    }
+    friction_moved.assign(blocks_.size(), 0);
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      friction_moved[b] = !blocks_[b].fixed && moved[b] > rules.friction_share * held[b] ? 1 : 0;
+    }
+  }
   const double shallow =
       settings_.mode == AnalysisMode::Static ? kStaticClosingShare * rules.allowed : -1.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     if (how[k] == 0) continue;
     if (how[k] == 3) {
-      ++changes.friction_changed;
+      const Contact& c = contacts_[k];
+      changes.friction_changed += friction_moved[static_cast<std::size_t>(c.block_i)] != 0 ||
+                                  friction_moved[static_cast<std::size_t>(c.block_j)] != 0;
       continue;
     }
     ++changes.changed;

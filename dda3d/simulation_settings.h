@@ -69,9 +69,10 @@ struct DdaSettings {
   /// the normal force N of the iteration before. In a dynamic run the iteration has settled
   /// only when, for every sliding contact (beyond open_close_tolerance's allowance, counted
   /// with the state changes), that strength differs from the one of this solution's N by at
-  /// most this share of the larger, or by the friction of a round-off gap: the friction then
-  /// pairs with the normal force of the same step, and a block's friction impulse is f times
-  /// its normal impulse. 1: the friction of the iteration before is accepted, one iteration
+  /// most this share of the larger, or the sum of such changes over each of its movable blocks
+  /// is at most this share of the strength of all that block's closed contacts: the friction
+  /// then pairs with the normal force of the same step, and a block's friction impulse is f
+  /// times its normal impulse. 1: the friction of the iteration before is accepted, one iteration
   /// late: a cube cut into pieces sliding from rest slid up to 8.5 % farther than limit
   /// equilibrium in 0.1 s (docs/dda3d.md, "Friction with the step's normal force"). Static
   /// runs (velocities reset every step) always take the friction of the iteration before.

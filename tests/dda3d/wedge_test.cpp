@@ -102,17 +102,20 @@ TEST(Wedge, CriticalFrictionAngleWithinHalfADegree) {
   slid.runUntil(0.3);
   const double a = t.drive - (t.n_a + t.n_b) * std::tan(radians(critical - 0.5));
   const double expected = 0.5 * a * slid.time() * slid.time();
-  // Sliding, at about the predicted rate: near FS = 1 the net acceleration is a small
-  // difference of large forces, so only its order is checked here (the 2% check is above).
-  EXPECT_GT(slid.centroidDisplacement(2).dot(t.s), 0.5 * expected);
-  EXPECT_LT(slid.centroidDisplacement(2).dot(t.s), 1.5 * expected);
+  // Sliding at the predicted rate. Near FS = 1 the net acceleration is a small difference of
+  // large forces (here 2.2 % of the friction), so a friction 0.1 % off would move it by 5 %.
+  // Within 2 %: the springs' slip while they take the load is 0.6 % of the motion (3e-5 m of
+  // 5.4e-3 m), and the friction pairs with its step's normal force (measured +0.6 %; with the
+  // friction one iteration late +15 %, with a per-contact round-off floor on its check
+  // -6.3 %: DdaSettings::friction_tolerance).
+  EXPECT_NEAR(slid.centroidDisplacement(2).dot(t.s), expected, 0.02 * expected);
   test::recordVerification(
       {.group = "Wedges",
        .name = "wedge at phi = critical - 0.5 deg: acceleration (small difference of forces)",
        .source = "block theory: a = (|w.s| - (N_A + N_B) tan phi) / m (Hoek & Bray, ch. 7)",
        .expected = a,
        .measured = 2.0 * slid.centroidDisplacement(2).dot(t.s) / (slid.time() * slid.time()),
-       .tolerance = 0.5,
+       .tolerance = 0.02,
        .relative = true,
        .unit = "m/s2"});
 }
