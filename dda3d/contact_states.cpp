@@ -332,14 +332,14 @@ Simulation::StateChanges Simulation::updateContactStates(const Eigen::VectorXd& 
       const double holds = c.toggles >= 2 ? penalty_ * d / holdLimit(c) : kNeverHeld;
       updateClosedContact(c, d, slip, rigid_slip, holds, joint, rules);
     }
+    if (checks_any_friction && c.state != ContactState::Open) strength[k] = strengthOf(c, joint);
     if (c.state != before) {
       how[k] = before == ContactState::Open ? 2 : 1;
     } else if (checks_friction) {
-      const double now = strengthOf(c, joint);
-      if (frictionChanged(used, now, rules)) how[k] = 3;
-      friction_change[k] = now - used;
+      // Still sliding, so closed: its strength now is the one just stored.
+      if (frictionChanged(used, strength[k], rules)) how[k] = 3;
+      friction_change[k] = strength[k] - used;
     }
-    if (checks_any_friction && c.state != ContactState::Open) strength[k] = strengthOf(c, joint);
     double& local = deepest.local();
     local = std::max(local, -d);
   });

@@ -343,7 +343,8 @@ class Simulation {
     double deepest = 0.0;
     int example = -1;  ///< one contact that changed (one that closed when any did), or -1
     /// Sliding contacts that kept their state but whose strength f N (+ c A) with this
-    /// solution's N differs from the one the solve used by more than friction_tolerance.
+    /// solution's N differs from the one the solve used by more than friction_tolerance, on a
+    /// block whose friction changed by more than that share of its contacts' strength.
     int friction_changed = 0;
   };
   /// Largest pull (N) of a contact held closed for the rest of the step.
